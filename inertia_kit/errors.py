@@ -1,0 +1,50 @@
+"""The errors inertia-kit raises on bad input, each naming the file (and line) at fault."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+class InertiaKitError(Exception):
+    """Base class of every error a user can cause through input."""
+
+
+class InputError(InertiaKitError):
+    """
+    A file we cannot read as a robot description: the command exits 2.
+
+    ``str(error)`` is ``path:line:column: message`` with as much of the location as is known.
+    """
+
+    def __init__(
+        self, message: str, path: str | Path | None = None, line: int | None = None, column: int | None = None
+    ):
+        self.message = message
+        self.path = None if path is None else str(path)
+        self.line = line
+        self.column = column
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        location = ":".join(
+            str(part) for part in (self.path, self.line, self.column) if part is not None
+        )
+        return f"{location}: {self.message}" if location else self.message
+
+
+class MeshError(InertiaKitError):
+    """
+    A mesh file that yields no mass properties.
+
+    ``kind`` is ``not-found``, ``unreadable`` (corrupt or unsupported) or ``empty`` (no volume).
+    """
+
+    def __init__(self, path: str | Path, kind: str, message: str):
+        self.path = str(path)
+        self.kind = kind
+        self.message = message
+        super().__init__(f"{self.path}: {message}")
+
+
+class ConfigError(InertiaKitError):
+    """Bad configuration or usage: the command exits 2."""
