@@ -1,0 +1,334 @@
+"""
+Command-line entry points. The click commands are thin; this is the only module that knows
+exit codes: 0 success, 1 findings (lint) or changes (fill), 2 bad input or usage.
+"""
+
+from __future__ import annotations
+
+import os
+
+# the CLI runs on every commit: one BLAS thread starts faster and our products are small;
+# set before numpy is first imported, unless the user chose
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import json  # noqa: E402
+import sys  # noqa: E402
+from collections.abc import Callable  # noqa: E402
+from typing import Any  # noqa: E402
+
+import click  # noqa: E402
+
+from inertia_kit import __version__  # noqa: E402
+
+
+class UsageError(click.ClickException):
+    """Bad input, usage or configuration: exit 2 (click's default of 1 would read as findings)."""
+
+    exit_code = 2
+
+    def show(self, file: Any = None) -> None:
+        click.echo(f"error: {self.format_message()}", err=True)
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="inertia-kit")
+def main() -> None:
+    """inertia-kit: physically right <inertial> blocks for URDF and xacro robot descriptions."""
+
+
+# --- inertia-kit mass ------------------------------------------------------------------------
+
+
+@main.group("mass")
+def mass_group() -> None:
+    """
+    Mass properties of a primitive or a mesh: mass, centre of mass, the inertia tensor about
+    the centre of mass (and about any point), and a ready-to-paste URDF <inertial> block.
+
+    \b
+    Examples:
+      inertia-kit mass cylinder --radius 0.35 --length 0.4 --density 1024 --about 0 0 -0.2
+      inertia-kit mass mesh part.stl --density 2700 --scale 0.001
+    """
+
+
+def _common_options(command: Callable) -> Callable:
+    options = [
+        click.option(
+            "--density",
+            type=float,
+            default=None,
+            help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
+        ),
+        click.option("--mass", "mass_kg", type=float, default=None, help="Total mass, kg."),
+        click.option(
+            "--xyz",
+            nargs=3,
+            type=float,
+            default=(0.0, 0.0, 0.0),
+            help="Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
+        ),
+        click.option(
+            "--rpy",
+            nargs=3,
+            type=float,
+            default=(0.0, 0.0, 0.0),
+            help="Place the shape: roll pitch yaw, rad (as a URDF <origin rpy>).",
+        ),
+        click.option(
+            "--about",
+            nargs=3,
+            type=float,
+            default=None,
+            help="Also report the tensor about this point of the link frame, m.",
+        ),
+        click.option(
+            "--about-rpy",
+            nargs=3,
+            type=float,
+            default=None,
+            help="...and in the axes of a frame rotated by these roll pitch yaw, rad.",
+        ),
+        click.option(
+            "--format",
+            "output_format",
+            type=click.Choice(["text", "json"]),
+            default="text",
+            show_default=True,
+        ),
+    ]
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def _run_primitive(description: dict[str, Any], build: Callable[..., Any], **options: Any) -> None:
+    try:
+        unit = build(density=1.0)  # at unit density the mass is the volume
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    _report(description, unit, unit.mass, None, **options)
+
+
+@mass_group.command("box")
+@click.option("--size", nargs=3, type=float, required=True, help="Edge lengths x y z, m.")
+@_common_options
+def mass_box(size: tuple[float, float, float], **options: Any) -> None:
+    """A solid box centred on its frame."""
+    from inertia_kit.primitives import box
+
+    _run_primitive({"shape": "box", "size": list(size)}, lambda **kw: box(size, **kw), **options)
+
+
+@mass_group.command("cylinder")
+@click.option("--radius", type=float, required=True, help="m")
+@click.option("--length", type=float, required=True, help="m, along z")
+@_common_options
+def mass_cylinder(radius: float, length: float, **options: Any) -> None:
+    """A solid cylinder along z, centred on its frame (as URDF)."""
+    from inertia_kit.primitives import cylinder
+
+    _run_primitive(
+        {"shape": "cylinder", "radius": radius, "length": length},
+        lambda **kw: cylinder(radius, length, **kw),
+        **options,
+    )
+
+
+@mass_group.command("sphere")
+@click.option("--radius", type=float, required=True, help="m")
+@_common_options
+def mass_sphere(radius: float, **options: Any) -> None:
+    """A solid sphere."""
+    from inertia_kit.primitives import sphere
+
+    _run_primitive({"shape": "sphere", "radius": radius}, lambda **kw: sphere(radius, **kw), **options)
+
+
+@mass_group.command("capsule")
+@click.option("--radius", type=float, required=True, help="m")
+@click.option("--length", type=float, required=True, help="m, of the cylinder between the caps")
+@_common_options
+def mass_capsule(radius: float, length: float, **options: Any) -> None:
+    """A solid capsule along z: a cylinder capped by two hemispheres."""
+    from inertia_kit.primitives import capsule
+
+    _run_primitive(
+        {"shape": "capsule", "radius": radius, "length": length},
+        lambda **kw: capsule(radius, length, **kw),
+        **options,
+    )
+
+
+@mass_group.command("ellipsoid")
+@click.option("--radii", nargs=3, type=float, required=True, help="Semi-axes a b c, m.")
+@_common_options
+def mass_ellipsoid(radii: tuple[float, float, float], **options: Any) -> None:
+    """A solid ellipsoid with semi-axes along x, y, z."""
+    from inertia_kit.primitives import ellipsoid
+
+    _run_primitive(
+        {"shape": "ellipsoid", "radii": list(radii)}, lambda **kw: ellipsoid(radii, **kw), **options
+    )
+
+
+@mass_group.command("mesh")
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option(
+    "--scale",
+    default="1",
+    show_default=True,
+    help='URDF mesh scale: one factor or three, e.g. 0.001 or "0.001 0.001 0.001".',
+)
+@_common_options
+def mass_mesh(path: str, scale: str, **options: Any) -> None:
+    """A closed triangle mesh: STL, OBJ, DAE, PLY or GLB."""
+    factors = _parse_scale(scale)
+    from inertia_kit.errors import MeshError
+    from inertia_kit.meshes import mesh_solid
+
+    try:
+        solid = mesh_solid(path, factors)
+    except MeshError as error:
+        raise UsageError(str(error)) from None
+    unit = solid.mass_properties(density=1.0)
+    diagnostics = {
+        "method": solid.method,
+        "closed": solid.closed,
+        "inverted": solid.inverted,
+        "volume_error": solid.volume_error,
+        "triangles": solid.triangle_count,
+        "unit_scale": solid.unit_scale,
+        "bounds": solid.bounds.tolist(),
+    }
+    _report({"shape": "mesh", "path": path, "scale": list(factors)}, unit, unit.mass, diagnostics, **options)
+
+
+def _parse_scale(text: str) -> tuple[float, float, float]:
+    try:
+        values = [float(part) for part in text.replace(",", " ").split()]
+    except ValueError:
+        raise UsageError(f"--scale takes one or three numbers, got {text!r}") from None
+    if len(values) == 1:
+        values *= 3
+    if len(values) != 3:
+        raise UsageError(f"--scale takes one or three numbers, got {len(values)}")
+    return values[0], values[1], values[2]
+
+
+def _report(
+    description: dict[str, Any],
+    unit: Any,
+    volume: float,
+    mesh: dict[str, Any] | None,
+    *,
+    density: float | None,
+    mass_kg: float | None,
+    xyz: tuple[float, float, float],
+    rpy: tuple[float, float, float],
+    about: tuple[float, float, float] | None,
+    about_rpy: tuple[float, float, float] | None,
+    output_format: str,
+) -> None:
+    import numpy as np
+
+    from inertia_kit.frames import rpy_matrix
+    from inertia_kit.inertial_xml import inertial_block
+    from inertia_kit.primitives import body_mass
+    from inertia_kit.text import fmt
+
+    if density is None and mass_kg is None:
+        density = 1000.0
+    try:
+        total = body_mass(volume, density, mass_kg)
+        body = unit.with_mass(total).placed(xyz, rpy)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    point = None if about is None and about_rpy is None else np.asarray(about or (0.0, 0.0, 0.0))
+    axes = None if about_rpy is None else rpy_matrix(about_rpy)
+    about_tensor = None if point is None else body.inertia_about(point, axes)
+    block = inertial_block(body)
+
+    if output_format == "json":
+        payload = {
+            **description,
+            "placement": {"xyz": list(xyz), "rpy": list(rpy)},
+            "density": total / volume,
+            "volume": volume,
+            "mass": body.mass,
+            "com": body.com.tolist(),
+            "inertia": body.inertia.tolist(),
+            "principal_moments": body.principal_moments.tolist(),
+            "principal_axes": body.principal_axes.tolist(),
+            "radii_of_gyration": body.radii_of_gyration.tolist(),
+            "about": None
+            if point is None
+            else {
+                "point": point.tolist(),
+                "rpy": None if about_rpy is None else list(about_rpy),
+                "inertia": about_tensor.tolist(),
+            },
+            "mesh": mesh,
+            "urdf": block,
+        }
+        click.echo(json.dumps(payload, indent=2))
+        return
+
+    def vector(v: Any) -> str:
+        return "(" + ", ".join(fmt(x) for x in v) + ")"
+
+    def tensor_lines(t: Any) -> list[str]:
+        return [
+            f"  ixx {fmt(t[0, 0]):>11}   iyy {fmt(t[1, 1]):>11}   izz {fmt(t[2, 2]):>11}",
+            f"  ixy {fmt(t[0, 1]):>11}   ixz {fmt(t[0, 2]):>11}   iyz {fmt(t[1, 2]):>11}",
+        ]
+
+    shape = description["shape"]
+    dims = ", ".join(
+        f"{key} {vector(value) if isinstance(value, list) else fmt(value)} m"
+        for key, value in description.items()
+        if key not in ("shape", "path", "scale")
+    )
+    title = f"{shape} {description['path']} scale {vector(description['scale'])}" if shape == "mesh" else f"{shape} {dims}"
+    basis = f"density {fmt(density)} kg/m³" if mass_kg is None else f"mass {fmt(mass_kg)} kg"
+    lines = [f"{title}, {basis}"]
+    if mesh is not None:
+        lines.append(
+            f"mesh: {mesh['triangles']} triangles, {mesh['method']}"
+            + (f" (volume error up to {fmt(100 * mesh['volume_error'], 3)} %)" if mesh["volume_error"] else "")
+            + (", INVERTED: triangles wound inside-out, computed from the flipped surface" if mesh["inverted"] else "")
+            + (f", file unit {fmt(mesh['unit_scale'])} m" if mesh["unit_scale"] != 1 else "")
+        )
+        lines.append(f"bounds: {vector(mesh['bounds'][0])} to {vector(mesh['bounds'][1])} m")
+    lines += [
+        f"mass:   {fmt(body.mass, 6)} kg   (volume {fmt(volume, 6)} m³, density {fmt(total / volume)} kg/m³)",
+        f"centre of mass: {vector(body.com)} m",
+        "inertia about the centre of mass, link axes (kg·m²):",
+        *tensor_lines(body.inertia),
+        f"principal moments: {vector(body.principal_moments)} kg·m²;"
+        f" radii of gyration {vector(body.radii_of_gyration)} m",
+    ]
+    if about_tensor is not None:
+        axes_note = "" if about_rpy is None else f", axes rotated by rpy {vector(about_rpy)}"
+        lines += [f"inertia about {vector(point)} m{axes_note} (kg·m²):", *tensor_lines(about_tensor)]
+    lines += ["URDF:", block]
+    click.echo("\n".join(lines))
+
+
+# --- the commands still to come --------------------------------------------------------------
+
+
+def _not_yet(name: str, issue: int) -> Callable[[], None]:
+    def command() -> None:
+        click.echo(
+            f"{name}: not available yet in inertia-kit {__version__} (issue {issue}); "
+            "`inertia-kit mass` computes mass properties today",
+            err=True,
+        )
+        sys.exit(2)
+
+    return command
+
+
+lint_main = _not_yet("inertia-lint", 4)
+fill_main = _not_yet("inertia-fill", 5)
