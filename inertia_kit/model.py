@@ -1,0 +1,239 @@
+"""
+The robot model: frozen dataclasses for what a URDF says, each element with its source location.
+
+Missing values stay ``None``, never a default: a made-up ``ixx = 1.0`` is exactly what the linter
+exists to catch. A value that is present but not a finite number is kept as :class:`Invalid`,
+with its location, so one bad attribute does not hide every other finding.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+
+@dataclass(frozen=True)
+class Source:
+    """
+    Where an element comes from: the file and line a person would edit.
+
+    For an element a xacro macro produced, ``path``/``line`` are the element in the macro body
+    and ``calls`` the macro calls that produced it, outermost first; :attr:`edit_site` picks the
+    call site for values passed through macro parameters.
+    """
+
+    path: str
+    line: int | None = None
+    column: int | None = None
+    calls: tuple[Source, ...] = ()
+
+    @property
+    def call_site(self) -> Source:
+        """The outermost macro call that produced the element, or the element itself."""
+        return self.calls[0] if self.calls else self
+
+    def __str__(self) -> str:
+        return ":".join(str(p) for p in (self.path, self.line, self.column) if p is not None)
+
+
+@dataclass(frozen=True)
+class Invalid:
+    """A numeric attribute whose text is not a finite number (``abc``, ``nan``, ``inf``)."""
+
+    text: str
+    attribute: str
+    source: Source
+
+
+Number = Union[float, Invalid, None]
+Vector = Union[tuple[float, float, float], Invalid, None]
+
+
+@dataclass(frozen=True)
+class Origin:
+    """A URDF ``<origin xyz rpy>``; absent attributes are zeros, as the URDF spec defines."""
+
+    xyz: Vector = (0.0, 0.0, 0.0)
+    rpy: Vector = (0.0, 0.0, 0.0)
+    source: Source | None = None
+
+
+@dataclass(frozen=True)
+class Box:
+    size: Vector
+    source: Source
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    radius: Number
+    length: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Capsule:
+    radius: Number
+    length: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """
+    A ``<mesh filename scale>``. ``path`` is the resolved file, or ``None`` when the URI did not
+    resolve (``problem`` then says why).
+    """
+
+    filename: str
+    path: str | None
+    scale: Vector
+    source: Source
+    problem: str | None = None
+
+
+@dataclass(frozen=True)
+class Unknown:
+    """A ``<geometry>`` with no shape we know (empty, or an unsupported element)."""
+
+    tag: str | None
+    source: Source
+
+
+Geometry = Union[Box, Cylinder, Sphere, Capsule, Mesh, Unknown]
+
+
+@dataclass(frozen=True)
+class Shape:
+    """A ``<visual>`` or ``<collision>``: a placed geometry."""
+
+    kind: str  # visual | collision
+    name: str | None
+    origin: Origin
+    geometry: Geometry
+    source: Source
+
+
+@dataclass(frozen=True)
+class Inertial:
+    """
+    A link's ``<inertial>``. ``mass`` and the six tensor values are ``None`` when absent (an
+    ``<inertia>`` element missing, or one of its attributes missing).
+    """
+
+    origin: Origin
+    mass: Number
+    ixx: Number
+    ixy: Number
+    ixz: Number
+    iyy: Number
+    iyz: Number
+    izz: Number
+    source: Source
+    mass_source: Source | None = None
+    inertia_source: Source | None = None
+
+    TENSOR = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+
+    def tensor_values(self) -> dict[str, Number]:
+        return {name: getattr(self, name) for name in self.TENSOR}
+
+
+@dataclass(frozen=True)
+class Link:
+    name: str
+    inertial: Inertial | None
+    visuals: tuple[Shape, ...]
+    collisions: tuple[Shape, ...]
+    source: Source
+
+
+@dataclass(frozen=True)
+class Limit:
+    lower: Number
+    upper: Number
+    effort: Number
+    velocity: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    damping: Number
+    friction: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Mimic:
+    joint: str
+    multiplier: Number
+    offset: Number
+    source: Source
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    type: str
+    parent: str | None
+    child: str | None
+    origin: Origin
+    axis: Vector  # None when absent: URDF then means (1, 0, 0)
+    limit: Limit | None
+    dynamics: Dynamics | None
+    mimic: Mimic | None
+    source: Source
+
+
+@dataclass(frozen=True)
+class Material:
+    name: str
+    source: Source
+
+
+@dataclass(frozen=True)
+class Robot:
+    """
+    A robot description as loaded: links and joints in document order (names may repeat in a
+    broken file, so they are tuples, not dicts), and the files it was read from.
+    """
+
+    name: str | None
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    materials: tuple[Material, ...]
+    source: Source
+    files: tuple[str, ...] = ()
+    invalid: tuple[Invalid, ...] = field(default=())
+    fragment: bool = False  # a xacro file of macros and properties only, meant to be included
+
+    def link(self, name: str) -> Link | None:
+        return next((link for link in self.links if link.name == name), None)
+
+    def joint(self, name: str) -> Joint | None:
+        return next((joint for joint in self.joints if joint.name == name), None)
+
+    @property
+    def roots(self) -> tuple[str, ...]:
+        """Links that are no joint's child, in document order."""
+        children = {joint.child for joint in self.joints}
+        return tuple(link.name for link in self.links if link.name not in children)
+
+    @property
+    def root(self) -> str | None:
+        """The root link, when there is exactly one."""
+        roots = self.roots
+        return roots[0] if len(roots) == 1 else None
+
+    def parent_joint(self, link: str) -> Joint | None:
+        return next((joint for joint in self.joints if joint.child == link), None)
+
+    def child_joints(self, link: str) -> tuple[Joint, ...]:
+        return tuple(joint for joint in self.joints if joint.parent == link)
