@@ -315,6 +315,41 @@ def _report(
     click.echo("\n".join(lines))
 
 
+# --- inertia-kit report ----------------------------------------------------------------------
+
+
+def _xacro_args(values: tuple[str, ...]) -> dict[str, str]:
+    args = {}
+    for value in values:
+        name, sep, text = value.partition(":=")
+        if not sep or not name:
+            raise UsageError(f"--xacro-arg takes NAME:=VALUE, got {value!r}")
+        args[name] = text
+    return args
+
+
+@main.command("report")
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option("--format", "output_format", type=click.Choice(["text", "markdown", "json"]), default="text", show_default=True)
+@click.option("--package-path", "package_paths", multiple=True, type=click.Path(file_okay=False), help="Folder searched first for $(find pkg) and package://pkg (repeatable).")
+@click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE", help="A xacro argument (repeatable).")
+def report_command(path: str, output_format: str, package_paths: tuple[str, ...], xacro_args: tuple[str, ...]) -> None:
+    """A table of the robot's links: parent joint, declared mass, COM, principal moments,
+    geometry and the source line to edit; and the robot's total mass."""
+    from inertia_kit.errors import InputError
+    from inertia_kit.load import load
+    from inertia_kit.robot_report import render
+
+    try:
+        robot = load(path, xacro_args=_xacro_args(xacro_args), package_paths=package_paths)
+    except InputError as error:
+        raise UsageError(str(error)) from None
+    if robot.fragment:
+        click.echo(f"{path}: a xacro fragment (macros and properties only, meant to be included): no links", err=True)
+        return
+    click.echo(render(robot, output_format))
+
+
 # --- the commands still to come --------------------------------------------------------------
 
 
