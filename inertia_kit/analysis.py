@@ -47,7 +47,7 @@ def _vector(value: model.Vector) -> str:
 
 
 def describe_geometry(geometry: model.Geometry) -> str:
-    """A short human summary: ``box 0.4×0.4×0.1``, ``cylinder r0.35 l0.4``, ``mesh pan.stl ×0.001``."""
+    """A short summary: ``box 0.4×0.4×0.1``, ``cylinder r0.35 l0.4``, ``mesh pan.stl ×0.001``."""
     if isinstance(geometry, model.Box):
         return f"box {_vector(geometry.size)}"
     if isinstance(geometry, model.Cylinder):
@@ -59,8 +59,14 @@ def describe_geometry(geometry: model.Geometry) -> str:
     if isinstance(geometry, model.Mesh):
         name = geometry.filename.rsplit("/", 1)[-1]
         scale = geometry.scale
-        scaled = "" if scale == (1.0, 1.0, 1.0) else (
-            f" ×{_number(scale[0])}" if isinstance(scale, tuple) and len(set(scale)) == 1 else f" ×{_vector(scale)}"
+        scaled = (
+            ""
+            if scale == (1.0, 1.0, 1.0)
+            else (
+                f" ×{_number(scale[0])}"
+                if isinstance(scale, tuple) and len(set(scale)) == 1
+                else f" ×{_vector(scale)}"
+            )
         )
         missing = "" if geometry.path else " (not found)"
         return f"mesh {name}{scaled}{missing}"

@@ -11,14 +11,14 @@ import os
 # set before numpy is first imported, unless the user chose
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import json  # noqa: E402
-import sys  # noqa: E402
-from collections.abc import Callable  # noqa: E402
-from typing import Any  # noqa: E402
+import json
+import sys
+from collections.abc import Callable
+from typing import Any
 
-import click  # noqa: E402
+import click
 
-from inertia_kit import __version__  # noqa: E402
+from inertia_kit import __version__
 
 
 class UsageError(click.ClickException):
@@ -142,7 +142,9 @@ def mass_sphere(radius: float, **options: Any) -> None:
     """A solid sphere."""
     from inertia_kit.primitives import sphere
 
-    _run_primitive({"shape": "sphere", "radius": radius}, lambda **kw: sphere(radius, **kw), **options)
+    _run_primitive(
+        {"shape": "sphere", "radius": radius}, lambda **kw: sphere(radius, **kw), **options
+    )
 
 
 @mass_group.command("capsule")
@@ -201,7 +203,13 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
         "unit_scale": solid.unit_scale,
         "bounds": solid.bounds.tolist(),
     }
-    _report({"shape": "mesh", "path": path, "scale": list(factors)}, unit, unit.mass, diagnostics, **options)
+    _report(
+        {"shape": "mesh", "path": path, "scale": list(factors)},
+        unit,
+        unit.mass,
+        diagnostics,
+        **options,
+    )
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:
@@ -289,19 +297,32 @@ def _report(
         for key, value in description.items()
         if key not in ("shape", "path", "scale")
     )
-    title = f"{shape} {description['path']} scale {vector(description['scale'])}" if shape == "mesh" else f"{shape} {dims}"
+    title = (
+        f"{shape} {description['path']} scale {vector(description['scale'])}"
+        if shape == "mesh"
+        else f"{shape} {dims}"
+    )
     basis = f"density {fmt(density)} kg/m³" if mass_kg is None else f"mass {fmt(mass_kg)} kg"
     lines = [f"{title}, {basis}"]
     if mesh is not None:
         lines.append(
             f"mesh: {mesh['triangles']} triangles, {mesh['method']}"
-            + (f" (volume error up to {fmt(100 * mesh['volume_error'], 3)} %)" if mesh["volume_error"] else "")
-            + (", INVERTED: triangles wound inside-out, computed from the flipped surface" if mesh["inverted"] else "")
+            + (
+                f" (volume error up to {fmt(100 * mesh['volume_error'], 3)} %)"
+                if mesh["volume_error"]
+                else ""
+            )
+            + (
+                ", INVERTED: triangles wound inside-out, computed from the flipped surface"
+                if mesh["inverted"]
+                else ""
+            )
             + (f", file unit {fmt(mesh['unit_scale'])} m" if mesh["unit_scale"] != 1 else "")
         )
         lines.append(f"bounds: {vector(mesh['bounds'][0])} to {vector(mesh['bounds'][1])} m")
     lines += [
-        f"mass:   {fmt(body.mass, 6)} kg   (volume {fmt(volume, 6)} m³, density {fmt(total / volume)} kg/m³)",
+        f"mass:   {fmt(body.mass, 6)} kg   "
+        f"(volume {fmt(volume, 6)} m³, density {fmt(total / volume)} kg/m³)",
         f"centre of mass: {vector(body.com)} m",
         "inertia about the centre of mass, link axes (kg·m²):",
         *tensor_lines(body.inertia),
@@ -310,7 +331,10 @@ def _report(
     ]
     if about_tensor is not None:
         axes_note = "" if about_rpy is None else f", axes rotated by rpy {vector(about_rpy)}"
-        lines += [f"inertia about {vector(point)} m{axes_note} (kg·m²):", *tensor_lines(about_tensor)]
+        lines += [
+            f"inertia about {vector(point)} m{axes_note} (kg·m²):",
+            *tensor_lines(about_tensor),
+        ]
     lines += ["URDF:", block]
     click.echo("\n".join(lines))
 
@@ -330,10 +354,30 @@ def _xacro_args(values: tuple[str, ...]) -> dict[str, str]:
 
 @main.command("report")
 @click.argument("path", type=click.Path(dir_okay=False))
-@click.option("--format", "output_format", type=click.Choice(["text", "markdown", "json"]), default="text", show_default=True)
-@click.option("--package-path", "package_paths", multiple=True, type=click.Path(file_okay=False), help="Folder searched first for $(find pkg) and package://pkg (repeatable).")
-@click.option("--xacro-arg", "xacro_args", multiple=True, metavar="NAME:=VALUE", help="A xacro argument (repeatable).")
-def report_command(path: str, output_format: str, package_paths: tuple[str, ...], xacro_args: tuple[str, ...]) -> None:
+@click.option(
+    "--format",
+    "output_format",
+    type=click.Choice(["text", "markdown", "json"]),
+    default="text",
+    show_default=True,
+)
+@click.option(
+    "--package-path",
+    "package_paths",
+    multiple=True,
+    type=click.Path(file_okay=False),
+    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
+)
+@click.option(
+    "--xacro-arg",
+    "xacro_args",
+    multiple=True,
+    metavar="NAME:=VALUE",
+    help="A xacro argument (repeatable).",
+)
+def report_command(
+    path: str, output_format: str, package_paths: tuple[str, ...], xacro_args: tuple[str, ...]
+) -> None:
     """A table of the robot's links: parent joint, declared mass, COM, principal moments,
     geometry and the source line to edit; and the robot's total mass."""
     from inertia_kit.errors import InputError
@@ -345,7 +389,10 @@ def report_command(path: str, output_format: str, package_paths: tuple[str, ...]
     except InputError as error:
         raise UsageError(str(error)) from None
     if robot.fragment:
-        click.echo(f"{path}: a xacro fragment (macros and properties only, meant to be included): no links", err=True)
+        click.echo(
+            f"{path}: a xacro fragment (macros and properties only, to be included): no links",
+            err=True,
+        )
         return
     click.echo(render(robot, output_format))
 

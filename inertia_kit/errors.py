@@ -17,7 +17,11 @@ class InputError(InertiaKitError):
     """
 
     def __init__(
-        self, message: str, path: str | Path | None = None, line: int | None = None, column: int | None = None
+        self,
+        message: str,
+        path: str | Path | None = None,
+        line: int | None = None,
+        column: int | None = None,
     ):
         self.message = message
         self.path = None if path is None else str(path)

@@ -90,7 +90,9 @@ def as_transform(matrix: ArrayLike) -> NDArray[np.float64]:
         raise ValueError(f"transform must be (4, 4), got shape {m.shape}")
     rotation = m[:3, :3]
     if not np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9) or np.linalg.det(rotation) < 0:
-        raise ValueError("transform's rotation part must be a proper rotation (orthonormal, det +1)")
+        raise ValueError(
+            "transform's rotation part must be a proper rotation (orthonormal, det +1)"
+        )
     if not np.allclose(m[3], (0.0, 0.0, 0.0, 1.0)):
         raise ValueError(f"transform's last row must be (0, 0, 0, 1), got {m[3]}")
     return m

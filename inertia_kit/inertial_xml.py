@@ -21,7 +21,10 @@ def inertial_values(properties: MassProperties, digits: int = DIGITS) -> dict[st
     """
     tensor = properties.inertia
     scale = np.abs(np.diag(tensor)).max()
-    com_scale = max(np.abs(properties.com).max(), np.sqrt(scale / properties.mass) if properties.mass > 0 else 0.0)
+    com_scale = max(
+        np.abs(properties.com).max(),
+        np.sqrt(scale / properties.mass) if properties.mass > 0 else 0.0,
+    )
 
     def number(value: float, reference: float) -> str:
         return xml_number(0.0 if abs(value) <= _NOISE * reference else value, digits)

@@ -61,7 +61,8 @@ def second_moment_from_inertia(inertia: ArrayLike) -> NDArray[np.float64]:
 class Problem:
     """One reason a ``MassProperties`` value is not physically possible."""
 
-    kind: str  # non-finite | non-positive-mass | asymmetric | not-positive-definite | triangle-inequality
+    # non-finite | non-positive-mass | asymmetric | not-positive-definite | triangle-inequality
+    kind: str
     message: str
 
 
@@ -301,11 +302,17 @@ class MassProperties:
         """
         problems: list[Problem] = []
         if not (
-            np.isfinite(self.mass) and np.isfinite(self.com).all() and np.isfinite(self.inertia).all()
+            np.isfinite(self.mass)
+            and np.isfinite(self.com).all()
+            and np.isfinite(self.inertia).all()
         ):
             bad = [
                 name
-                for name, value in (("mass", self.mass), ("com", self.com), ("inertia", self.inertia))
+                for name, value in (
+                    ("mass", self.mass),
+                    ("com", self.com),
+                    ("inertia", self.inertia),
+                )
                 if not np.isfinite(value).all()
             ]
             problems.append(Problem("non-finite", f"{', '.join(bad)} not finite"))
@@ -320,7 +327,7 @@ class MassProperties:
             problems.append(
                 Problem(
                     "asymmetric",
-                    f"inertia tensor is not symmetric (largest |Iij - Iji| = {fmt(asymmetry)} kg·m²)",
+                    f"inertia tensor is not symmetric (max |Iij - Iji| = {fmt(asymmetry)} kg·m²)",
                 )
             )
         a, b, c = self.principal_moments
@@ -355,7 +362,7 @@ class MassProperties:
     __hash__ = None  # type: ignore[assignment]  # holds arrays; equal values must not collide
 
     def isclose(self, other: MassProperties, rtol: float = 1e-9, atol: float = 0.0) -> bool:
-        """Equal within ``rtol`` relative to each quantity's scale (mass, body size, tensor norm)."""
+        """Equal within ``rtol`` of each quantity's scale (mass, body size, tensor norm)."""
         length = max(np.sqrt(np.abs(self.principal_moments).max() / abs(self.mass)), 1e-300)
         tensor = max(np.abs(self.inertia).max(), 1e-300)
         return bool(

@@ -9,7 +9,6 @@ with its location, so one bad attribute does not hide every other finding.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Union
 
 
 @dataclass(frozen=True)
@@ -45,8 +44,8 @@ class Invalid:
     source: Source
 
 
-Number = Union[float, Invalid, None]
-Vector = Union[tuple[float, float, float], Invalid, None]
+Number = float | Invalid | None
+Vector = tuple[float, float, float] | Invalid | None
 
 
 @dataclass(frozen=True)
@@ -106,7 +105,7 @@ class Unknown:
     source: Source
 
 
-Geometry = Union[Box, Cylinder, Sphere, Capsule, Mesh, Unknown]
+Geometry = Box | Cylinder | Sphere | Capsule | Mesh | Unknown
 
 
 @dataclass(frozen=True)

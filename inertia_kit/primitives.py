@@ -64,7 +64,9 @@ def ellipsoid_volume(radii: ArrayLike) -> float:
     return 4.0 / 3.0 * math.pi * a * b * c
 
 
-def box(size: ArrayLike, *, density: float | None = None, mass: float | None = None) -> MassProperties:
+def box(
+    size: ArrayLike, *, density: float | None = None, mass: float | None = None
+) -> MassProperties:
     """
     Solid box centred on its frame.
 
@@ -75,7 +77,9 @@ def box(size: ArrayLike, *, density: float | None = None, mass: float | None = N
     """
     x, y, z = _extents(size, "size")
     m = body_mass(x * y * z, density, mass)
-    return MassProperties(m, np.zeros(3), np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * m / 12)
+    return MassProperties(
+        m, np.zeros(3), np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * m / 12
+    )
 
 
 def cylinder(
@@ -90,7 +94,9 @@ def cylinder(
     return MassProperties(m, np.zeros(3), np.diag([side, side, m * r * r / 2]))
 
 
-def sphere(radius: float, *, density: float | None = None, mass: float | None = None) -> MassProperties:
+def sphere(
+    radius: float, *, density: float | None = None, mass: float | None = None
+) -> MassProperties:
     """Solid sphere: ``I = 2/5 m r²`` about every axis."""
     r = _dimension(radius, "radius")
     m = body_mass(sphere_volume(r), density, mass)
@@ -111,7 +117,9 @@ def capsule(
     m_cap = m * v_cap / (v_cylinder + 2 * v_cap)
     axial = m_cylinder * r * r / 2 + 2 * (0.4 * m_cap * r * r)
     # each cap: 83/320 m r² about its own COM (3r/8 from the flat face), moved h/2 + 3r/8 out
-    side = m_cylinder * (3 * r * r + h * h) / 12 + 2 * m_cap * (0.4 * r * r + h * h / 4 + 3 * h * r / 8)
+    side = m_cylinder * (3 * r * r + h * h) / 12 + 2 * m_cap * (
+        0.4 * r * r + h * h / 4 + 3 * h * r / 8
+    )
     return MassProperties(m, np.zeros(3), np.diag([side, side, axial]))
 
 
@@ -121,4 +129,6 @@ def ellipsoid(
     """Solid ellipsoid with semi-axes ``radii`` (a, b, c) along x, y, z: ``ixx = m(b² + c²)/5``."""
     a, b, c = _extents(radii, "radii")
     m = body_mass(4.0 / 3.0 * math.pi * a * b * c, density, mass)
-    return MassProperties(m, np.zeros(3), np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) * m / 5)
+    return MassProperties(
+        m, np.zeros(3), np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) * m / 5
+    )

@@ -24,8 +24,12 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 "joint_type": None if joint is None else joint.type,
                 "mass": None if properties is None else properties.mass,
                 "com": None if properties is None else properties.com.tolist(),
-                "principal_moments": None if properties is None else properties.principal_moments.tolist(),
-                "inertial": "none" if link.inertial is None else ("complete" if properties else "incomplete"),
+                "principal_moments": None
+                if properties is None
+                else properties.principal_moments.tolist(),
+                "inertial": "none"
+                if link.inertial is None
+                else ("complete" if properties else "incomplete"),
                 "geometry": geometry_summary(link),
                 "file": source.path,
                 "line": source.line,
@@ -46,10 +50,23 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
     rows = link_rows(robot)
     if output_format == "json":
         return json.dumps(
-            {"robot": robot.name, "files": list(robot.files), "links": rows, "total_mass": total_mass(rows)},
+            {
+                "robot": robot.name,
+                "files": list(robot.files),
+                "links": rows,
+                "total_mass": total_mass(rows),
+            },
             indent=2,
         )
-    header = ["link", "joint (type)", "mass kg", "COM m", "principal moments kg·m²", "geometry", "source"]
+    header = [
+        "link",
+        "joint (type)",
+        "mass kg",
+        "COM m",
+        "principal moments kg·m²",
+        "geometry",
+        "source",
+    ]
     table = [header]
     for row in rows:
         where = f"{row['file']}:{row['line']}"
@@ -58,7 +75,9 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
         table.append(
             [
                 row["link"],
-                "(root)" if row["parent_joint"] is None else f"{row['parent_joint']} ({row['joint_type']})",
+                "(root)"
+                if row["parent_joint"] is None
+                else f"{row['parent_joint']} ({row['joint_type']})",
                 "-" if row["mass"] is None else fmt(row["mass"], 6),
                 "-" if row["com"] is None else "(" + ", ".join(fmt(x, 4) for x in row["com"]) + ")",
                 ("-" if row["inertial"] == "none" else row["inertial"])
@@ -68,12 +87,17 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
                 where,
             ]
         )
-    footer = f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({robot.name or 'unnamed robot'})"
+    name = robot.name or "unnamed robot"
+    footer = f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})"
     if output_format == "markdown":
         lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-        lines += ["| " + " | ".join(cell.replace("|", "\\|") for cell in r) + " |" for r in table[1:]]
+        lines += [
+            "| " + " | ".join(cell.replace("|", "\\|") for cell in r) + " |" for r in table[1:]
+        ]
         return "\n".join([*lines, "", f"**{footer}**"])
     widths = [max(len(r[i]) for r in table) for i in range(len(header))]
-    lines = ["  ".join(cell.ljust(w) for cell, w in zip(r, widths)).rstrip() for r in table]
+    lines = [
+        "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in table
+    ]
     lines.insert(1, "  ".join("-" * w for w in widths))
     return "\n".join([*lines, footer])

@@ -16,7 +16,19 @@ def run(*args: str):
 
 
 def test_quick_start_cylinder_about_its_base():
-    result = run("cylinder", "--radius", "0.35", "--length", "0.4", "--density", "1024", "--about", "0", "0", "-0.2")
+    result = run(
+        "cylinder",
+        "--radius",
+        "0.35",
+        "--length",
+        "0.4",
+        "--density",
+        "1024",
+        "--about",
+        "0",
+        "0",
+        "-0.2",
+    )
     assert result.exit_code == 0, result.output
     assert "mass:   157.633 kg" in result.output
     assert "ixx      6.9293" in result.output
@@ -26,31 +38,85 @@ def test_quick_start_cylinder_about_its_base():
 
 
 def test_json_has_the_numbers_of_the_closed_form():
-    result = run("cylinder", "--radius", "0.35", "--length", "0.4", "--density", "1024", "--about", "0", "0", "-0.2", "--format", "json")
+    result = run(
+        "cylinder",
+        "--radius",
+        "0.35",
+        "--length",
+        "0.4",
+        "--density",
+        "1024",
+        "--about",
+        "0",
+        "0",
+        "-0.2",
+        "--format",
+        "json",
+    )
     assert result.exit_code == 0, result.output
     data = json.loads(result.output)
     m = 1024 * math.pi * 0.35**2 * 0.4
     assert data["mass"] == pytest.approx(m, rel=1e-12)
     assert data["inertia"][0][0] == pytest.approx(m * (3 * 0.35**2 + 0.4**2) / 12, rel=1e-12)
-    assert data["about"]["inertia"][0][0] == pytest.approx(m * (3 * 0.35**2 + 0.4**2) / 12 + m * 0.04, rel=1e-12)
+    assert data["about"]["inertia"][0][0] == pytest.approx(
+        m * (3 * 0.35**2 + 0.4**2) / 12 + m * 0.04, rel=1e-12
+    )
     assert data["urdf"].startswith("<inertial>")
     assert data["mesh"] is None
 
 
 def test_mass_option_and_placement():
-    result = run("box", "--size", "0.1", "0.2", "0.3", "--mass", "2", "--xyz", "1", "0", "0", "--rpy", "0", "0", "1.5707963267948966", "--format", "json")
+    result = run(
+        "box",
+        "--size",
+        "0.1",
+        "0.2",
+        "0.3",
+        "--mass",
+        "2",
+        "--xyz",
+        "1",
+        "0",
+        "0",
+        "--rpy",
+        "0",
+        "0",
+        "1.5707963267948966",
+        "--format",
+        "json",
+    )
     data = json.loads(result.output)
     assert data["mass"] == 2
     np.testing.assert_allclose(data["com"], (1, 0, 0), atol=1e-15)
     # yawed by 90°: the x and y extents swap
-    np.testing.assert_allclose(np.diag(data["inertia"]), [2 * (0.1**2 + 0.3**2) / 12, 2 * (0.2**2 + 0.3**2) / 12, 2 * (0.1**2 + 0.2**2) / 12], rtol=1e-12)
+    np.testing.assert_allclose(
+        np.diag(data["inertia"]),
+        [2 * (0.1**2 + 0.3**2) / 12, 2 * (0.2**2 + 0.3**2) / 12, 2 * (0.1**2 + 0.2**2) / 12],
+        rtol=1e-12,
+    )
     assert 'xyz="1 0 0"' in data["urdf"]
 
 
 def test_about_rpy_rotates_the_reported_axes():
-    result = run("cylinder", "--radius", "0.1", "--length", "1", "--mass", "1", "--about-rpy", "0", "1.5707963267948966", "0", "--format", "json")
+    result = run(
+        "cylinder",
+        "--radius",
+        "0.1",
+        "--length",
+        "1",
+        "--mass",
+        "1",
+        "--about-rpy",
+        "0",
+        "1.5707963267948966",
+        "0",
+        "--format",
+        "json",
+    )
     tensor = json.loads(result.output)["about"]["inertia"]
-    np.testing.assert_allclose(np.diag(tensor), [0.005, (3 * 0.01 + 1) / 12, (3 * 0.01 + 1) / 12], rtol=1e-12)
+    np.testing.assert_allclose(
+        np.diag(tensor), [0.005, (3 * 0.01 + 1) / 12, (3 * 0.01 + 1) / 12], rtol=1e-12
+    )
 
 
 @pytest.mark.parametrize(
@@ -75,6 +141,8 @@ def test_console_scripts_exist_and_lint_fill_say_not_yet():
         done = subprocess.run([script, "robot.urdf"], capture_output=True, text=True)
         assert done.returncode == 2
         assert "not available yet" in done.stderr
-    done = subprocess.run(["inertia-kit", "mass", "sphere", "--radius", "0.1"], capture_output=True, text=True)
+    done = subprocess.run(
+        ["inertia-kit", "mass", "sphere", "--radius", "0.1"], capture_output=True, text=True
+    )
     assert done.returncode == 0
     assert "density 1000 kg/m³" in done.stdout

@@ -26,7 +26,9 @@ def test_rpy_is_fixed_axis_roll_then_pitch_then_yaw():
     np.testing.assert_allclose(rpy_matrix((r, p, y)), expected, atol=1e-15)
 
 
-@pytest.mark.parametrize("rpy", [(0.3, -1.1, 2.4), (0, 0, 0), (-3.0, 1.2, -0.5), (0.2, math.pi / 2, 0.0)])
+@pytest.mark.parametrize(
+    "rpy", [(0.3, -1.1, 2.4), (0, 0, 0), (-3.0, 1.2, -0.5), (0.2, math.pi / 2, 0.0)]
+)
 def test_matrix_rpy_round_trip(rpy):
     np.testing.assert_allclose(rpy_matrix(matrix_rpy(rpy_matrix(rpy))), rpy_matrix(rpy), atol=1e-12)
 
@@ -53,8 +55,17 @@ def test_fmt():
 
 @pytest.mark.parametrize(
     ("value", "text"),
-    [(0.0, "0"), (-0.0, "0"), (157.6325, "157.6325"), (1e-5, "1e-5"), (0.00012345678, "0.00012345678"),
-     (2.5e9, "2.5e9"), (-13.235, "-13.235"), (1024.0, "1024"), (1 / 3, "0.333333333")],
+    [
+        (0.0, "0"),
+        (-0.0, "0"),
+        (157.6325, "157.6325"),
+        (1e-5, "1e-5"),
+        (0.00012345678, "0.00012345678"),
+        (2.5e9, "2.5e9"),
+        (-13.235, "-13.235"),
+        (1024.0, "1024"),
+        (1 / 3, "0.333333333"),
+    ],
 )
 def test_xml_number(value, text):
     assert xml_number(value) == text

@@ -18,7 +18,9 @@ def random_rotation() -> np.ndarray:
 
 def random_body() -> MassProperties:
     size = RNG.uniform(0.1, 2.0, 3)
-    return box(size, mass=RNG.uniform(0.5, 10)).transformed(pose(random_rotation(), RNG.normal(size=3)))
+    return box(size, mass=RNG.uniform(0.5, 10)).transformed(
+        pose(random_rotation(), RNG.normal(size=3))
+    )
 
 
 def pose(rotation, translation) -> np.ndarray:
@@ -60,7 +62,9 @@ def test_rotation_by_urdf_rpy_is_r_i_rt():
     body = cylinder(0.02, 0.3, mass=1.0)
     # the seed simple arm: a z-axis cylinder turned along x by pitch pi/2
     along_x = body.placed(xyz=(0.15, 0, 0), rpy=(0, np.pi / 2, 0))
-    np.testing.assert_allclose(np.diag(along_x.inertia), np.diag(body.inertia)[[2, 1, 0]], atol=1e-15)
+    np.testing.assert_allclose(
+        np.diag(along_x.inertia), np.diag(body.inertia)[[2, 1, 0]], atol=1e-15
+    )
     np.testing.assert_allclose(along_x.com, (0.15, 0, 0), atol=1e-15)
 
 
@@ -154,7 +158,9 @@ def test_principal_axes_diagonalise_and_are_right_handed():
     axes = body.principal_axes
     assert np.linalg.det(axes) == pytest.approx(1.0)
     np.testing.assert_allclose(
-        axes.T @ body.inertia @ axes, np.diag(body.principal_moments), atol=1e-12 * body.principal_moments.max()
+        axes.T @ body.inertia @ axes,
+        np.diag(body.principal_moments),
+        atol=1e-12 * body.principal_moments.max(),
     )
 
 
@@ -164,7 +170,9 @@ def test_radii_of_gyration():
 
 
 def test_from_urdf_rotates_the_written_axes():
-    declared = MassProperties.from_urdf(2.0, 0.1, 0, 0, 0.2, 0, 0.3, xyz=(1, 2, 3), rpy=(0, 0, np.pi / 2))
+    declared = MassProperties.from_urdf(
+        2.0, 0.1, 0, 0, 0.2, 0, 0.3, xyz=(1, 2, 3), rpy=(0, 0, np.pi / 2)
+    )
     np.testing.assert_allclose(declared.com, (1, 2, 3))
     np.testing.assert_allclose(np.diag(declared.inertia), (0.2, 0.1, 0.3), atol=1e-15)
     r = rpy_matrix((0.3, -0.2, 1.1))
@@ -190,7 +198,9 @@ def test_shape_errors_quote_the_shape():
 
 def test_second_moment_round_trip():
     body = random_body()
-    assert MassProperties.from_second_moment(body.mass, body.com, body.second_moment).isclose(body, rtol=1e-12)
+    assert MassProperties.from_second_moment(body.mass, body.com, body.second_moment).isclose(
+        body, rtol=1e-12
+    )
 
 
 def test_shift_tensor_of_a_point_mass():

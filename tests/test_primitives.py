@@ -17,15 +17,23 @@ def test_box_closed_form():
     body = box((x, y, z), density=rho)
     m = rho * x * y * z
     assert body.mass == pytest.approx(m, rel=1e-12)
-    np.testing.assert_allclose(np.diag(body.inertia), [m * (y * y + z * z) / 12, m * (x * x + z * z) / 12, m * (x * x + y * y) / 12], rtol=1e-12)
+    np.testing.assert_allclose(
+        np.diag(body.inertia),
+        [m * (y * y + z * z) / 12, m * (x * x + z * z) / 12, m * (x * x + y * y) / 12],
+        rtol=1e-12,
+    )
     np.testing.assert_array_equal(body.com, 0)
 
 
 def test_cylinder_seed_formulas():
     r, length, m = 0.05, 0.3, 2.0
     body = cylinder(r, length, mass=m)
-    np.testing.assert_allclose(np.diag(body.inertia), [m * (3 * r * r + length**2) / 12] * 2 + [m * r * r / 2], rtol=1e-12)
-    assert cylinder(r, length, density=1000).mass == pytest.approx(1000 * math.pi * r * r * length, rel=1e-12)
+    np.testing.assert_allclose(
+        np.diag(body.inertia), [m * (3 * r * r + length**2) / 12] * 2 + [m * r * r / 2], rtol=1e-12
+    )
+    assert cylinder(r, length, density=1000).mass == pytest.approx(
+        1000 * math.pi * r * r * length, rel=1e-12
+    )
 
 
 def test_sphere_closed_form():
@@ -43,7 +51,9 @@ def test_capsule_from_two_hemispheres_moved_apart():
     cyl, sph = cylinder(r, h, density=rho), sphere(r, density=rho)
     assert cap.mass == pytest.approx(cyl.mass + sph.mass, rel=1e-12)
     side = cyl.inertia[0, 0] + sph.inertia[0, 0] + sph.mass * (h * h / 4 + 3 * h * r / 8)
-    np.testing.assert_allclose(np.diag(cap.inertia), [side, side, cyl.inertia[2, 2] + sph.inertia[2, 2]], rtol=1e-12)
+    np.testing.assert_allclose(
+        np.diag(cap.inertia), [side, side, cyl.inertia[2, 2] + sph.inertia[2, 2]], rtol=1e-12
+    )
 
 
 def test_capsule_matches_a_fine_mesh():

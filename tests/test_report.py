@@ -41,7 +41,9 @@ def test_text_report_lists_links_and_total():
 
 
 def test_markdown_report_with_meshes():
-    result = report(str(EXAMPLES / "pan_tilt_description/urdf/pan_tilt.urdf"), "--format", "markdown")
+    result = report(
+        str(EXAMPLES / "pan_tilt_description/urdf/pan_tilt.urdf"), "--format", "markdown"
+    )
     assert result.exit_code == 0, result.output
     assert result.output.startswith("| link | joint (type) |")
     assert "mesh pan.stl ×0.001" in result.output
