@@ -1,7 +1,75 @@
-"""inertia-kit: physically right mass properties for URDF and xacro robot descriptions."""
+"""
+inertia-kit: physically right mass properties for URDF and xacro robot descriptions.
 
-from inertia_kit.mass import MassProperties, Validity
-from inertia_kit.primitives import box, capsule, cylinder, ellipsoid, sphere
+The public API is imported on first use, so that ``import inertia_kit`` (and every command-line
+run) pays only for what it touches.
+"""
 
-__all__ = ["MassProperties", "Validity", "box", "capsule", "cylinder", "ellipsoid", "sphere"]
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 __version__ = "0.1.0"
+
+_EXPORTS = {
+    "MassProperties": "inertia_kit.mass",
+    "Validity": "inertia_kit.mass",
+    "box": "inertia_kit.primitives",
+    "cylinder": "inertia_kit.primitives",
+    "sphere": "inertia_kit.primitives",
+    "capsule": "inertia_kit.primitives",
+    "ellipsoid": "inertia_kit.primitives",
+    "mesh": "inertia_kit.meshes",
+    "mesh_solid": "inertia_kit.meshes",
+    "MeshSolid": "inertia_kit.meshes",
+    "MeshMassProperties": "inertia_kit.meshes",
+    "Part": "inertia_kit.unions",
+    "union": "inertia_kit.unions",
+    "UnionResult": "inertia_kit.unions",
+    "load": "inertia_kit.load",
+    "InputError": "inertia_kit.errors",
+    "MeshError": "inertia_kit.errors",
+}
+
+__all__ = [  # noqa: RUF022  (grouped as _EXPORTS, not sorted)
+    "MassProperties",
+    "Validity",
+    "box",
+    "cylinder",
+    "sphere",
+    "capsule",
+    "ellipsoid",
+    "mesh",
+    "mesh_solid",
+    "MeshSolid",
+    "MeshMassProperties",
+    "Part",
+    "union",
+    "UnionResult",
+    "load",
+    "InputError",
+    "MeshError",
+    "__version__",
+]
+
+if TYPE_CHECKING:
+    from inertia_kit.errors import InputError, MeshError
+    from inertia_kit.load import load
+    from inertia_kit.mass import MassProperties, Validity
+    from inertia_kit.meshes import MeshMassProperties, MeshSolid, mesh, mesh_solid
+    from inertia_kit.primitives import box, capsule, cylinder, ellipsoid, sphere
+    from inertia_kit.unions import Part, UnionResult, union
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'inertia_kit' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -249,7 +249,7 @@ def _report(
         density = 1000.0
     try:
         total = body_mass(volume, density, mass_kg)
-        body = unit.with_mass(total).placed(xyz, rpy)
+        body = unit.with_mass(total).placed(xyz, rpy).cleaned()
     except ValueError as error:
         raise UsageError(str(error)) from None
     point = None if about is None and about_rpy is None else np.asarray(about or (0.0, 0.0, 0.0))

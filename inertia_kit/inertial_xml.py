@@ -2,16 +2,11 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from inertia_kit.mass import MassProperties
 from inertia_kit.text import xml_number
 
 # significant digits written: CAD tools report about six; more only adds churn
 DIGITS = 6
-
-# entries smaller than this fraction of the largest moment are rounding noise of a zero
-_NOISE = 1e-12
 
 
 def inertial_values(properties: MassProperties, digits: int = DIGITS) -> dict[str, str]:
@@ -19,18 +14,14 @@ def inertial_values(properties: MassProperties, digits: int = DIGITS) -> dict[st
     The attribute values of an ``<inertial>`` block for ``properties`` in link-frame axes
     (``rpy = 0``): ``xyz``, ``rpy``, ``mass`` and the six tensor entries, as text.
     """
-    tensor = properties.inertia
-    scale = np.abs(np.diag(tensor)).max()
-    com_scale = max(
-        np.abs(properties.com).max(),
-        np.sqrt(scale / properties.mass) if properties.mass > 0 else 0.0,
-    )
+    clean = properties.cleaned()
+    tensor = clean.inertia
 
-    def number(value: float, reference: float) -> str:
-        return xml_number(0.0 if abs(value) <= _NOISE * reference else value, digits)
+    def number(value: float) -> str:
+        return xml_number(value, digits)
 
     values = {
-        "xyz": " ".join(number(x, com_scale) for x in properties.com),
+        "xyz": " ".join(number(x) for x in clean.com),
         "rpy": "0 0 0",
         "mass": xml_number(properties.mass, digits),
     }
@@ -42,7 +33,7 @@ def inertial_values(properties: MassProperties, digits: int = DIGITS) -> dict[st
         "iyz": (1, 2),
         "izz": (2, 2),
     }.items():
-        values[name] = number(tensor[i, j], scale)
+        values[name] = number(tensor[i, j])
     return values
 
 

@@ -258,6 +258,19 @@ class MassProperties:
 
     # --- derived quantities -------------------------------------------------------------
 
+    def cleaned(self, rtol: float = 1e-12) -> MassProperties:
+        """
+        The same value with rounding noise of a zero set to zero: tensor entries below ``rtol``
+        of the largest moment, COM coordinates below ``rtol`` of the body's size (its largest
+        radius of gyration) or of its distance from the origin. For display and writing.
+        """
+        tensor = self.inertia.copy()
+        tensor[np.abs(tensor) <= rtol * np.abs(np.diag(tensor)).max()] = 0.0
+        size = np.sqrt(np.abs(np.diag(self.inertia)).max() / self.mass) if self.mass > 0 else 0.0
+        com = self.com.copy()
+        com[np.abs(com) <= rtol * max(size, np.abs(com).max())] = 0.0
+        return MassProperties(self.mass, com, tensor)
+
     def with_mass(self, mass: float) -> MassProperties:
         """The same shape of distribution rescaled to ``mass`` kg (a measured mass wins)."""
         if not self.mass > 0:

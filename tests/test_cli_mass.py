@@ -146,3 +146,35 @@ def test_console_scripts_exist_and_lint_fill_say_not_yet():
     )
     assert done.returncode == 0
     assert "density 1000 kg/m³" in done.stdout
+
+
+def test_mesh_in_millimetres_with_scale(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    path = tmp_path / "part.stl"
+    # a 100 × 200 × 300 mm block, authored in millimetres
+    trimesh.creation.box(extents=(100, 200, 300)).export(path)
+    result = run("mesh", str(path), "--density", "2700", "--scale", "0.001", "--format", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    m = 2700 * 0.1 * 0.2 * 0.3
+    assert data["mass"] == pytest.approx(m, rel=1e-9)
+    np.testing.assert_allclose(
+        np.diag(data["inertia"]),
+        [m * (0.04 + 0.09) / 12, m * (0.01 + 0.09) / 12, m * (0.01 + 0.04) / 12],
+        rtol=1e-9,
+    )
+    assert data["mesh"]["method"] == "exact"
+    assert data["mesh"]["triangles"] == 12
+    text = run("mesh", str(path), "--density", "2700", "--scale", "0.001")
+    assert "mesh: 12 triangles, exact" in text.output
+
+
+def test_open_mesh_reports_its_error_bound(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box(extents=(1, 1, 1))
+    open_box = trimesh.Trimesh(box.vertices, box.faces[2:], process=False)
+    path = tmp_path / "open.stl"
+    open_box.export(path)
+    result = run("mesh", str(path))
+    assert result.exit_code == 0, result.output
+    assert "convex-hull (volume error up to" in result.output
