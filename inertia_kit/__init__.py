@@ -27,7 +27,7 @@ _EXPORTS = {
     "Part": "inertia_kit.unions",
     "union": "inertia_kit.unions",
     "UnionResult": "inertia_kit.unions",
-    "load": "inertia_kit.load",
+    "load": "inertia_kit.loader",
     "InputError": "inertia_kit.errors",
     "MeshError": "inertia_kit.errors",
 }
@@ -55,7 +55,7 @@ __all__ = [  # noqa: RUF022  (grouped as _EXPORTS, not sorted)
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, MeshError
-    from inertia_kit.load import load
+    from inertia_kit.loader import load
     from inertia_kit.mass import MassProperties, Validity
     from inertia_kit.meshes import MeshMassProperties, MeshSolid, mesh, mesh_solid
     from inertia_kit.primitives import box, capsule, cylinder, ellipsoid, sphere

@@ -381,7 +381,7 @@ def report_command(
     """A table of the robot's links: parent joint, declared mass, COM, principal moments,
     geometry and the source line to edit; and the robot's total mass."""
     from inertia_kit.errors import InputError
-    from inertia_kit.load import load
+    from inertia_kit.loader import load
     from inertia_kit.robot_report import render
 
     try:

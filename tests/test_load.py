@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from inertia_kit import load as load_module
+from inertia_kit import loader as load_module
 from inertia_kit import model
 from inertia_kit.errors import InputError
-from inertia_kit.load import load
+from inertia_kit.loader import load
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

@@ -21,7 +21,7 @@ import pytest
 
 from inertia_kit import model
 from inertia_kit.errors import InputError
-from inertia_kit.load import load
+from inertia_kit.loader import load
 
 #: Files loaded per package at most; larger packages are sampled evenly, the same files each run.
 MAX_FILES = 1500
