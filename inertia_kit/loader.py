@@ -16,14 +16,10 @@ from lxml import etree
 
 from inertia_kit import model
 from inertia_kit.errors import InputError
+from inertia_kit.safexml import NO_ENTITIES, parser, read_bounded, refuse_entities
 
-# larger than any real robot description (the biggest published ones are a few MB)
-MAX_BYTES = 50 * 1024 * 1024
+__all__ = ["load", "parse_xml", "read_bounded", "refuse_entities"]
 
-_ENTITY_DECLARATION = re.compile(rb"<!ENTITY", re.IGNORECASE)
-_NO_ENTITIES = (
-    "entity declarations are not allowed in a robot description (nothing was expanded or fetched)"
-)
 _BOM = b"\xef\xbb\xbf"
 # UTF-16/32 by byte-order mark or by the NUL bytes around a leading "<" (XML 1.0, appendix F)
 _WIDE_STARTS = (b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff", b"<\x00", b"\x00<", b"\x00\x00\x00<")
@@ -41,40 +37,6 @@ _MARKUP = re.compile(
 _XACRO_AT_WORK = re.compile(rb"<\s*xacro:|\$\{|\$\(")
 # What urdfdom, Gazebo and Drake read as a number: ASCII digits only, no "1_000", no hex
 _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\s*")
-
-
-def read_bounded(path: str | Path) -> bytes:
-    """The bytes of ``path``, refusing files over :data:`MAX_BYTES` and unreadable ones."""
-    try:
-        with open(path, "rb") as stream:
-            data = stream.read(MAX_BYTES + 1)
-    except FileNotFoundError:
-        raise InputError("no such file", path) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, not a robot description", path) from None
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", path) from None
-    except ValueError as error:  # a NUL character in the path
-        raise InputError(f"cannot read: {error}", repr(str(path))) from None
-    if len(data) > MAX_BYTES:
-        raise InputError(
-            f"file is larger than {_size(MAX_BYTES)}; no robot description is that big "
-            "(nothing was parsed)",
-            path,
-        )
-    return data
-
-
-def refuse_entities(data: bytes, path: str | Path) -> None:
-    """
-    Raise on entity declarations (billion laughs, external entities) before any parser sees them.
-    """
-    match = _ENTITY_DECLARATION.search(data)
-    if match:
-        line = data.count(b"\n", 0, match.start()) + 1
-        raise InputError(
-            _NO_ENTITIES, path, line, match.start() - data.rfind(b"\n", 0, match.start())
-        )
 
 
 def parse_xml(data: bytes, path: str | Path) -> etree._Element:
@@ -98,18 +60,11 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
         if b"\x00" in data[end:]:
             data = data[:end]
     try:
-        parser = etree.XMLParser(
-            resolve_entities=False,
-            no_network=True,
-            load_dtd=False,
-            huge_tree=False,
-            remove_pis=True,
-            encoding=encoding,
-        )
+        safe = parser(remove_pis=True, encoding=encoding)
     except LookupError:
         raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
     try:
-        root = etree.fromstring(data, parser, base_url=None)
+        root = etree.fromstring(data, safe, base_url=None)
     except etree.XMLSyntaxError as error:
         line, column = error.position if error.position else (None, None)
         message = re.sub(r",? line \d+, column \d+$", "", str(error.msg or error))
@@ -119,7 +74,7 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
     dtd = root.getroottree().docinfo.internalDTD
     if dtd is not None and next(iter(dtd.iterentities()), None) is not None:
         # only reachable for encodings the byte-level check cannot read (UTF-16, UTF-32)
-        raise InputError(_NO_ENTITIES, path, 1)
+        raise InputError(NO_ENTITIES, path, 1)
     return root
 
 
@@ -193,13 +148,6 @@ def _fragment(path: Path, files: Iterable[str]) -> model.Robot:
 
 
 # --- bytes -------------------------------------------------------------------------------------
-
-
-def _size(count: int) -> str:
-    for unit, scale in (("MB", 1 << 20), ("kB", 1 << 10)):
-        if count >= scale and count % scale == 0:
-            return f"{count // scale} {unit}"
-    return f"{count} bytes"
 
 
 def _is_wide(data: bytes) -> bool:

@@ -25,6 +25,8 @@ from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 from urllib.parse import unquote
 
+from inertia_kit import safexml
+
 #: How many folder levels below a package path entry (or a workspace ``src/``) are searched.
 MAX_DEPTH = 5
 #: Folders visited per search root at most, so that a package path of ``/`` stays bounded.
@@ -54,15 +56,8 @@ def package_name(folder: Path) -> str | None:
         data = manifest.read_bytes()
     except OSError:
         return None
-    parser = etree.XMLParser(
-        resolve_entities=False,
-        no_network=True,
-        load_dtd=False,
-        huge_tree=False,
-        dtd_validation=False,
-    )
     try:
-        root = etree.fromstring(data, parser)
+        root = etree.fromstring(data, safexml.parser())
     except etree.XMLSyntaxError:
         return None
     name = root.find("name")

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
 from xml.sax.saxutils import escape, quoteattr
 
+from inertia_kit import safexml
 from inertia_kit.errors import InputError
 from inertia_kit.model import Source
 
@@ -43,19 +44,12 @@ if TYPE_CHECKING:
 
     from inertia_kit.packages import PackageResolver
 
-#: A file larger than this (input or include) is refused before expat sees it.
-MAX_FILE_BYTES = 50 * 1024 * 1024
-
 #: Top-level tags of a file meant to be included rather than expanded on its own.
 FRAGMENT_TAGS = frozenset({"xacro:macro", "xacro:property", "xacro:arg", "xacro:include"})
 
 _STAMP = "inertia_kit.source"
 _IS_XACRO = re.compile(rb"xmlns:xacro\s*=|<\s*xacro:[A-Za-z_]")
-_DOCTYPE = re.compile(rb"<!DOCTYPE\b")
-_ENTITY = re.compile(rb"<!ENTITY\b")
-_SUBSET_END = re.compile(rb"\]\s*>")
 _LOCK = threading.Lock()
-_NO_ENTITIES = "entity declarations are not allowed: nothing was expanded or fetched"
 _PACKAGE_HINT = "pass --package-path DIR with the package folder or a folder that holds it"
 
 
@@ -259,7 +253,7 @@ class _Session:
                 raise xacro.XacroException(f"{reason}: {filename}", exc=error) from None
         shown = (xacro.filestack or [None])[-1] or "<string>"
         if hasattr(inp, "read"):
-            inp = inp.read(MAX_FILE_BYTES + 1)
+            inp = inp.read(safexml.MAX_BYTES + 1)
         if isinstance(inp, str):
             inp = inp.encode("utf-8")
         if isinstance(inp, bytes):
@@ -429,37 +423,16 @@ class _ThreadRoutedStream:
 
 def _read_checked(filename: str, shown: str) -> bytes:
     """The bytes of ``filename``, refused (``InputError``) when too large or declaring entities."""
-    size = os.stat(filename).st_size
-    if size > MAX_FILE_BYTES:
-        raise InputError(
-            f"file is {size} bytes, more than the {MAX_FILE_BYTES} allowed: nothing was expanded",
-            shown,
-        )
+    # an OSError propagates: xacro reports a missing include at the line that includes it
     with open(filename, "rb") as stream:
-        data = stream.read(MAX_FILE_BYTES + 1)
+        data = stream.read(safexml.MAX_BYTES + 1)
     _check_bytes(data, shown)
     return data
 
 
 def _check_bytes(data: bytes, shown: str) -> None:
-    if len(data) > MAX_FILE_BYTES:
-        raise InputError(
-            f"file is more than the {MAX_FILE_BYTES} bytes allowed: nothing was expanded", shown
-        )
-    doctype = _DOCTYPE.search(data)
-    if doctype is None:
-        return
-    # Only the DOCTYPE's internal subset can declare entities; the parser refuses any this
-    # byte-level look misses (another encoding, a "]>" inside an entity value).
-    start = doctype.end()
-    end = data.find(b">", start)
-    subset = data.find(b"[", start)
-    if subset != -1 and (end == -1 or subset < end):
-        close = _SUBSET_END.search(data, subset)
-        end = close.end() if close else len(data)
-    entity = _ENTITY.search(data, start, len(data) if end == -1 else end)
-    if entity is not None:
-        raise InputError(_NO_ENTITIES, shown, data.count(b"\n", 0, entity.start()) + 1)
+    safexml.check_size(data, shown)
+    safexml.refuse_entities(data, shown)
 
 
 def _parse_stamped(data: bytes, shown: str):
@@ -474,7 +447,7 @@ def _parse_stamped(data: bytes, shown: str):
             parser.ExternalEntityRefHandler = self.refuse_entity
 
         def refuse_entity(self, *_args) -> None:
-            raise InputError(_NO_ENTITIES, shown, self._parser.CurrentLineNumber)
+            raise InputError(safexml.NO_ENTITIES, shown, self._parser.CurrentLineNumber)
 
         def start_element_handler(self, name, attributes) -> None:
             super().start_element_handler(name, attributes)
@@ -516,11 +489,8 @@ def _to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]
     out: list[str] = []
     sources: list[Source] = []
     _write(root, out, sources, fallback)
-    parser = etree.XMLParser(
-        resolve_entities=False, no_network=True, load_dtd=False, huge_tree=True
-    )
     try:
-        lxml_root = etree.fromstring("".join(out).encode("utf-8"), parser)
+        lxml_root = etree.fromstring("".join(out).encode("utf-8"), safexml.parser(huge_tree=True))
     except etree.XMLSyntaxError as error:
         raise InputError(f"xacro produced XML lxml cannot read: {error}", fallback.path) from None
     elements = list(lxml_root.iter(etree.Element))

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from inertia_kit import loader as load_module
 from inertia_kit import model
+from inertia_kit import safexml as load_module
 from inertia_kit.errors import InputError
 from inertia_kit.loader import load
 

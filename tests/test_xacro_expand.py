@@ -422,11 +422,11 @@ def test_entity_declaration_in_utf16_is_refused_by_the_parser(tmp_path):
 
 
 def test_oversized_files_are_refused(tmp_path, monkeypatch):
-    from inertia_kit import xacro_expand
+    from inertia_kit import safexml
 
     robot = write(tmp_path / "big.xacro", f'<robot name="r" {NS}>\n  <link name="a"/>\n</robot>\n')
-    monkeypatch.setattr(xacro_expand, "MAX_FILE_BYTES", 32)
-    with pytest.raises(InputError, match="more than the 32"):
+    monkeypatch.setattr(safexml, "MAX_BYTES", 32)
+    with pytest.raises(InputError, match="larger than 32 bytes"):
         expand(robot)
 
 

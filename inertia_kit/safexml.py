@@ -1,0 +1,98 @@
+"""
+Reading XML we did not write, safely: a size bound, no entity declarations (billion laughs,
+external entities), and parsers that never touch the network or load a DTD. One place, used by
+the URDF loader, the xacro expansion and package.xml lookups.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+from inertia_kit.errors import InputError
+
+# larger than any real robot description (the biggest published ones are a few MB)
+MAX_BYTES = 50 * 1024 * 1024
+
+NO_ENTITIES = "entity declarations are not allowed: nothing was expanded or fetched"
+
+_DOCTYPE = re.compile(rb"<!DOCTYPE\b")
+_ENTITY = re.compile(rb"<!ENTITY\b")
+_SUBSET_END = re.compile(rb"\]\s*>")
+
+
+def size_text(count: int) -> str:
+    """``50 MB``, ``4 kB`` or ``64 bytes``."""
+    for unit, scale in (("MB", 1 << 20), ("kB", 1 << 10)):
+        if count >= scale and count % scale == 0:
+            return f"{count // scale} {unit}"
+    return f"{count} bytes"
+
+
+def read_bounded(path: str | Path, shown: str | Path | None = None) -> bytes:
+    """
+    The bytes of ``path``, refusing unreadable files and files over :data:`MAX_BYTES`, with
+    an ``InputError`` naming ``shown`` (default: ``path``).
+    """
+    shown = path if shown is None else shown
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_BYTES + 1)
+    except FileNotFoundError:
+        raise InputError("no such file", shown) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, not a robot description", shown) from None
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", shown) from None
+    except ValueError as error:  # a NUL character in the path
+        raise InputError(f"cannot read: {error}", repr(str(shown))) from None
+    check_size(data, shown)
+    return data
+
+
+def check_size(data: bytes, shown: str | Path) -> None:
+    if len(data) > MAX_BYTES:
+        raise InputError(
+            f"file is larger than {size_text(MAX_BYTES)}; no robot description is that big "
+            "(nothing was parsed)",
+            shown,
+        )
+
+
+def refuse_entities(data: bytes, shown: str | Path) -> None:
+    """
+    Raise ``InputError`` (file, line, column) on an entity declaration, before any parser sees
+    the bytes.
+
+    Only a DOCTYPE's internal subset can declare entities, so only that is searched: a comment
+    that mentions ``<!ENTITY`` is harmless. Parsers are configured to refuse any this
+    byte-level look misses (another encoding, a ``]>`` inside an entity value).
+    """
+    doctype = _DOCTYPE.search(data)
+    if doctype is None:
+        return
+    start = doctype.end()
+    end = data.find(b">", start)
+    subset = data.find(b"[", start)
+    if subset != -1 and (end == -1 or subset < end):
+        close = _SUBSET_END.search(data, subset)
+        end = close.end() if close else len(data)
+    entity = _ENTITY.search(data, start, len(data) if end == -1 else end)
+    if entity is not None:
+        line = data.count(b"\n", 0, entity.start()) + 1
+        column = entity.start() - data.rfind(b"\n", 0, entity.start())
+        raise InputError(NO_ENTITIES, shown, line, column)
+
+
+def parser(**options: Any):
+    """An lxml parser that resolves no entity, loads no DTD and never uses the network."""
+    from lxml import etree
+
+    settings = {
+        "resolve_entities": False,
+        "no_network": True,
+        "load_dtd": False,
+        "huge_tree": False,
+    }
+    return etree.XMLParser(**{**settings, **options})
