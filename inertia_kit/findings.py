@@ -1,0 +1,109 @@
+"""What the linter reports: ``Finding`` records, their severities, and fixes as text edits."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field
+from typing import Any
+
+
+class Severity(enum.IntEnum):
+    """Ordered, so ``--fail-on warning`` means warning and above."""
+
+    INFO = 0
+    WARNING = 1
+    ERROR = 2
+
+    def __str__(self) -> str:
+        return self.name.lower()
+
+    @classmethod
+    def parse(cls, text: str) -> Severity:
+        try:
+            return cls[text.strip().upper()]
+        except KeyError:
+            raise ValueError(f"severity must be error, warning or info, got {text!r}") from None
+
+
+class Safety(enum.Enum):
+    """How far a fix may be trusted (ruff's applicability)."""
+
+    SAFE = "safe"  # changes representation only
+    UNSAFE = "unsafe"  # changes physical values on an assumption (density, solid mesh)
+    DISPLAY_ONLY = "display-only"  # shown, never applied
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True, order=True)
+class Edit:
+    """Replace ``original[start:end]`` of the file ``path`` with ``content`` (character offsets)."""
+
+    path: str
+    start: int
+    end: int
+    content: str
+
+
+@dataclass(frozen=True)
+class Fix:
+    title: str
+    edits: tuple[Edit, ...]
+    safety: Safety = Safety.UNSAFE
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "title": self.title,
+            "safety": str(self.safety),
+            "edits": [
+                {"path": e.path, "start": e.start, "end": e.end, "content": e.content}
+                for e in self.edits
+            ],
+        }
+
+
+@dataclass(frozen=True, order=True)
+class Finding:
+    """
+    One problem at one place. Sorts by file, line, column, then code.
+
+    ``expected`` holds the computed values a rule has (JSON-ready, SI units), e.g.
+    ``{"ixx": 0.0163}``; ``help`` says what to do.
+    """
+
+    path: str
+    line: int | None
+    column: int | None
+    code: str
+    name: str = field(compare=False)
+    severity: Severity = field(compare=False)
+    message: str = field(compare=False)
+    link: str | None = field(default=None, compare=False)
+    joint: str | None = field(default=None, compare=False)
+    expected: dict[str, Any] | None = field(default=None, compare=False)
+    help: str | None = field(default=None, compare=False)
+    fix: Fix | None = field(default=None, compare=False)
+    # for xacro: where the element stands in the macro body, when path/line is the macro call
+    # that produced it
+    macro_path: str | None = field(default=None, compare=False)
+    macro_line: int | None = field(default=None, compare=False)
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "code": self.code,
+            "name": self.name,
+            "severity": str(self.severity),
+            "message": self.message,
+            "file": self.path,
+            "line": self.line,
+            "column": self.column,
+            "link": self.link,
+            "joint": self.joint,
+            "expected": self.expected,
+            "help": self.help,
+            "fix": None if self.fix is None else self.fix.to_json(),
+            "macro": None
+            if self.macro_path is None
+            else {"file": self.macro_path, "line": self.macro_line},
+        }

@@ -1,0 +1,34 @@
+"""Shared helpers: write a robot to a file and lint it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from inertia_kit.findings import Finding
+from inertia_kit.lint import Selection, lint_file
+
+
+def lint_text(
+    text: str, tmp_path: Path, select: tuple[str, ...] = ("IN0",), name: str = "robot.urdf", **kw
+) -> list[Finding]:
+    """Lint ``text`` written to ``tmp_path/name``; raise if the file is unreadable."""
+    path = tmp_path / name
+    path.write_text(text)
+    result = lint_file(path, Selection(select=select, **kw))
+    if result.error is not None:
+        raise result.error
+    return result.findings
+
+
+@pytest.fixture
+def lint(tmp_path):
+    """``lint(text, select=("IN020",), options={...})`` → the findings of those rules."""
+
+    def run(text: str, select: tuple[str, ...] | str = ("IN0",), **kw) -> list[Finding]:
+        if isinstance(select, str):
+            select = (select,)
+        return lint_text(text, tmp_path, select, **kw)
+
+    return run

@@ -1,0 +1,94 @@
+"""
+Every rule document in rules/ runs: its `fail` example triggers that rule and nothing else,
+its `fixed` example triggers nothing. The index lists every rule, and every rule has a document.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from inertia_kit.lint import Selection, lint_file
+from inertia_kit.rules import RULE_MODULES, load_rules
+
+RULES_DIR = Path(__file__).parent.parent / "rules"
+DOCS = sorted(RULES_DIR.glob("IN[0-9][0-9][0-9]-*.md"))
+HEADINGS = [
+    "## What it does",
+    "## Why is this bad?",
+    "## Example",
+    "## Use instead",
+    "## Fix safety",
+    "## Options",
+    "## References",
+]
+BLOCK = re.compile(r"```xml (fail|fixed)(?: name=(\S+))?\n(.*?)```", re.DOTALL)
+
+
+def examples(doc: Path) -> dict[str, list[tuple[str, str]]]:
+    found: dict[str, list[tuple[str, str]]] = {"fail": [], "fixed": []}
+    for kind, name, text in BLOCK.findall(doc.read_text()):
+        found[kind].append((name or "robot.urdf", text))
+    return found
+
+
+def lint_example(tmp_path: Path, name: str, text: str):
+    path = tmp_path / name
+    path.write_text(text)
+    result = lint_file(path, Selection())
+    assert result.error is None, result.error
+    return result.findings
+
+
+@pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
+def test_document_shape(doc):
+    text = doc.read_text()
+    code, name = doc.stem.split("-", 1)
+    assert text.startswith(f"# {code} {name}\n")
+    positions = [text.find(h) for h in HEADINGS]
+    assert all(p >= 0 for p in positions), [h for h, p in zip(HEADINGS, positions) if p < 0]
+    assert positions == sorted(positions)
+    found = examples(doc)
+    assert found["fail"] and found["fixed"]
+
+
+@pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
+def test_fail_example_triggers_only_its_rule(doc, tmp_path):
+    code = doc.stem.split("-", 1)[0]
+    for name, text in examples(doc)["fail"]:
+        findings = lint_example(tmp_path, name, text)
+        codes = {f.code for f in findings}
+        assert codes == {code}, [str((f.code, f.message)) for f in findings]
+
+
+@pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
+def test_fixed_example_triggers_nothing(doc, tmp_path):
+    for name, text in examples(doc)["fixed"]:
+        findings = lint_example(tmp_path, name, text)
+        assert findings == [], [str((f.code, f.message)) for f in findings]
+
+
+def test_every_rule_has_a_document_and_an_index_entry():
+    index = (RULES_DIR / "README.md").read_text()
+    for rule in load_rules():
+        doc = RULES_DIR / f"{rule.CODE}-{rule.NAME}.md"
+        assert doc.is_file(), f"{rule.CODE} has no document {doc.name}"
+        assert f"[{rule.CODE}]({doc.name})" in index, f"{rule.CODE} missing from rules/README.md"
+
+
+def test_registry_codes_and_names_are_unique_and_complete():
+    rules = load_rules()
+    assert len(rules) == len(RULE_MODULES), "every registered rule module exists"
+    codes = [r.CODE for r in rules]
+    names = [r.NAME for r in rules]
+    assert len(set(codes)) == len(codes) and len(set(names)) == len(names)
+    assert codes == sorted(codes)
+    for rule in rules:
+        assert re.fullmatch(r"IN\d{3}", rule.CODE)
+        assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", rule.NAME)
+        assert rule.SCOPE in ("link", "robot")
+        assert set(rule.OPTIONS) == set(rule.DEFAULTS)
+        module = rule.__name__.rsplit(".", 1)[1]
+        assert module.startswith(rule.CODE.lower() + "_")
