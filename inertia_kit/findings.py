@@ -66,7 +66,7 @@ class Fix:
 @dataclass(frozen=True, order=True)
 class Finding:
     """
-    One problem at one place. Sorts by file, line, column, then code.
+    One problem at one place. Sorts by file, line, column, code, then message.
 
     ``expected`` holds the computed values a rule has (JSON-ready, SI units), e.g.
     ``{"ixx": 0.0163}``; ``help`` says what to do.
@@ -78,9 +78,11 @@ class Finding:
     code: str
     name: str = field(compare=False)
     severity: Severity = field(compare=False)
-    message: str = field(compare=False)
-    link: str | None = field(default=None, compare=False)
-    joint: str | None = field(default=None, compare=False)
+    # identity includes the message and link: one macro call can yield several findings of one
+    # rule at one location (one per link it produced), and none may be lost
+    message: str = field(compare=True)
+    link: str | None = field(default=None, compare=True)
+    joint: str | None = field(default=None, compare=True)
     expected: dict[str, Any] | None = field(default=None, compare=False)
     help: str | None = field(default=None, compare=False)
     fix: Fix | None = field(default=None, compare=False)
