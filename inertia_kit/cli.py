@@ -397,6 +397,196 @@ def report_command(
     click.echo(render(robot, output_format))
 
 
+# --- inertia-lint (inertia-kit lint) ----------------------------------------------------------
+
+OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif")
+
+
+def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
+    """``--select IN01,IN020 --select IN002`` → ``("IN01", "IN020", "IN002")``."""
+    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
+
+
+def _colour() -> bool | None:
+    """``None``: colour on a terminal only (click strips it elsewhere); NO_COLOR, FORCE_COLOR."""
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return None
+
+
+@click.command("lint", context_settings={"help_option_names": ["-h", "--help"]})
+@click.argument("paths", nargs=-1, type=click.Path())
+@click.option(
+    "--output-format",
+    type=click.Choice(OUTPUT_FORMATS),
+    default="full",
+    show_default=True,
+    help="How findings are printed (to stdout).",
+)
+@click.option(
+    "--select",
+    multiple=True,
+    metavar="CODES",
+    help="Rules to run: codes, code prefixes or names, comma-separated (repeatable). "
+    "Replaces the configured select and ignore lists.",
+)
+@click.option(
+    "--ignore",
+    multiple=True,
+    metavar="CODES",
+    help="Rules not to run, as --select (repeatable); added to the configured ignore list.",
+)
+@click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "info"]),
+    default=None,
+    help="Lowest severity that makes the exit code 1 [default: fail-on in the "
+    "configuration, else warning].",
+)
+@click.option(
+    "--exit-zero",
+    is_flag=True,
+    help="Exit 0 even with findings (unreadable input or bad configuration still exit 2).",
+)
+@click.option(
+    "--statistics", is_flag=True, help="Print how often each rule fired instead of the findings."
+)
+@click.option(
+    "--config",
+    "config_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Configuration file for every linted file (pyproject.toml or .inertia-kit.toml) "
+    "instead of the nearest one.",
+)
+@click.option(
+    "--package-path",
+    "package_paths",
+    multiple=True,
+    type=click.Path(file_okay=False),
+    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
+)
+@click.option(
+    "--xacro-arg",
+    "xacro_args",
+    multiple=True,
+    metavar="NAME:=VALUE",
+    help="A xacro argument (repeatable).",
+)
+@click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
+@click.version_option(__version__, prog_name="inertia-lint")
+@click.pass_context
+def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
+    """
+    Lint the <inertial> blocks of URDF and xacro robot descriptions: files, or folders (their
+    *.urdf and *.xacro files; xacro fragments that only define macros are skipped).
+
+    \b
+    Exit codes: 0 no findings at or above --fail-on; 1 findings; 2 unreadable input,
+    bad configuration or usage.
+    \b
+    Examples:
+      inertia-lint urdf/
+      inertia-lint --select IN01,IN020 --output-format concise robot.urdf.xacro
+      inertia-lint --explain IN002
+    """
+    ctx.exit(lint(paths, **options))
+
+
+def lint(
+    paths: tuple[str, ...] | list[str],
+    *,
+    output_format: str = "full",
+    select: tuple[str, ...] = (),
+    ignore: tuple[str, ...] = (),
+    fail_on: str | None = None,
+    exit_zero: bool = False,
+    statistics: bool = False,
+    config_path: str | None = None,
+    package_paths: tuple[str, ...] = (),
+    xacro_args: tuple[str, ...] = (),
+    explain: str | None = None,
+) -> int:
+    """``inertia-lint``: print what it finds; return the exit code."""
+    if explain is not None:
+        from inertia_kit.report import explain as document
+
+        try:
+            click.echo(document(explain), nl=False)
+        except LookupError as error:
+            click.echo(f"error: --explain: {error}", err=True)
+            return 2
+        return 0
+    if not paths:
+        click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
+        return 2
+
+    from inertia_kit.errors import ConfigError
+    from inertia_kit.findings import Severity
+    from inertia_kit.lint import lint_paths
+    from inertia_kit.report import render, summary
+    from inertia_kit.report import statistics as rule_statistics
+
+    try:
+        results = lint_paths(
+            paths,
+            config=config_path,
+            select=_codes(select),
+            ignore=_codes(ignore),
+            fail_on=None if fail_on is None else Severity.parse(fail_on),
+            xacro_args=_xacro_args(xacro_args),
+            package_paths=package_paths,
+        )
+    except (ConfigError, UsageError) as error:
+        message = error.format_message() if isinstance(error, UsageError) else str(error)
+        click.echo(f"error: {message}", err=True)
+        return 2
+
+    told: set[str] = set()
+    for result in results:
+        lines = [f"error: {result.error}"] if result.error else []
+        if result.fragment:
+            lines.append(
+                f"note: {result.path}: a xacro fragment (macros and properties only, to be "
+                "included): skipped"
+            )
+        lines += [f"warning: {note}" for note in result.notes]
+        for line in lines:
+            if line not in told:
+                told.add(line)
+                click.echo(line, err=True)
+    if not results:
+        click.echo(
+            f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}", err=True
+        )
+
+    findings, counted, seen = [], False, set()
+    for result in results:
+        for finding in result.findings:
+            key = (finding.path, finding.line, finding.column, finding.code, finding.message)
+            if key not in seen:
+                seen.add(key)
+                findings.append(finding)
+        counted = counted or bool(result.failing)
+    errors = [result.error for result in results if result.error is not None]
+    if statistics:
+        output = rule_statistics(findings, as_json=output_format == "json")
+    else:
+        output = render(findings, output_format, errors=errors, style=click.style)
+    click.echo(output, nl=False, color=_colour())
+    checked = sum(1 for r in results if r.error is None and not r.fragment and not r.disabled)
+    click.echo(summary(findings, checked, len(errors)), err=True)
+    if errors:
+        return 2
+    return 1 if counted and not exit_zero else 0
+
+
+main.add_command(lint_command)
+lint_main = lint_command
+
+
 # --- the commands still to come --------------------------------------------------------------
 
 
@@ -412,5 +602,4 @@ def _not_yet(name: str, issue: int) -> Callable[[], None]:
     return command
 
 
-lint_main = _not_yet("inertia-lint", 4)
 fill_main = _not_yet("inertia-fill", 5)

@@ -105,7 +105,8 @@ class RuleContext:
         ``severity`` lets a rule escalate (e.g. warning → error for an impossible value); a
         configured severity always wins.
         """
-        level = self.severity or severity or self.rule.SEVERITY
+        # Severity.INFO is 0: pick the first that is set, not the first that is truthy
+        level = next(s for s in (self.severity, severity, self.rule.SEVERITY) if s is not None)
         path, line, column, macro_path, macro_line = "", None, None, None, None
         if source is not None:
             if source.calls:
