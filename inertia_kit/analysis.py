@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit import model
 from inertia_kit.mass import MassProperties
@@ -127,6 +127,27 @@ class Solid:
     def volume(self) -> float:
         return 0.0 if self.unit is None else self.unit.mass
 
+    @functools.cached_property
+    def hull(self) -> Hull | None:
+        """A convex set containing the solid (see :class:`Hull`), or ``None`` without a solid."""
+        if self.part is not None:
+            return Hull.of_part(self.part)
+        if self.corners is not None:
+            return Hull(self.corners)
+        return None
+
+    def contains(self, point: ArrayLike, tol: float = 0.0) -> bool | None:
+        """
+        Whether ``point`` (3,) m in the link frame lies inside the solid (within ``tol`` m):
+        exact for primitives; for a mesh ``None`` (unknown) inside its bounding box.
+        """
+        if self.part is None:
+            if self.corners is None:
+                return None
+            hull = Hull(self.corners)
+            return None if hull.distance_outside(point) <= tol else False
+        return _part_contains(self.part, np.asarray(point, dtype=np.float64), tol)
+
 
 @dataclass(frozen=True, eq=False)
 class Geometry:
@@ -155,6 +176,14 @@ class Geometry:
         """(8k, 3) bounding-box corners of every solid, link frame: a hull of the geometry."""
         boxes = [s.corners for s in self.solids if s.corners is not None]
         return np.concatenate(boxes) if boxes else None
+
+    @functools.cached_property
+    def hull(self) -> Hull | None:
+        """A convex set containing every solid, or ``None`` when a shape yielded no solid."""
+        hulls = [s.hull for s in self.solids]
+        if not hulls or any(h is None for h in hulls):
+            return None
+        return Hull.union(hulls)  # type: ignore[arg-type]
 
     def at_mass(self, mass: float) -> MassProperties | None:
         """The geometry's mass properties for a total mass, at uniform density."""
@@ -279,6 +308,375 @@ def _box_corners(bounds: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.where(pick == 0, low, high)
 
 
+# --- bounds -----------------------------------------------------------------------------------
+
+# sides of the polygon circumscribed about a cylinder's rims: its corners lie 1/cos(π/64) - 1 =
+# 0.12 % outside the circle, so every bound taken over them holds and is within 0.25 % of tight
+RIM_SIDES = 64
+
+# a declared moment this far above a hard bound (relative) is impossible, not rounding: values
+# are often written with 3–4 significant digits
+BOUND_RTOL = 0.01
+
+
+def _unit_directions(count: int = 256) -> NDArray[np.float64]:
+    """(count + 6, 3) unit vectors: the six axis directions and a Fibonacci sphere."""
+    i = np.arange(count) + 0.5
+    polar = np.arccos(1.0 - 2.0 * i / count)
+    azimuth = np.pi * (1.0 + 5.0**0.5) * i
+    sphere = np.column_stack(
+        (np.cos(azimuth) * np.sin(polar), np.sin(azimuth) * np.sin(polar), np.cos(polar))
+    )
+    return np.concatenate((np.eye(3), -np.eye(3), sphere))
+
+
+_DIRECTIONS = _unit_directions()
+
+
+@dataclass(frozen=True, eq=False)
+class Hull:
+    """
+    A convex set that contains a geometry: the convex hull of balls ``B(points[i], radii[i])``.
+
+    Boxes are their 8 corners; spheres one ball and capsules two; cylinders the corners of
+    polygons circumscribed about their rims; meshes the 8 corners of their bounding box. So the
+    set always contains the solid, and a maximum of a convex function over it (a distance, a
+    support value) is an upper bound of the same maximum over the solid: bounds derived here
+    never understate what the geometry allows.
+
+    Attributes
+    ----------
+    points : (k, 3) float
+      Ball centres, link frame, m.
+    radii : (k,) float
+      Ball radii, m (zero for plain points).
+    """
+
+    points: NDArray[np.float64]
+    radii: NDArray[np.float64] | None = None
+
+    def __post_init__(self) -> None:
+        points = np.asarray(self.points, dtype=np.float64)
+        if points.ndim != 2 or points.shape[1] != 3 or len(points) == 0:
+            raise ValueError(f"points must be (k, 3) with k > 0, got shape {points.shape}")
+        radii = np.zeros(len(points)) if self.radii is None else np.asarray(self.radii, float)
+        if radii.shape != (len(points),):
+            raise ValueError(f"radii must be ({len(points)},), got shape {radii.shape}")
+        object.__setattr__(self, "points", points)
+        object.__setattr__(self, "radii", radii)
+
+    @classmethod
+    def of_part(cls, part: Part) -> Hull:
+        """The hull of a placed primitive or mesh part (see the class docstring)."""
+        rotation, offset = part.pose[:3, :3], part.pose[:3, 3]
+        if part.kind == "sphere":
+            return cls(offset[None, :], np.array([part.dimensions[0]]))
+        if part.kind == "capsule":
+            radius, length = part.dimensions
+            ends = np.array([[0.0, 0.0, -0.5 * length], [0.0, 0.0, 0.5 * length]])
+            return cls(ends @ rotation.T + offset, np.full(2, radius))
+        if part.kind == "cylinder":
+            radius, length = part.dimensions
+            angles = 2.0 * np.pi * np.arange(RIM_SIDES) / RIM_SIDES
+            corner = radius / np.cos(np.pi / RIM_SIDES)
+            ring = np.column_stack((corner * np.cos(angles), corner * np.sin(angles)))
+            rims = np.concatenate(
+                [np.column_stack((ring, np.full(RIM_SIDES, z))) for z in (-0.5, 0.5)]
+            )
+            rims[:, 2] *= length
+            return cls(rims @ rotation.T + offset)
+        return cls(_box_corners(part.bounds) if part.kind == "mesh" else _part_corners(part))
+
+    @staticmethod
+    def union(hulls: list[Hull]) -> Hull:
+        """A hull containing every one of ``hulls`` (the hull of their union)."""
+        if len(hulls) == 1:
+            return hulls[0]
+        return Hull(
+            np.concatenate([h.points for h in hulls]),
+            np.concatenate([h.radii for h in hulls]),  # type: ignore[misc]
+        )
+
+    @property
+    def bounds(self) -> NDArray[np.float64]:
+        """(2, 3) lowest and highest corner of an axis-aligned box around the hull, m."""
+        radii = self.radii[:, None]  # type: ignore[index]
+        return np.array([(self.points - radii).min(axis=0), (self.points + radii).max(axis=0)])
+
+    def support(self, directions: ArrayLike) -> NDArray[np.float64]:
+        """
+        Support function: the largest ``u · x`` over the hull for each direction ``u``.
+
+        Parameters
+        ----------
+        directions : (n, 3) float
+          Unit vectors, link frame.
+
+        Returns
+        -------
+        support : (n,) float
+          m
+        """
+        u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
+        return (u @ self.points.T + self.radii).max(axis=1)
+
+    def farthest(self, point: ArrayLike) -> float:
+        """The largest distance from ``point`` (3,) to the hull, m: the ``r_max`` about a point."""
+        offsets = self.points - np.asarray(point, dtype=np.float64)
+        return float((np.linalg.norm(offsets, axis=1) + self.radii).max())
+
+    def farthest_from_axes(self, point: ArrayLike, axes: ArrayLike) -> NDArray[np.float64]:
+        """
+        The largest distance from each axis through ``point`` to the hull, m.
+
+        Parameters
+        ----------
+        point : (3,) float
+          A point on every axis (the centre of mass), link frame, m.
+        axes : (n, 3) float
+          Unit axis directions.
+
+        Returns
+        -------
+        r_max : (n,) float
+          m; a mass ``m`` inside the hull has at most ``m · r_max²`` about each axis.
+        """
+        q = self.points - np.asarray(point, dtype=np.float64)
+        a = np.atleast_2d(np.asarray(axes, dtype=np.float64))
+        along = a @ q.T  # (n, k)
+        perpendicular = np.sqrt(np.maximum((q * q).sum(axis=1) - along**2, 0.0))
+        return (perpendicular + self.radii).max(axis=1)
+
+    def spread(self, point: ArrayLike, directions: ArrayLike) -> NDArray[np.float64]:
+        """
+        Bhatia–Davis bound of the second moment per unit mass along each direction.
+
+        For a mass ``m`` inside the hull with centre of mass ``c``, ``∫ (u·(x - c))² dm ≤
+        m (h(u) - u·c)(u·c + h(-u))``, with ``h`` the support function: the variance of a
+        quantity between bounds is largest for two point masses at the bounds.
+
+        Returns
+        -------
+        spread : (n,) float
+          m²; negative when ``point`` lies outside the hull's extent along a direction (no
+          distribution inside the hull has that centre of mass).
+        """
+        u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
+        centre = u @ np.asarray(point, dtype=np.float64)
+        return (self.support(u) - centre) * (centre + self.support(-u))
+
+    def moment_bound(self, point: ArrayLike, frame: ArrayLike) -> NDArray[np.float64]:
+        """
+        The largest moment of inertia per unit mass that any distribution inside the hull with
+        its centre of mass at ``point`` can have about each axis of ``frame``.
+
+        The smaller of two valid bounds: the squared distance to the farthest point of the hull
+        from the axis, and the Bhatia–Davis bounds of the second moments along the frame's other
+        two axes (``I_x = ∫ y² + z² dm``).
+
+        Parameters
+        ----------
+        point : (3,) float
+          Centre of mass, link frame, m.
+        frame : (3, 3) float
+          Orthonormal axes as columns.
+
+        Returns
+        -------
+        bound : (3,) float
+          m² (multiply by the mass for kg·m²).
+        """
+        axes = np.asarray(frame, dtype=np.float64).T
+        by_distance = self.farthest_from_axes(point, axes) ** 2
+        spread = self.spread(point, axes)
+        if (spread < 0).any():
+            return by_distance
+        by_spread = spread.sum() - spread
+        return np.minimum(by_distance, by_spread)
+
+    def distance_outside(self, point: ArrayLike) -> float:
+        """
+        A lower bound of the distance from ``point`` (3,) to the hull, m: 0 when inside.
+
+        ``u · p - h(u)`` over a fixed set of directions (and the one from the hull's centre to
+        the point) never exceeds the true distance, so a positive value proves ``point`` is
+        outside.
+        """
+        p = np.asarray(point, dtype=np.float64)
+        towards = p - self.points.mean(axis=0)
+        norm = np.linalg.norm(towards)
+        directions = _DIRECTIONS if not norm > 0 else np.vstack((_DIRECTIONS, towards / norm))
+        return max(float((directions @ p - self.support(directions)).max()), 0.0)
+
+    def half_widths(self, point: ArrayLike, directions: ArrayLike) -> NDArray[np.float64]:
+        """How far the hull reaches from ``point`` along each direction (support minus u·p), m."""
+        u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
+        return self.support(u) - u @ np.asarray(point, dtype=np.float64)
+
+
+def _part_corners(part: Part) -> NDArray[np.float64]:
+    from inertia_kit.tessellate import half_extents
+
+    signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
+    local = signs * half_extents(part.kind, part.dimensions)
+    return local @ part.pose[:3, :3].T + part.pose[:3, 3]
+
+
+def _part_contains(part: Part, point: NDArray[np.float64], tol: float) -> bool | None:
+    """Exact point-in-primitive test in the part's own frame; ``None`` for a mesh."""
+    local = part.pose[:3, :3].T @ (point - part.pose[:3, 3])
+    if part.kind == "box":
+        return bool((np.abs(local) <= 0.5 * np.array(part.dimensions) + tol).all())
+    if part.kind == "sphere":
+        return bool(np.linalg.norm(local) <= part.dimensions[0] + tol)
+    if part.kind == "cylinder":
+        radius, length = part.dimensions
+        return bool(np.hypot(*local[:2]) <= radius + tol and abs(local[2]) <= 0.5 * length + tol)
+    if part.kind == "capsule":
+        radius, length = part.dimensions
+        axial = np.clip(local[2], -0.5 * length, 0.5 * length)
+        return bool(np.linalg.norm(local - np.array([0.0, 0.0, axial])) <= radius + tol)
+    return None
+
+
+@dataclass(frozen=True)
+class TensorComparison:
+    """
+    How a declared inertia tensor compares with an expected one, axis by axis, in link axes.
+
+    ``ratios[i]`` is the generalised eigenvalue ``λ`` of ``I_declared v = λ I_expected v``: the
+    ratio of the two moments about ``axes[i]``. They are the stationary values of
+    ``nᵀ I_declared n / nᵀ I_expected n`` over all axes ``n``, so the largest and smallest are
+    the largest and smallest ratio of moments about any axis: a tensor written for the wrong
+    axes (same eigenvalues) shows up, and so does a wrong value about an axis of symmetry.
+
+    Attributes
+    ----------
+    ratios : (3,) float
+      Ascending.
+    axes : (3, 3) float
+      Unit axes (rows), link frame.
+    """
+
+    ratios: NDArray[np.float64]
+    axes: NDArray[np.float64]
+
+    @property
+    def worst(self) -> int:
+        """Index of the ratio farthest from 1 (by factor)."""
+        return int(np.argmax(np.abs(np.log(self.ratios))))
+
+    @property
+    def factor(self) -> float:
+        """The largest factor between the two moments about any axis (≥ 1)."""
+        return float(np.exp(np.abs(np.log(self.ratios)).max()))
+
+
+def compare_tensors(declared: ArrayLike, expected: ArrayLike) -> TensorComparison | None:
+    """
+    Compare two inertia tensors (3, 3) kg·m² in the same axes through generalised eigenvalues.
+
+    Returns ``None`` unless both are symmetric positive definite (the expected one must be; a
+    declared one that is not is another rule's finding).
+    """
+    a = np.asarray(declared, dtype=np.float64)
+    b = np.asarray(expected, dtype=np.float64)
+    if (
+        a.shape != (3, 3)
+        or b.shape != (3, 3)
+        or not (np.isfinite(a).all() and np.isfinite(b).all())
+    ):
+        return None
+    a, b = 0.5 * (a + a.T), 0.5 * (b + b.T)
+    try:
+        lower = np.linalg.cholesky(b)
+        np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:
+        return None
+    inverse = np.linalg.inv(lower)
+    # eigh: symmetric input; L⁻¹ A L⁻ᵀ has the generalised eigenvalues of (A, B = L Lᵀ)
+    ratios, vectors = np.linalg.eigh(inverse @ a @ inverse.T)
+    axes = (inverse.T @ vectors).T
+    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
+    if not (ratios > 0).all():
+        return None
+    return TensorComparison(ratios, axes)
+
+
+@dataclass(frozen=True)
+class MomentExcess:
+    """
+    The axis through a declared centre of mass about which the declared moment comes closest to
+    (or goes furthest beyond) the most any distribution inside a hull can have.
+
+    Attributes
+    ----------
+    axis : (3,) float
+      Unit axis, link frame.
+    moment : float
+      The declared moment about it, kg·m².
+    bound : float
+      ``mass · bound per unit mass`` (:meth:`Hull.moment_bound`), kg·m².
+    r_max : float
+      The farthest the hull reaches from the axis, m (``bound ≤ mass · r_max²``).
+    """
+
+    axis: NDArray[np.float64]
+    moment: float
+    bound: float
+    r_max: float
+
+    @property
+    def ratio(self) -> float:
+        return self.moment / self.bound if self.bound > 0 else math.inf
+
+
+def moment_excess(declared: MassProperties, hull: Hull) -> MomentExcess | None:
+    """
+    The worst axis of ``declared`` against the hard bound of ``hull`` (see :class:`MomentExcess`).
+
+    Checks the link axes and the declared principal axes (distance and Bhatia–Davis bounds) and
+    a fixed set of further directions (distance bound); when a link axis is beyond the bound it
+    is reported in preference, since its moment is a value written in the file.
+
+    Returns ``None`` unless the mass is positive and everything is finite.
+    """
+    mass, com, tensor = declared.mass, declared.com, declared.inertia
+    if not (mass > 0 and np.isfinite(com).all() and np.isfinite(tensor).all()):
+        return None
+    tensor = 0.5 * (tensor + tensor.T)
+    candidates: list[MomentExcess] = []
+    for frame in (np.eye(3), declared.principal_axes):
+        bounds = mass * hull.moment_bound(com, frame)
+        reach = hull.farthest_from_axes(com, frame.T)
+        for i in range(3):
+            axis = frame[:, i]
+            candidates.append(
+                MomentExcess(axis, float(axis @ tensor @ axis), float(bounds[i]), float(reach[i]))
+            )
+    reach = hull.farthest_from_axes(com, _DIRECTIONS)
+    moments = np.einsum("ij,jk,ik->i", _DIRECTIONS, tensor, _DIRECTIONS)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        worst = int(np.argmax(moments / (mass * reach**2)))
+    candidates.append(
+        MomentExcess(
+            _DIRECTIONS[worst],
+            float(moments[worst]),
+            float(mass * reach[worst] ** 2),
+            float(reach[worst]),
+        )
+    )
+    named = [c for c in candidates[:3] if c.ratio > 1.0]
+    return max(named or candidates, key=lambda c: c.ratio)
+
+
+def axis_name(axis: ArrayLike, tol: float = 1e-3) -> str | None:
+    """``x``, ``y`` or ``z`` when the unit ``axis`` (3,) is (anti)parallel to a link axis."""
+    a = np.abs(np.asarray(axis, dtype=np.float64))
+    index = int(np.argmax(a))
+    return "xyz"[index] if a[index] >= 1.0 - tol else None
+
+
 def evaluate_geometry(
     shapes: tuple[model.Shape, ...], kind: str | None, load_mesh: MeshLoader = _default_mesh_loader
 ) -> Geometry:
@@ -325,6 +723,8 @@ class LinkAnalysis:
         self.parent = parent
         self.children = children
         self._load_mesh = load_mesh
+        # the robot this link belongs to, set by RobotAnalysis (None for a link analysed alone)
+        self.robot: RobotAnalysis | None = None
 
     @property
     def moves(self) -> bool:
@@ -351,6 +751,47 @@ class LinkAnalysis:
         if self.link.visuals:
             return self.visual
         return Geometry(None, (), None)
+
+    @functools.cached_property
+    def envelope(self) -> Hull | None:
+        """
+        A convex set containing all the link's geometry, collision and visual: where its mass
+        can be at most. ``None`` without geometry, or when any shape yields no solid (a partial
+        envelope would understate what is possible).
+        """
+        hulls = [g.hull for g in (self.collision, self.visual) if g.solids]
+        if not hulls or any(h is None for h in hulls):
+            return None
+        return Hull.union(hulls)  # type: ignore[arg-type]
+
+    @functools.cached_property
+    def excess(self) -> MomentExcess | None:
+        """
+        The declared tensor against the hard bound of :attr:`envelope` (see
+        :func:`moment_excess`); ``None`` without a declared value or an envelope.
+        """
+        if self.declared is None or self.envelope is None:
+            return None
+        return moment_excess(self.declared, self.envelope)
+
+    @property
+    def mass_share(self) -> float:
+        """The link's mass as a fraction of its fixed-joint group's (see RobotAnalysis)."""
+        return 1.0 if self.robot is None else self.robot.mass_share(self.name)
+
+    @property
+    def bases(self) -> tuple[Geometry, ...]:
+        """
+        Every usable geometry of the link, collision first then visual: the shapes a rule may
+        compare declared values with (one that matches either is not suspicious).
+        """
+        found = []
+        for shapes, name in ((self.link.collisions, "collision"), (self.link.visuals, "visual")):
+            if shapes:
+                geometry = getattr(self, name)
+                if geometry.unit is not None and geometry.unit.mass > 0:
+                    found.append(geometry)
+        return tuple(found)
 
     @property
     def expected(self) -> MassProperties | None:
@@ -380,6 +821,7 @@ class RobotAnalysis:
         )
         self.by_name = {}
         for link in self.links:
+            link.robot = self
             self.by_name.setdefault(link.name, link)
 
     def group_of(self, name: str) -> tuple[LinkAnalysis, ...]:
@@ -399,6 +841,19 @@ class RobotAnalysis:
                 stack.append(link.parent.parent)
             stack.extend(j.child for j in link.children if j.type == "fixed" and j.child)
         return tuple(seen.values())
+
+    def mass_share(self, name: str) -> float:
+        """
+        The link's declared mass as a fraction of its fixed-joint group's (1.0 for a link alone
+        or a group without mass): what its own values weigh in the body a simulator lumps.
+        """
+        link = self.by_name.get(name)
+        inertial = None if link is None else link.link.inertial
+        mass = None if inertial is None else inertial.mass
+        total = self.group_mass(name)
+        if not isinstance(mass, float) or not (math.isfinite(mass) and mass > 0) or total <= 0:
+            return 1.0
+        return mass / total
 
     def group_mass(self, name: str) -> float:
         """Total declared mass of ``name``'s fixed-joint group (finite positive masses only)."""
