@@ -203,9 +203,10 @@ MeshLoader = Callable[[str, tuple[float, float, float]], "MeshSolid"]
 
 
 def _default_mesh_loader(path: str, scale: tuple[float, float, float]) -> MeshSolid:
-    from inertia_kit.meshes import mesh_solid
+    # the on-disk cache: re-linting an unchanged mesh reads a 1 kB entry, not the mesh
+    from inertia_kit.mesh_cache import cached_mesh_solid
 
-    return mesh_solid(path, scale)
+    return cached_mesh_solid(path, scale)
 
 
 def shape_text(geometry: model.Geometry) -> str:
@@ -801,11 +802,33 @@ class LinkAnalysis:
         return self.geometry.at_mass(self.declared.mass)
 
 
+def _memoised(load_mesh: MeshLoader) -> MeshLoader:
+    """One load per (mesh, scale) for one robot: visual and collision often name the same file."""
+    from inertia_kit.errors import MeshError
+
+    results: dict[tuple[str, tuple[float, float, float]], object] = {}
+
+    def load(path: str, scale: tuple[float, float, float]) -> MeshSolid:
+        key = (path, tuple(scale))
+        if key not in results:
+            try:
+                results[key] = load_mesh(path, scale)
+            except MeshError as error:
+                results[key] = error
+        result = results[key]
+        if isinstance(result, MeshError):
+            raise result
+        return result  # type: ignore[return-value]
+
+    return load
+
+
 class RobotAnalysis:
     """All links of a robot, with tree relations and fixed-joint groups."""
 
     def __init__(self, robot: model.Robot, load_mesh: MeshLoader = _default_mesh_loader):
         self.robot = robot
+        load_mesh = _memoised(load_mesh)
         parents: dict[str, model.Joint] = {}
         children: dict[str, list[model.Joint]] = {}
         for joint in robot.joints:

@@ -33,7 +33,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
-from xml.sax.saxutils import escape, quoteattr
 
 from inertia_kit import safexml
 from inertia_kit.errors import InputError
@@ -500,6 +499,9 @@ def _to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]
 
 
 def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
+    # saxutils pulls in urllib, http and email (~20 ms): import it only to write xacro output
+    from xml.sax.saxutils import escape, quoteattr
+
     kind = node.nodeType
     if kind == Node.ELEMENT_NODE:
         source = node.getUserData(_STAMP) or inherited

@@ -22,6 +22,12 @@ def lint_text(
     return result.findings
 
 
+@pytest.fixture(autouse=True)
+def _private_mesh_cache(tmp_path_factory, monkeypatch):
+    """Tests never write to the user's ~/.cache: each session gets its own mesh cache."""
+    monkeypatch.setenv("INERTIA_KIT_CACHE_DIR", str(tmp_path_factory.getbasetemp() / "mesh-cache"))
+
+
 @pytest.fixture
 def lint(tmp_path):
     """``lint(text, select=("IN020",), options={...})`` → the findings of those rules."""

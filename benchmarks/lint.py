@@ -1,0 +1,410 @@
+"""
+Whole-process wall time of ``inertia-lint FILE``: start-up, and meshes with a cold and a warm
+mesh cache.
+
+    python benchmarks/lint.py             # best of 7 runs each
+    python benchmarks/lint.py --runs 3    # a quicker look
+    python benchmarks/lint.py --imports   # also: what one run of each case spends importing
+
+Two robots are generated on the first run under ``benchmarks/.data/lint-v1/``: a 20-link chain
+of revolute joints with box, cylinder and sphere links, and a 20-link chain whose links are
+binary STL meshes of 50,000 triangles each (closed tori of different sizes, 1M triangles in
+all, referenced by relative paths). Every ``<inertial>`` is right for its geometry.
+
+Each case runs the ``inertia-lint`` console script installed next to this Python (not a
+pyenv or asdf shim, which adds its own start-up) as a subprocess, with stdout discarded, and
+reports the best of N wall times. Exit codes 0 and 1 (findings) count as success. "cold" gives
+every run a new, empty ``INERTIA_KIT_CACHE_DIR``; "warm" runs against one populated cache.
+Mesh files are in the page cache either way, and every case has one untimed run first, which
+also compiles the bytecode (under ``benchmarks/.data/pycache``, whatever
+``PYTHONDONTWRITEBYTECODE`` says: installed packages ship compiled).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from collections import defaultdict
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+try:
+    import resource
+except ImportError:  # Windows: wall times only
+    resource = None  # type: ignore[assignment]
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = Path(__file__).resolve().parent / ".data" / "lint-v1"  # bump with the generator
+LINKS = 20
+RINGS, SEGMENTS = 250, 100  # 2 * 250 * 100 = 50,000 triangles a mesh
+DENSITY = 2700.0  # aluminium, kg/m³
+
+# targets, seconds (the primitive robot's is a multiple of `python -c pass`)
+START_UP_RATIO = 10.0
+COLD = 0.400
+WARM = 0.100
+
+RECORD = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
+
+
+# --- the robots ---------------------------------------------------------------------------------
+
+
+def torus_triangles(index: int) -> np.ndarray:
+    """(50000, 3, 3) float32: a closed torus, each link's a little different in size and tilt."""
+    u = np.linspace(0.0, 2.0 * np.pi, RINGS, endpoint=False)[:, None]
+    v = np.linspace(0.0, 2.0 * np.pi, SEGMENTS, endpoint=False)[None, :]
+    grow = 1.0 + 0.04 * index
+    major, minor = 0.06 * grow, 0.018 * grow
+    radial = major + minor * np.cos(v)
+    local = np.stack(
+        np.broadcast_arrays(radial * np.cos(u), 0.7 * radial * np.sin(u), 1.4 * minor * np.sin(v)),
+        axis=-1,
+    ).reshape(-1, 3)
+    tilt = _rotation((0.3 + 0.05 * index, -0.2, 0.5))
+    # every vertex computed once, in float32, and shared bit for bit: closed, as exporters write
+    points = (local @ tilt.T + (0.01, -0.005, 0.1)).astype(np.float32)
+    i = np.arange(RINGS)[:, None]
+    j = np.arange(SEGMENTS)[None, :]
+    a = i * SEGMENTS + j
+    b = (i + 1) % RINGS * SEGMENTS + j
+    c = (i + 1) % RINGS * SEGMENTS + (j + 1) % SEGMENTS
+    d = i * SEGMENTS + (j + 1) % SEGMENTS
+    faces = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], 2).reshape(-1, 3)
+    return points[faces]
+
+
+def _rotation(rpy) -> np.ndarray:
+    r, p, y = rpy
+    rx = np.array([[1, 0, 0], [0, np.cos(r), -np.sin(r)], [0, np.sin(r), np.cos(r)]])
+    ry = np.array([[np.cos(p), 0, np.sin(p)], [0, 1, 0], [-np.sin(p), 0, np.cos(p)]])
+    rz = np.array([[np.cos(y), -np.sin(y), 0], [np.sin(y), np.cos(y), 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+def write_stl(path: Path, triangles: np.ndarray) -> None:
+    records = np.zeros(len(triangles), dtype=RECORD)
+    records["vertices"] = triangles
+    edges = triangles[:, 1:] - triangles[:, :1]
+    normals = np.cross(edges[:, 0], edges[:, 1])
+    records["normal"] = normals / np.linalg.norm(normals, axis=1, keepdims=True)
+    partial = path.with_suffix(".partial")
+    partial.write_bytes(
+        b"inertia-kit lint benchmark".ljust(80, b" ")
+        + np.uint32(len(triangles)).tobytes()
+        + records.tobytes()
+    )
+    partial.replace(path)
+
+
+def robot(name: str, links: list[tuple[str, str]]) -> str:
+    """URDF text: ``links`` are ``(geometry xml, inertial xml)``, chained by revolute joints."""
+    lines = ['<?xml version="1.0"?>', f'<robot name="{name}">']
+    for index, (geometry, inertial) in enumerate(links):
+        lines += [
+            f'  <link name="link_{index:02d}">',
+            inertial,
+            "    <visual>",
+            f"      <geometry>{geometry}</geometry>",
+            "    </visual>",
+            "    <collision>",
+            f"      <geometry>{geometry}</geometry>",
+            "    </collision>",
+            "  </link>",
+        ]
+        if index:
+            axis = "0 0 1" if index % 2 else "0 1 0"
+            lines += [
+                f'  <joint name="joint_{index:02d}" type="revolute">',
+                f'    <parent link="link_{index - 1:02d}"/>',
+                f'    <child link="link_{index:02d}"/>',
+                '    <origin xyz="0 0 0.3" rpy="0 0 0"/>',
+                f'    <axis xyz="{axis}"/>',
+                '    <limit lower="-2.5" upper="2.5" effort="50" velocity="2"/>',
+                "  </joint>",
+            ]
+    return "\n".join([*lines, "</robot>", ""])
+
+
+def primitive_robot() -> str:
+    from inertia_kit import primitives
+    from inertia_kit.inertial_xml import inertial_block
+
+    links = []
+    for index in range(LINKS):
+        grow = 1.0 + 0.05 * index
+        kind = index % 3
+        if kind == 0:
+            size = (0.12 * grow, 0.08 * grow, 0.25 * grow)
+            geometry = f'<box size="{size[0]!r} {size[1]!r} {size[2]!r}"/>'
+            properties = primitives.box(size, density=DENSITY)
+        elif kind == 1:
+            radius, length = 0.04 * grow, 0.25 * grow
+            geometry = f'<cylinder radius="{radius!r}" length="{length!r}"/>'
+            properties = primitives.cylinder(radius, length, density=DENSITY)
+        else:
+            radius = 0.06 * grow
+            geometry = f'<sphere radius="{radius!r}"/>'
+            properties = primitives.sphere(radius, density=DENSITY)
+        links.append((geometry, inertial_block(properties, indent="  ", level=2)))
+    return robot("benchmark_primitives", links)
+
+
+def mesh_robot(folder: Path) -> str:
+    from inertia_kit.inertial_xml import inertial_block
+    from inertia_kit.meshes import mesh
+
+    links = []
+    for index in range(LINKS):
+        path = folder / "meshes" / f"link_{index:02d}.stl"
+        result = mesh(path, density=DENSITY)
+        assert result.method == "exact" and result.closed, f"{path} is not closed"
+        geometry = f'<mesh filename="meshes/{path.name}"/>'
+        links.append((geometry, inertial_block(result.mass_properties, indent="  ", level=2)))
+    return robot("benchmark_meshes", links)
+
+
+def dataset() -> tuple[Path, Path, list[Path]]:
+    primitives_urdf, meshes_urdf = DATA / "primitives.urdf", DATA / "meshes.urdf"
+    stls = [DATA / "meshes" / f"link_{i:02d}.stl" for i in range(LINKS)]
+    size = 84 + 2 * RINGS * SEGMENTS * RECORD.itemsize
+    if not all(p.exists() and p.stat().st_size == size for p in stls):
+        print(f"generating {LINKS} meshes of {2 * RINGS * SEGMENTS:,} triangles ...", flush=True)
+        (DATA / "meshes").mkdir(parents=True, exist_ok=True)
+        for index, path in enumerate(stls):
+            write_stl(path, torus_triangles(index))
+        meshes_urdf.unlink(missing_ok=True)
+    if not meshes_urdf.exists():
+        meshes_urdf.write_text(mesh_robot(DATA))
+    if not primitives_urdf.exists():
+        primitives_urdf.write_text(primitive_robot())
+    for path in stls:
+        path.read_bytes()  # into the page cache
+    return primitives_urdf, meshes_urdf, stls
+
+
+# --- timing -------------------------------------------------------------------------------------
+
+
+def console_script(name: str) -> str:
+    """The script installed with this Python: a shim (pyenv, asdf) would add its own start-up."""
+    folder = Path(sys.executable).parent
+    for candidate in (folder / name, folder / f"{name}.exe"):
+        if candidate.is_file():
+            return str(candidate)
+    found = shutil.which(name)
+    if found is None:
+        sys.exit(f"`{name}` is not installed: pip install -e {ROOT}")
+    return found
+
+
+def environment(cache: str | None) -> dict[str, str]:
+    """
+    The runs' environment: bytecode cached, as in any installed package, under a prefix here
+    (an environment with ``PYTHONDONTWRITEBYTECODE`` would compile every module on every run),
+    and ``cache`` as the mesh cache, or the cache off for ``None``.
+    """
+    drop = ("PYTHONPROFILEIMPORTTIME", "PYTHONDONTWRITEBYTECODE", "INERTIA_KIT_NO_CACHE")
+    env = {k: v for k, v in os.environ.items() if k not in drop}
+    env["PYTHONPYCACHEPREFIX"] = str(DATA.parent / "pycache")
+    if cache is None:
+        env["INERTIA_KIT_NO_CACHE"] = "1"
+    else:
+        env["INERTIA_KIT_CACHE_DIR"] = cache
+    return env
+
+
+class Failure(Exception):
+    pass
+
+
+@dataclass
+class Timing:
+    wall: float  # best wall time, s
+    cpu: float | None  # best user + system time of the process, s (None without `resource`)
+    codes: set[int]
+
+
+def _cpu_of_children() -> float | None:
+    if resource is None:
+        return None
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def run_once(
+    command: list[str], env: dict[str, str], ok: tuple[int, ...]
+) -> tuple[float, float | None, int]:
+    cpu = _cpu_of_children()
+    start = time.perf_counter()
+    done = subprocess.run(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    elapsed = time.perf_counter() - start
+    after = _cpu_of_children()
+    if done.returncode not in ok:
+        stderr = done.stderr.decode(errors="replace").strip()
+        raise Failure(f"`{' '.join(command)}` exited {done.returncode}: {stderr[-2000:]}")
+    return elapsed, None if cpu is None or after is None else after - cpu, done.returncode
+
+
+def best(command: list[str], runs: int, env_of, ok=(0, 1)) -> Timing:
+    """
+    Best of ``runs`` runs, after one untimed run (bytecode, page cache); ``env_of(i)`` gives
+    each run's environment.
+    """
+    run_once(command, env_of(-1), ok)
+    walls, cpus, codes = [], [], set()
+    for index in range(runs):
+        wall, cpu, code = run_once(command, env_of(index), ok)
+        walls.append(wall)
+        cpus.append(cpu)
+        codes.add(code)
+    return Timing(min(walls), None if None in cpus else min(cpus), codes)
+
+
+def wait_out_racy_window(files: list[Path]) -> None:
+    """The cache does not store a file changed in the last 2 s (see inertia_kit.mesh_cache)."""
+    newest = max(max(p.stat().st_mtime, p.stat().st_ctime) for p in files)
+    delay = newest + 2.5 - time.time()
+    if delay > 0:
+        time.sleep(delay)
+
+
+def per_mesh(stls: list[Path], cache: str, runs: int) -> tuple[float, float]:
+    """Median seconds per mesh: computed (no cache), and a cache hit (this process)."""
+    from inertia_kit.mesh_cache import cached_mesh_solid
+    from inertia_kit.meshes import mesh_solid
+
+    def median(function) -> float:
+        samples = []
+        for _ in range(runs):
+            start = time.perf_counter()
+            for path in stls:
+                function(path)
+            samples.append((time.perf_counter() - start) / len(stls))
+        return float(np.median(samples))
+
+    cold = median(lambda path: mesh_solid(path, (1.0, 1.0, 1.0)))
+    warm = median(lambda path: cached_mesh_solid(path, (1.0, 1.0, 1.0), cache_dir=cache))
+    return cold, warm
+
+
+def import_profile(command: list[str], env: dict[str, str], runs: int, top: int = 12) -> str:
+    """
+    Where a run's import time goes: each module's self time (``-X importtime``), the least of
+    ``runs`` runs, summed by package (``inertia_kit`` by module).
+    """
+    least: dict[str, float] = {}
+    for _ in range(runs):
+        done = subprocess.run(
+            command,
+            env={**env, "PYTHONPROFILEIMPORTTIME": "1"},
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
+        for line in done.stderr.decode(errors="replace").splitlines():
+            match = re.match(r"import time:\s+(\d+) \|\s+\d+ \|\s*(\S+)", line)
+            if match is not None:
+                name, ms = match.group(2), int(match.group(1)) / 1e3
+                least[name] = min(ms, least.get(name, ms))
+    by_package: dict[str, float] = defaultdict(float)
+    for name, ms in least.items():
+        parts = name.split(".")
+        by_package[".".join(parts[:2]) if parts[0] == "inertia_kit" else parts[0]] += ms
+    ranked = sorted(by_package.items(), key=lambda item: -item[1])[:top]
+    total = sum(by_package.values())
+    return f"{total:.0f} ms: " + ", ".join(f"{name} {ms:.1f}" for name, ms in ranked)
+
+
+# --- main ---------------------------------------------------------------------------------------
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--runs", type=int, default=7, help="timed runs per case (best of)")
+    parser.add_argument("--imports", action="store_true", help="print import time by package")
+    arguments = parser.parse_args()
+    runs = max(1, arguments.runs)
+
+    primitives_urdf, meshes_urdf, stls = dataset()
+    lint = console_script("inertia-lint")
+    python = sys.executable
+    print(
+        f"python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}, "
+        f"{os.cpu_count()} CPUs; {lint}; best of {runs}"
+    )
+
+    rows: list[tuple[str, Timing, str, bool | None]] = []
+    ok = True
+    with tempfile.TemporaryDirectory(prefix="inertia-kit-bench-") as scratch:
+        warm_cache = os.path.join(scratch, "warm")
+
+        def fresh(index: int) -> dict[str, str]:
+            return environment(os.path.join(scratch, f"cold-{index}"))
+
+        def warm(index: int) -> dict[str, str]:
+            return environment(warm_cache)
+
+        try:
+            python_run = best([python, "-c", "pass"], runs, lambda i: environment(None), ok=(0,))
+            rows.append(("python -c pass", python_run, "", None))
+            bare = best([python, "-S", "-c", "pass"], runs, lambda i: environment(None), ok=(0,))
+            rows.append(("python -S -c pass (no site)", bare, "", None))
+
+            timing = best([lint, str(primitives_urdf)], runs, fresh)
+            ratio = timing.wall / python_run.wall
+            target = f"<= {START_UP_RATIO:g}x python ({ratio:.1f}x)"
+            rows.append((f"a: {LINKS} primitive links", timing, target, ratio <= START_UP_RATIO))
+
+            wait_out_racy_window(stls)
+            timing = best([lint, str(meshes_urdf)], runs, fresh)
+            target = f"<= {COLD * 1e3:.0f} ms"
+            rows.append(("b: 1M-triangle meshes, cold", timing, target, timing.wall <= COLD))
+
+            timing = best([lint, str(meshes_urdf)], runs, warm)  # its untimed run fills the cache
+            stored = len(list(Path(warm_cache).glob("meshes-v*/*.json")))
+            target = f"<= {WARM * 1e3:.0f} ms ({stored} cache entries)"
+            rows.append(("b: 1M-triangle meshes, warm", timing, target, timing.wall <= WARM))
+
+            timing = best([lint, str(meshes_urdf)], runs, lambda i: environment(None))
+            rows.append(("b: cache off", timing, "", None))
+        except Failure as error:
+            print(f"FAIL: {error}")
+            ok = False
+
+        header = f"{'case':<30} {'wall ms':>8} {'cpu ms':>7}  {'exit':>4}  {'target':<34} result"
+        print(f"{header}\n{'-' * len(header)}")
+        for name, timing, target, passed in rows:
+            result = "" if passed is None else ("PASS" if passed else "FAIL")
+            cpu = f"{timing.cpu * 1e3:7.1f}" if timing.cpu is not None else f"{'-':>7}"
+            codes = ",".join(str(c) for c in sorted(timing.codes))
+            print(f"{name:<30} {timing.wall * 1e3:8.1f} {cpu}  {codes:>4}  {target:<34} {result}")
+            ok &= passed is not False
+
+        cold, warm = per_mesh(stls, warm_cache, runs)
+        print(
+            f"\nper 50k-triangle mesh, in process: computed {cold * 1e3:.2f} ms, "
+            f"cache hit {warm * 1e3:.3f} ms"
+        )
+        if arguments.imports:
+            print("\nimport time (least self time of each module, by package, ms):")
+            for name, command, env in [
+                ("a", [lint, str(primitives_urdf)], fresh(100)),
+                ("b cold", [lint, str(meshes_urdf)], fresh(101)),
+                ("b warm", [lint, str(meshes_urdf)], environment(warm_cache)),
+            ]:
+                print(f"  {name}: {import_profile(command, env, min(runs, 7))}")
+    print(f"\n{'PASS' if ok else 'FAIL'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
