@@ -6,6 +6,7 @@ its `fixed` example triggers nothing. The index lists every rule, and every rule
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 from pathlib import Path
 
 import pytest
@@ -25,6 +26,9 @@ HEADINGS = [
     "## References",
 ]
 BLOCK = re.compile(r"```xml (fail|fixed)(?: name=(\S+))?\n(.*?)```", re.DOTALL)
+# mesh files the examples use: ```stl name=part.stl blocks (ASCII STL), written beside every
+# example of the document before it is linted
+MESH = re.compile(r"```stl name=(\S+)\n(.*?)```", re.DOTALL)
 
 
 def examples(doc: Path) -> dict[str, list[tuple[str, str]]]:
@@ -34,7 +38,15 @@ def examples(doc: Path) -> dict[str, list[tuple[str, str]]]:
     return found
 
 
-def lint_example(tmp_path: Path, name: str, text: str):
+def meshes(doc: Path) -> list[tuple[str, str]]:
+    return MESH.findall(doc.read_text())
+
+
+def lint_example(tmp_path: Path, name: str, text: str, files: Iterable[tuple[str, str]] = ()):
+    for mesh_name, mesh_text in files:
+        mesh_path = tmp_path / mesh_name
+        mesh_path.parent.mkdir(parents=True, exist_ok=True)
+        mesh_path.write_text(mesh_text)
     path = tmp_path / name
     path.write_text(text)
     result = lint_file(path, Selection())
@@ -58,7 +70,7 @@ def test_document_shape(doc):
 def test_fail_example_triggers_only_its_rule(doc, tmp_path):
     code = doc.stem.split("-", 1)[0]
     for name, text in examples(doc)["fail"]:
-        findings = lint_example(tmp_path, name, text)
+        findings = lint_example(tmp_path, name, text, meshes(doc))
         codes = {f.code for f in findings}
         assert codes == {code}, [str((f.code, f.message)) for f in findings]
 
@@ -66,7 +78,7 @@ def test_fail_example_triggers_only_its_rule(doc, tmp_path):
 @pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
 def test_fixed_example_triggers_nothing(doc, tmp_path):
     for name, text in examples(doc)["fixed"]:
-        findings = lint_example(tmp_path, name, text)
+        findings = lint_example(tmp_path, name, text, meshes(doc))
         assert findings == [], [str((f.code, f.message)) for f in findings]
 
 
