@@ -1,0 +1,402 @@
+"""
+``inertia-fill``: write ``<inertial>`` blocks computed from each link's geometry, as text edits on
+the original bytes (every byte outside the edited spans stays as it was), then write atomically.
+
+What is filled (``fix``):
+
+- ``missing`` (default): the links IN001 reports (a link that moves or has collision geometry, with
+  no mass in its fixed-joint group) that have geometry. Massless frames without geometry, and
+  fixed links with visual geometry only, are left alone.
+- ``invalid``: those, and links whose ``<inertial>`` is impossible: incomplete or not numeric
+  (IN003/IN004), not a possible rigid body (``MassProperties.validity``), or reported by
+  IN010, IN011, IN020 (error) or IN023.
+- ``all``: every link with geometry.
+
+The mass: ``masses[link]`` when given; else a declared mass that is finite and positive (kept:
+it is usually measured or from CAD; the tensor and centre of mass are recomputed from the
+geometry for it); else the geometry's volume times ``density``. The centre of mass and tensor
+are always the geometry's at uniform density (collision shapes, else visual ones, overlaps
+counted once).
+
+A link is refused (not filled, with the reason) when its geometry cannot be trusted: a mesh
+missing, unreadable, empty or wound inside-out, a mesh that looks authored in other units without
+a ``scale`` (IN031), or a shape with bad dimensions.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from inertia_kit.errors import InputError
+from inertia_kit.findings import Edit, Severity
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis import LinkAnalysis
+    from inertia_kit.fixes import SourceText
+    from inertia_kit.mass import MassProperties
+
+# kg/m³, typical values for ``--material``: solid parts; 3D-printed parts are lighter at partial
+# infill, so pass ``--mass`` when the real mass is known
+MATERIALS: dict[str, float] = {
+    "steel": 7850.0,
+    "aluminium": 2700.0,
+    "abs": 1040.0,
+    "pla": 1240.0,
+    "petg": 1270.0,
+    "nylon": 1150.0,
+    "carbon-fibre": 1600.0,
+    "water": 1000.0,
+    "wood": 700.0,
+}
+
+FIX_MODES = ("missing", "invalid", "all")
+
+# rules whose findings mean a declared tensor is impossible (``--fix invalid``)
+_IMPOSSIBLE = ("IN010", "IN011", "IN020", "IN023")
+XACRO_UNSUPPORTED = "xacro sources are not supported yet"
+
+
+@dataclass(frozen=True)
+class LinkFill:
+    """
+    One link's new ``<inertial>``: ``properties`` in the link frame, ``basis`` says where its
+    mass comes from, ``edit`` the text edit (``None`` when the file already says exactly this).
+    """
+
+    link: str
+    properties: MassProperties
+    basis: str
+    replaced: bool
+    edit: Edit | None
+
+    @property
+    def mass_text(self) -> str:
+        from inertia_kit.inertial_xml import inertial_values
+
+        return inertial_values(self.properties)["mass"]
+
+
+@dataclass(frozen=True)
+class Refusal:
+    """A link that needs an ``<inertial>`` but was not filled, and why."""
+
+    link: str
+    reason: str
+
+
+@dataclass(frozen=True)
+class FillPlan:
+    """What filling one file would do; :func:`apply` writes it."""
+
+    path: str
+    source: SourceText | None
+    fills: tuple[LinkFill, ...] = ()
+    refused: tuple[Refusal, ...] = ()
+    notes: tuple[str, ...] = ()
+    links: frozenset[str] = field(default_factory=frozenset)  # every link name in the file
+
+    @property
+    def edits(self) -> list[Edit]:
+        return [f.edit for f in self.fills if f.edit is not None]
+
+    @property
+    def changed_links(self) -> list[LinkFill]:
+        return [f for f in self.fills if f.edit is not None]
+
+    @property
+    def new_text(self) -> str:
+        from inertia_kit.fixes import apply_edits
+
+        if self.source is None:
+            return ""
+        text, applied = apply_edits(self.source.text, self.edits)
+        if len(applied) != len(self.edits):  # pragma: no cover - edits are per link, disjoint
+            raise RuntimeError("overlapping fill edits")
+        return text
+
+    @property
+    def new_bytes(self) -> bytes:
+        if self.source is None:
+            return b""
+        return self.source.encode(self.new_text)
+
+    @property
+    def changed(self) -> bool:
+        return self.source is not None and self.new_bytes != self.source.original
+
+    def diff(self) -> str:
+        """A unified diff of the change (empty when nothing changes)."""
+        if not self.changed or self.source is None:
+            return ""
+        return "".join(
+            difflib.unified_diff(
+                self.source.text.splitlines(keepends=True),
+                self.new_text.splitlines(keepends=True),
+                self.path if Path(self.path).is_absolute() else f"a/{self.path}",
+                self.path if Path(self.path).is_absolute() else f"b/{self.path}",
+            )
+        )
+
+
+def plan_fill(
+    path: str | Path,
+    *,
+    density: float = 1000.0,
+    masses: Mapping[str, float] | None = None,
+    fix: str = "missing",
+    package_paths: Sequence[str | Path] = (),
+) -> FillPlan:
+    """
+    Plan the ``<inertial>`` edits for one file (nothing is written).
+
+    Parameters
+    ----------
+    density : float
+      kg/m³, for links without a given or kept mass.
+    masses : mapping
+      ``link name -> kg``: the link's mass, its tensor scaled to it.
+    fix : str
+      ``missing``, ``invalid`` or ``all`` (see the module docstring).
+
+    Raises
+    ------
+    InputError
+      The file cannot be read or parsed, or a link to fill is not written literally in it
+      (produced by a xacro macro or include).
+    ValueError
+      Bad ``density``, ``masses`` or ``fix``.
+    """
+    from inertia_kit.analysis import analyse
+    from inertia_kit.fixes import read_source
+    from inertia_kit.lint import Selection, run_rules
+    from inertia_kit.loader import load
+
+    if fix not in FIX_MODES:
+        raise ValueError(f"fix must be one of {', '.join(FIX_MODES)}, got {fix!r}")
+    if not (math.isfinite(density) and density > 0):
+        raise ValueError(f"density must be a positive number of kg/m³, got {density}")
+    masses = dict(masses or {})
+    for name, kg in masses.items():
+        if not (math.isfinite(kg) and kg > 0):
+            raise ValueError(f"the mass of `{name}` must be a positive number of kg, got {kg}")
+
+    path = Path(path)
+    source = read_source(path)
+    robot = load(path, package_paths=package_paths)
+    names = frozenset(link.name for link in robot.links)
+    if robot.fragment:
+        return FillPlan(str(path), source, notes=("a xacro fragment without links",))
+    analysis = analyse(robot)
+    codes = ("IN001", "IN031") + (_IMPOSSIBLE if fix != "missing" else ())
+    findings = run_rules(analysis, Selection(select=codes))
+    flagged: dict[str, dict[str, list]] = {}
+    for finding in findings:
+        if finding.link is not None:
+            flagged.setdefault(finding.link, {}).setdefault(finding.code, []).append(finding)
+
+    fills: list[LinkFill] = []
+    refused: list[Refusal] = []
+    notes: list[str] = []
+    seen: set[str] = set()
+    for link in analysis.links:
+        if link.name in seen:
+            continue  # a duplicate name (IN040): the first one is the one tools use
+        seen.add(link.name)
+        codes_here = flagged.get(link.name, {})
+        if not _targeted(link, codes_here, fix):
+            if (
+                link.name in masses
+                and link.link.inertial is not None
+                and link.link.inertial.mass != masses[link.name]
+            ):
+                notes.append(
+                    f"--mass {link.name}: the link has an <inertial>; not replaced "
+                    f"(--fix {'all' if fix != 'all' else fix} replaces it)"
+                )
+            continue
+        problem = _refusal(link, codes_here)
+        if problem is not None:
+            refused.append(Refusal(link.name, problem))
+            continue
+        unit = link.geometry.unit
+        assert unit is not None  # _refusal checked
+        mass, basis = _mass(link, masses, density, unit.mass)
+        properties = unit.with_mass(mass)
+        edit = _edit(source, link, properties)
+        fills.append(LinkFill(link.name, properties, basis, link.link.inertial is not None, edit))
+    return FillPlan(str(path), source, tuple(fills), tuple(refused), tuple(notes), names)
+
+
+def apply(plan: FillPlan) -> bool:
+    """
+    Write the plan's edits atomically; returns whether the file was written (only when its
+    bytes change). Raises ``InputError`` for a read-only file or one changed since planning.
+    """
+    from inertia_kit.fixes import write_atomic
+
+    if not plan.changed or plan.source is None:
+        return False
+    return write_atomic(plan.path, plan.new_bytes, expected=plan.source.original)
+
+
+# --- which links, what mass ----------------------------------------------------------------
+
+
+def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
+    if "IN001" in codes:
+        return True  # needs a mass (refused below when it has no geometry)
+    if not link.geometry.solids:
+        return False
+    if fix == "all":
+        return True
+    if fix == "missing" or link.link.inertial is None:
+        return False
+    declared = link.declared
+    if declared is None or not declared.validity().ok:
+        return True  # incomplete, not numeric, or no possible rigid body
+    if any(code in codes for code in ("IN010", "IN011", "IN023")):
+        return True
+    return any(f.severity >= Severity.ERROR for f in codes.get("IN020", ()))
+
+
+def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:
+    """Why the link's geometry cannot give its mass properties, or ``None``."""
+    geometry = link.geometry
+    if not geometry.solids:
+        return (
+            "it has no <visual> or <collision> geometry to compute from: write its <inertial> "
+            "by hand, or give it geometry"
+        )
+    for solid, (kind, message) in geometry.problems:
+        what = _shape_name(solid)
+        hint = {
+            "mesh-not-found": "fix the mesh path (or --package-path)",
+            "mesh-unreadable": "re-export the mesh as STL, OBJ or PLY",
+            "mesh-empty": "re-export the mesh",
+        }.get(kind, "fix the shape")
+        return f"its {what}: {kind.replace('-', ' ')}: {message}; {hint}, then run again"
+    for solid in geometry.solids:
+        if solid.mesh is not None and solid.mesh.inverted:
+            return (
+                f"its {_shape_name(solid)} is wound inside-out (negative volume, IN033): "
+                "re-export it with outward normals, then run again"
+            )
+    for finding in codes.get("IN031", ()):
+        scale = (finding.expected or {}).get("scale")
+        suggestion = (
+            f'; set scale="{" ".join(f"{v:g}" for v in scale)}" if that is its unit'
+            if scale
+            else ""
+        )
+        return f"a mesh looks authored in other units (IN031): {finding.message}{suggestion}"
+    if geometry.unit is None or not geometry.unit.mass > 0:
+        return "its geometry has no volume"
+    return None
+
+
+def _shape_name(solid) -> str:
+    from inertia_kit.analysis import shape_text
+
+    return f"{solid.shape.kind} {shape_text(solid.shape.geometry)}"
+
+
+def _mass(
+    link: LinkAnalysis, masses: Mapping[str, float], density: float, volume: float
+) -> tuple[float, str]:
+    if link.name in masses:
+        return masses[link.name], "--mass"
+    inertial = link.link.inertial
+    declared = None if inertial is None else inertial.mass
+    if isinstance(declared, float) and math.isfinite(declared) and declared > 0:
+        return declared, "declared mass"
+    return density * volume, f"{density:g} kg/m³"
+
+
+# --- the text edit -------------------------------------------------------------------------
+
+
+def _edit(source: SourceText, link: LinkAnalysis, properties: MassProperties) -> Edit | None:
+    from inertia_kit.inertial_xml import inertial_block
+    from inertia_kit.xmlspan import children, element_span, indent_unit, line_indent
+
+    text = source.text
+    start = _link_offset(source, link)
+    span = element_span(text, start)
+    if span.empty:  # a link written <link/> has no geometry, so no fill; defensive
+        raise InputError(f"link `{link.name}` is an empty element", source.path)
+    if "<xacro:" in text[span.start : span.end]:
+        raise InputError(
+            f"{XACRO_UNSUPPORTED}: link `{link.name}` holds xacro elements; "
+            "write its <inertial> by hand or fill the expanded URDF",
+            source.path,
+            link.link.source.line,
+        )
+    unit = indent_unit(text)
+    newline = source.newline
+    lines = inertial_block(properties, indent=unit, level=0, newline="\n").split("\n")
+    inertials = [child for child in children(text, span) if child.tag == "inertial"]
+    if inertials:
+        if len(inertials) > 1:
+            raise InputError(
+                f"link `{link.name}` has {len(inertials)} <inertial> elements; keep one",
+                source.path,
+                link.link.source.line,
+            )
+        old = inertials[0]
+        base = line_indent(text, old.start)
+        content = newline.join([lines[0], *(base + line for line in lines[1:])])
+        if text[old.start : old.end] == content:
+            return None
+        return Edit(source.path, old.start, old.end, content)
+    base = line_indent(text, span.start) + unit
+    block = newline.join(base + line for line in lines)
+    rest = re.compile(r"[ \t]*(\r\n|\n|\r)").match(text, span.start_tag_end)
+    if rest is not None:
+        return Edit(source.path, rest.end(), rest.end(), block + newline)
+    # the link's content follows its start tag on the same line
+    return Edit(
+        source.path,
+        span.start_tag_end,
+        span.start_tag_end,
+        newline + block + newline + line_indent(text, span.start),
+    )
+
+
+def _link_offset(source: SourceText, link: LinkAnalysis) -> int:
+    """The offset of the ``<`` of the link's start tag in ``source``; ``InputError`` if it is not
+    written literally there (a xacro macro or an included file produced it)."""
+    where = link.link.source
+    literal = (
+        not where.calls
+        and where.line is not None
+        and Path(where.path).resolve() == Path(source.path).resolve()
+    )
+    if literal:
+        text = source.text
+        line = where.line
+        try:
+            line_start = source.offset(line)
+        except ValueError:
+            line_start = None
+        if line_start is not None:
+            line_end = text.find("\n", line_start)
+            line_end = len(text) if line_end < 0 else line_end
+            tag = re.compile(r"<link(?=[\s/>])")
+            column = where.column
+            if column is not None and tag.match(text, line_start + column - 1):
+                return line_start + column - 1
+            found = [m.start() for m in tag.finditer(text, line_start, line_end)]
+            if len(found) == 1:
+                return found[0]
+    raise InputError(
+        f"{XACRO_UNSUPPORTED}: link `{link.name}` comes from "
+        + ("a xacro macro" if where.calls else str(where))
+        + "; write its <inertial> by hand or fill the expanded URDF",
+        source.path,
+    )
