@@ -60,7 +60,9 @@ def test_document_shape(doc):
     code, name = doc.stem.split("-", 1)
     assert text.startswith(f"# {code} {name}\n")
     positions = [text.find(h) for h in HEADINGS]
-    assert all(p >= 0 for p in positions), [h for h, p in zip(HEADINGS, positions) if p < 0]
+    assert all(p >= 0 for p in positions), [
+        h for h, p in zip(HEADINGS, positions, strict=True) if p < 0
+    ]
     assert positions == sorted(positions)
     found = examples(doc)
     assert found["fail"] and found["fixed"]
