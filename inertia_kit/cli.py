@@ -338,6 +338,24 @@ def _report(
     click.echo("\n".join(lines))
 
 
+# --- options shared by report, lint and fill ---------------------------------------------------
+
+package_path_option = click.option(
+    "--package-path",
+    "package_paths",
+    multiple=True,
+    type=click.Path(file_okay=False),
+    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
+)
+xacro_arg_option = click.option(
+    "--xacro-arg",
+    "xacro_args",
+    multiple=True,
+    metavar="NAME:=VALUE",
+    help="A xacro argument (repeatable).",
+)
+
+
 # --- inertia-kit report ----------------------------------------------------------------------
 
 
@@ -360,20 +378,8 @@ def _xacro_args(values: tuple[str, ...]) -> dict[str, str]:
     default="text",
     show_default=True,
 )
-@click.option(
-    "--package-path",
-    "package_paths",
-    multiple=True,
-    type=click.Path(file_okay=False),
-    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
-)
-@click.option(
-    "--xacro-arg",
-    "xacro_args",
-    multiple=True,
-    metavar="NAME:=VALUE",
-    help="A xacro argument (repeatable).",
-)
+@package_path_option
+@xacro_arg_option
 def report_command(
     path: str, output_format: str, package_paths: tuple[str, ...], xacro_args: tuple[str, ...]
 ) -> None:
@@ -460,20 +466,8 @@ def _colour() -> bool | None:
     help="Configuration file for every linted file (pyproject.toml or .inertia-kit.toml) "
     "instead of the nearest one.",
 )
-@click.option(
-    "--package-path",
-    "package_paths",
-    multiple=True,
-    type=click.Path(file_okay=False),
-    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
-)
-@click.option(
-    "--xacro-arg",
-    "xacro_args",
-    multiple=True,
-    metavar="NAME:=VALUE",
-    help="A xacro argument (repeatable).",
-)
+@package_path_option
+@xacro_arg_option
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -624,13 +618,7 @@ def _material_help() -> str:
 )
 @click.option("--diff", "show_diff", is_flag=True, help="Print a unified diff; write nothing.")
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
-@click.option(
-    "--package-path",
-    "package_paths",
-    multiple=True,
-    type=click.Path(file_okay=False),
-    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
-)
+@package_path_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
