@@ -137,12 +137,23 @@ def test_visual_in_mm_next_to_a_collision_primitive(lint, tmp_path):
 def test_visual_in_mm_told_apart_by_a_collision_mesh_in_metres(lint, tmp_path):
     box(tmp_path / "pad_mm.stl", (20, 20, 5))
     box(tmp_path / "pad.stl", (0.02, 0.02, 0.005))
-    # on its own, the visual mesh is only too large (20 m): one observation is not enough
-    assert lint(mounted(mesh("visual", "pad_mm.stl")), "IN031") == []
-    # the collision mesh passes every check, so it vouches against the visual one
-    findings = lint(mounted(mesh("visual", "pad_mm.stl") + mesh("collision", "pad.stl")), "IN031")
+    # the collision mesh passes on its size and density (1000 kg/m³), so it vouches against
+    # the visual one, which on its own is only too large (20 m): one observation
+    body = mesh("visual", "pad_mm.stl") + mesh("collision", "pad.stl") + inertial(0.002)
+    findings = lint(mounted(body), "IN031")
     assert len(findings) == 1 and findings[0].expected["kind"] == "visual"
     assert "its collision mesh `pad.stl` spans 0.02 m" in findings[0].message
+
+
+def test_a_mesh_that_passes_on_size_alone_vouches_for_nothing(lint, tmp_path):
+    # a tiny visual mesh (2.8 mm, its scale wrong) next to a sound collision mesh whose
+    # placeholder mass gives an odd density: neither is blamed on the other's word
+    box(tmp_path / "teddy.stl", (2.8, 2.0, 2.0))
+    body = (
+        mesh("visual", "teddy.stl", "0.001 0.001 0.001") + mesh("collision", "teddy.stl")
+    ) + inertial(0.1)
+    findings = lint(lone(body), "IN031")
+    assert all(f.expected["kind"] == "visual" for f in findings)
 
 
 def test_min_evidence_option(lint, tmp_path):
@@ -186,3 +197,13 @@ def test_ambiguous_units_name_the_alternatives(lint, tmp_path):
     assert finding.expected["factor"] == 0.01
     assert finding.expected["alternatives"]
     assert "would fit too" in finding.message and "inches" in finding.message
+
+
+def test_the_same_file_at_the_same_scale_slips_together(lint, tmp_path):
+    # only the collision mesh, where the mass comes from, has a density; the visual shape is
+    # the same file at the same scale, so it is reported with it
+    box(tmp_path / "cube_mm.stl", (100, 100, 100))
+    body = mesh("visual", "cube_mm.stl") + mesh("collision", "cube_mm.stl") + inertial(0.5)
+    findings = lint(lone(body), "IN031")
+    assert sorted(f.expected["kind"] for f in findings) == ["collision", "visual"]
+    assert all(f.expected["factor"] == 0.001 for f in findings)
