@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -743,6 +743,16 @@ class LinkAnalysis:
     @functools.cached_property
     def visual(self) -> Geometry:
         return evaluate_geometry(self.link.visuals, "visual", self._load_mesh)
+
+    def mesh_kind_solids(self, kinds: tuple[str, ...] = ("visual", "collision")) -> Iterator[Solid]:
+        """
+        The solids of each of ``kinds`` (``visual``, ``collision``) that has at least one mesh
+        shape; kinds without a mesh are not evaluated, so no mesh rule reads what it need not.
+        """
+        for kind in kinds:
+            shapes = self.link.visuals if kind == "visual" else self.link.collisions
+            if any(isinstance(s.geometry, model.Mesh) for s in shapes):
+                yield from getattr(self, kind).solids
 
     @property
     def geometry(self) -> Geometry:

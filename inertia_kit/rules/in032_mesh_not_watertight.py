@@ -35,49 +35,46 @@ def _kinds(link: LinkAnalysis) -> tuple[str, ...]:
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     tolerance = float(ctx.option("tolerance"))
-    for kind in _kinds(link):
-        shapes = link.link.collisions if kind == "collision" else link.link.visuals
-        if not any(isinstance(s.geometry, model.Mesh) for s in shapes):
+    for solid in link.mesh_kind_solids(tuple(_kinds(link))):
+        kind = solid.shape.kind
+        mesh = solid.mesh
+        if mesh is None:
             continue
-        for solid in getattr(link, kind).solids:
-            mesh = solid.mesh
-            if mesh is None:
-                continue
-            element = solid.shape.geometry
-            assert isinstance(element, model.Mesh)
-            name = Path(element.filename).name
-            count = f"{mesh.triangle_count} triangles"
-            if mesh.method == "convex-hull" and mesh.volume_error > tolerance:
-                yield ctx.finding(
-                    f"link `{link.name}`: {kind} mesh `{name}` is not closed ({count}): its "
-                    f"mass properties are those of its convex hull, whose volume "
-                    f"({fmt(mesh.volume, 4)} m³) differs from the open surface's by "
-                    f"{fmt(100 * mesh.volume_error, 3)}%",
-                    element.source,
-                    link=link.name,
-                    expected={
-                        "method": mesh.method,
-                        "volume": float(mesh.volume),
-                        "volume_error": float(mesh.volume_error),
-                    },
-                    help="export the part as a closed solid (fill its holes, e.g. with "
-                    "Blender's 3D-Print Toolbox or `trimesh.repair.fill_holes`); engines that "
-                    "integrate the surface itself (Drake, MuJoCo's exact inertia) get "
-                    "another, wrong volume",
-                )
-            elif mesh.method == "repaired" and ctx.option("repaired"):
-                yield ctx.finding(
-                    f"link `{link.name}`: {kind} mesh `{name}` is closed ({count}) but its "
-                    "triangles are wound inconsistently: computed after repairing the "
-                    "winding, but engines that integrate the triangles as given get a wrong "
-                    "volume",
-                    element.source,
-                    link=link.name,
-                    expected={
-                        "method": mesh.method,
-                        "volume": float(mesh.volume),
-                        "volume_error": 0.0,
-                    },
-                    help="re-export the mesh with consistent outward normals (Blender: "
-                    "Recalculate Outside; `trimesh.repair.fix_normals`)",
-                )
+        element = solid.shape.geometry
+        assert isinstance(element, model.Mesh)
+        name = Path(element.filename).name
+        count = f"{mesh.triangle_count} triangles"
+        if mesh.method == "convex-hull" and mesh.volume_error > tolerance:
+            yield ctx.finding(
+                f"link `{link.name}`: {kind} mesh `{name}` is not closed ({count}): its "
+                f"mass properties are those of its convex hull, whose volume "
+                f"({fmt(mesh.volume, 4)} m³) differs from the open surface's by "
+                f"{fmt(100 * mesh.volume_error, 3)}%",
+                element.source,
+                link=link.name,
+                expected={
+                    "method": mesh.method,
+                    "volume": float(mesh.volume),
+                    "volume_error": float(mesh.volume_error),
+                },
+                help="export the part as a closed solid (fill its holes, e.g. with "
+                "Blender's 3D-Print Toolbox or `trimesh.repair.fill_holes`); engines that "
+                "integrate the surface itself (Drake, MuJoCo's exact inertia) get "
+                "another, wrong volume",
+            )
+        elif mesh.method == "repaired" and ctx.option("repaired"):
+            yield ctx.finding(
+                f"link `{link.name}`: {kind} mesh `{name}` is closed ({count}) but its "
+                "triangles are wound inconsistently: computed after repairing the "
+                "winding, but engines that integrate the triangles as given get a wrong "
+                "volume",
+                element.source,
+                link=link.name,
+                expected={
+                    "method": mesh.method,
+                    "volume": float(mesh.volume),
+                    "volume_error": 0.0,
+                },
+                help="re-export the mesh with consistent outward normals (Blender: "
+                "Recalculate Outside; `trimesh.repair.fix_normals`)",
+            )

@@ -21,34 +21,31 @@ DEFAULTS: dict[str, object] = {}
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    for shapes, kind in ((link.link.visuals, "visual"), (link.link.collisions, "collision")):
-        if not any(isinstance(s.geometry, model.Mesh) for s in shapes):
+    for solid in link.mesh_kind_solids():
+        kind = solid.shape.kind
+        if solid.problem is None or solid.problem[0] != "mesh-unreadable":
             continue
-        for solid in getattr(link, kind).solids:
-            if solid.problem is None or solid.problem[0] != "mesh-unreadable":
-                continue
-            mesh = solid.shape.geometry
-            assert isinstance(mesh, model.Mesh)
-            suffix = Path(mesh.path or mesh.filename).suffix.lower()
-            if suffix not in FORMATS:
-                # a format some engines read (Drake's .vtk, assimp's .3ds) but we do not:
-                # the file may be fine, the geometry checks are what is lost
-                yield ctx.finding(
-                    f"link `{link.name}`: {kind} mesh `{mesh.filename}` is in a format "
-                    f"inertia-kit does not read (`{suffix or '(no suffix)'}`; it reads "
-                    f"{', '.join(FORMATS)}): its geometry checks are skipped",
-                    mesh.source,
-                    link=link.name,
-                    help="convert the mesh to STL, OBJ or DAE (MuJoCo reads STL and OBJ, "
-                    "Drake OBJ, PyBullet OBJ and STL), or ignore IN034 for this link",
-                    severity=Severity.WARNING,
-                )
-                continue
+        mesh = solid.shape.geometry
+        assert isinstance(mesh, model.Mesh)
+        suffix = Path(mesh.path or mesh.filename).suffix.lower()
+        if suffix not in FORMATS:
+            # a format some engines read (Drake's .vtk, assimp's .3ds) but we do not:
+            # the file may be fine, the geometry checks are what is lost
             yield ctx.finding(
-                f"link `{link.name}`: {kind} mesh `{mesh.filename}` cannot be read: "
-                f"{solid.problem[1]}",
+                f"link `{link.name}`: {kind} mesh `{mesh.filename}` is in a format "
+                f"inertia-kit does not read (`{suffix or '(no suffix)'}`; it reads "
+                f"{', '.join(FORMATS)}): its geometry checks are skipped",
                 mesh.source,
                 link=link.name,
-                help="re-export the part from the CAD tool (binary STL is read by every "
-                "engine); until then no engine can use it and its geometry checks are skipped",
+                help="convert the mesh to STL, OBJ or DAE (MuJoCo reads STL and OBJ, "
+                "Drake OBJ, PyBullet OBJ and STL), or ignore IN034 for this link",
+                severity=Severity.WARNING,
             )
+            continue
+        yield ctx.finding(
+            f"link `{link.name}`: {kind} mesh `{mesh.filename}` cannot be read: {solid.problem[1]}",
+            mesh.source,
+            link=link.name,
+            help="re-export the part from the CAD tool (binary STL is read by every "
+            "engine); until then no engine can use it and its geometry checks are skipped",
+        )
