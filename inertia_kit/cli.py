@@ -618,7 +618,18 @@ def _material_help() -> str:
 )
 @click.option("--diff", "show_diff", is_flag=True, help="Print a unified diff; write nothing.")
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
+@click.option(
+    "-o",
+    "--output",
+    default=None,
+    type=click.Path(dir_okay=False),
+    metavar="OUT",
+    help="Write the filled robot to OUT and leave PATH (exactly one) untouched: a URDF's own "
+    "text, edited; for xacro, the fully expanded URDF, where links made by macros are filled "
+    "too. OUT is always written; exit 1 if links were filled or refused, 0 if none needed it.",
+)
 @package_path_option
+@xacro_arg_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -629,12 +640,14 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
 
     \b
     Exit codes: 0 nothing to do; 1 a file was (or would be) changed, or a link was refused;
-    2 unreadable input or bad usage.
+    2 unreadable input or bad usage. With -o: 1 when links were (or would be) filled into OUT
+    or refused, 0 when none needed filling (OUT is written all the same).
     \b
     Examples:
       inertia-fill robot.urdf
       inertia-fill --material aluminium --mass gripper=0.35 --diff robot.urdf
       inertia-fill --fix invalid --check urdf/*.urdf
+      inertia-fill --density 1200 -o robot_filled.urdf robot.urdf.xacro
     """
     ctx.exit(fill(paths, **options))
 
@@ -662,15 +675,20 @@ def fill(
     fix: str = "missing",
     show_diff: bool = False,
     check: bool = False,
+    output: str | None = None,
     package_paths: tuple[str, ...] = (),
+    xacro_args: tuple[str, ...] = (),
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import InputError
-    from inertia_kit.fill import MATERIALS, apply, plan_fill
+    from inertia_kit.fill import MATERIALS, apply, plan_fill, plan_fill_output, write_output
 
     try:
         if not paths:
             raise UsageError("give URDF files to fill")
+        if output is not None and len(paths) != 1:
+            raise UsageError(f"-o takes exactly one PATH, got {len(paths)}")
+        arguments = _xacro_args(xacro_args)
         if material is not None:
             if density is not None:
                 raise UsageError("give --density or --material, not both")
@@ -687,13 +705,19 @@ def fill(
         return 2
 
     plans, failed = [], False
+    options = {
+        "density": density,
+        "masses": masses,
+        "fix": fix,
+        "package_paths": package_paths,
+        "xacro_args": arguments,
+    }
     for path in paths:
         try:
-            plans.append(
-                plan_fill(
-                    path, density=density, masses=masses, fix=fix, package_paths=package_paths
-                )
-            )
+            if output is not None:
+                plans.append(plan_fill_output(path, output, **options))
+            else:
+                plans.append(plan_fill(path, **options))
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             failed = True
@@ -713,25 +737,36 @@ def fill(
         if show_diff and plan.changed:
             click.echo(plan.diff(), nl=False)
         filled = plan.changed_links
-        if filled:
+        if filled or (plan.input_path is not None and write):
             try:
                 if write:
-                    apply(plan)
+                    (apply if plan.input_path is None else write_output)(plan)
             except InputError as error:
                 click.echo(f"error: {error}", err=True)
                 failed = True
             else:
-                changed = True
-                verb = "Filled" if write else "Would fill"
-                count = f"{len(filled)} link{'s' if len(filled) != 1 else ''}"
-                what = ", ".join(f"{f.link} {f.mass_text} kg" for f in filled)
-                click.echo(f"{verb} {count} in {plan.path}: {what}", err=True)
+                changed = changed or bool(filled)
+                click.echo(_fill_line(plan, write), err=True)
         for refusal in plan.refused:
             refused = True
             click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
     if failed:
         return 2
     return 1 if changed or refused else 0
+
+
+def _fill_line(plan: Any, write: bool) -> str:
+    """``Filled 2 links in robot.urdf: arm 1.2 kg, ...`` (``of IN into OUT`` for ``-o``)."""
+    filled = plan.changed_links
+    where = (
+        f"in {plan.path}" if plan.input_path is None else f"of {plan.input_path} into {plan.path}"
+    )
+    if not filled:
+        return f"Wrote {plan.path}: nothing to fill in {plan.input_path}"
+    verb = "Filled" if write else "Would fill"
+    count = f"{len(filled)} link{'s' if len(filled) != 1 else ''}"
+    what = ", ".join(f"{f.link} {f.mass_text} kg" for f in filled)
+    return f"{verb} {count} {where}: {what}"
 
 
 main.add_command(fill_command)

@@ -21,6 +21,12 @@ counted once).
 A link is refused (not filled, with the reason) when its geometry cannot be trusted: a mesh
 missing, unreadable, empty or wound inside-out, a mesh that looks authored in other units without
 a ``scale`` (IN031), or a shape with bad dimensions.
+
+``-o OUT`` (:func:`plan_fill_output`, :func:`write_output`): the filled robot goes to a new file
+and the input is not touched. A URDF input gives its own bytes with the edits; a xacro input
+gives the fully expanded URDF (two-space indentation, comments dropped), in which links made by
+macros or includes are filled too (in place they are refused). Relative mesh paths are resolved,
+and written, as in the xacro sources.
 """
 
 from __future__ import annotations
@@ -40,6 +46,7 @@ if TYPE_CHECKING:
     from inertia_kit.analysis import LinkAnalysis
     from inertia_kit.fixes import SourceText
     from inertia_kit.mass import MassProperties
+    from inertia_kit.model import Robot
 
 # kg/m³, typical values for ``--material``: solid parts; 3D-printed parts are lighter at partial
 # infill, so pass ``--mass`` when the real mass is known
@@ -100,6 +107,9 @@ class FillPlan:
     refused: tuple[Refusal, ...] = ()
     notes: tuple[str, ...] = ()
     links: frozenset[str] = field(default_factory=frozenset)  # every link name in the file
+    # for ``-o``: the file read (``path`` is the one written, ``source`` the text filled:
+    # the input's bytes, or the expanded URDF of a xacro input)
+    input_path: str | None = None
 
     @property
     def edits(self) -> list[Edit]:
@@ -151,6 +161,7 @@ def plan_fill(
     masses: Mapping[str, float] | None = None,
     fix: str = "missing",
     package_paths: Sequence[str | Path] = (),
+    xacro_args: Mapping[str, str] | None = None,
 ) -> FillPlan:
     """
     Plan the ``<inertial>`` edits for one file (nothing is written).
@@ -172,11 +183,17 @@ def plan_fill(
     ValueError
       Bad ``density``, ``masses`` or ``fix``.
     """
-    from inertia_kit.analysis import analyse
     from inertia_kit.fixes import read_source
-    from inertia_kit.lint import Selection, run_rules
     from inertia_kit.loader import load
 
+    masses = _check_options(density, masses, fix)
+    path = Path(path)
+    source = read_source(path)
+    robot = load(path, xacro_args=xacro_args, package_paths=package_paths)
+    return _plan(str(path), source, robot, density=density, masses=masses, fix=fix)
+
+
+def _check_options(density: float, masses: Mapping[str, float] | None, fix: str) -> dict:
     if fix not in FIX_MODES:
         raise ValueError(f"fix must be one of {', '.join(FIX_MODES)}, got {fix!r}")
     if not (math.isfinite(density) and density > 0):
@@ -185,13 +202,28 @@ def plan_fill(
     for name, kg in masses.items():
         if not (math.isfinite(kg) and kg > 0):
             raise ValueError(f"the mass of `{name}` must be a positive number of kg, got {kg}")
+    return masses
 
-    path = Path(path)
-    source = read_source(path)
-    robot = load(path, package_paths=package_paths)
+
+def _plan(
+    path: str,
+    source: SourceText,
+    robot: Robot,
+    *,
+    density: float,
+    masses: Mapping[str, float],
+    fix: str,
+    input_path: str | None = None,
+) -> FillPlan:
+    """The fill plan of ``robot``, whose elements are written literally in ``source``."""
+    from inertia_kit.analysis import analyse
+    from inertia_kit.lint import Selection, run_rules
+
     names = frozenset(link.name for link in robot.links)
     if robot.fragment:
-        return FillPlan(str(path), source, notes=("a xacro fragment without links",))
+        return FillPlan(
+            path, source, notes=("a xacro fragment without links",), input_path=input_path
+        )
     analysis = analyse(robot)
     codes = ("IN001", "IN031") + (_IMPOSSIBLE if fix != "missing" else ())
     findings = run_rules(analysis, Selection(select=codes))
@@ -230,7 +262,9 @@ def plan_fill(
         properties = unit.with_mass(mass)
         edit = _edit(source, link, properties)
         fills.append(LinkFill(link.name, properties, basis, link.link.inertial is not None, edit))
-    return FillPlan(str(path), source, tuple(fills), tuple(refused), tuple(notes), names)
+    return FillPlan(
+        path, source, tuple(fills), tuple(refused), tuple(notes), names, input_path=input_path
+    )
 
 
 def apply(plan: FillPlan) -> bool:
@@ -243,6 +277,150 @@ def apply(plan: FillPlan) -> bool:
     if not plan.changed or plan.source is None:
         return False
     return write_atomic(plan.path, plan.new_bytes, expected=plan.source.original)
+
+
+def plan_fill_output(
+    path: str | Path,
+    output: str | Path,
+    *,
+    density: float = 1000.0,
+    masses: Mapping[str, float] | None = None,
+    fix: str = "missing",
+    package_paths: Sequence[str | Path] = (),
+    xacro_args: Mapping[str, str] | None = None,
+) -> FillPlan:
+    """
+    Plan filling ``path`` into a new file ``output`` (``inertia-fill -o``); nothing is written
+    (:func:`write_output` writes). The plan's ``source`` is what gets filled: the input's bytes
+    for a URDF file, the fully expanded URDF for a xacro file (so links produced by macros or
+    includes can be filled too); its ``path`` is ``output``, its ``input_path`` is ``path``.
+
+    Raises ``InputError`` as :func:`plan_fill`, for a xacro fragment (no robot to write), and
+    when ``output`` is ``path`` itself.
+    """
+    import dataclasses
+
+    from inertia_kit.fixes import SourceText
+    from inertia_kit.loader import _XACRO_AT_WORK
+    from inertia_kit.safexml import read_bounded
+    from inertia_kit.xacro_expand import is_xacro
+
+    masses = _check_options(density, masses, fix)
+    path, output = Path(path), Path(output)
+    if output.exists() and path.exists() and output.resolve() == path.resolve():
+        raise InputError("-o names the input file itself; give another output file", path)
+    data = read_bounded(path)
+    if not (is_xacro(data) and _XACRO_AT_WORK.search(data)):
+        # a URDF file: its own bytes, edited (offsets into them), written elsewhere
+        plan = plan_fill(path, density=density, masses=masses, fix=fix, package_paths=package_paths)
+        if "a xacro fragment without links" in plan.notes:
+            raise InputError("a xacro fragment without links: no robot to write", path)
+        return dataclasses.replace(plan, path=str(output), input_path=str(path))
+    text, robot = _expanded(path, output, package_paths, xacro_args)
+    source = SourceText(str(output), text.encode("utf-8"), text, "utf-8", b"")
+    return _plan(
+        str(output), source, robot, density=density, masses=masses, fix=fix, input_path=str(path)
+    )
+
+
+def write_output(plan: FillPlan) -> bool:
+    """
+    Write ``plan``'s filled text to its ``path`` (a plan from :func:`plan_fill_output`),
+    atomically (temporary file in the same folder, ``fsync``, rename); an existing file keeps
+    its permission bits and is left alone when it already holds these bytes. Returns whether
+    the file was written; ``InputError`` for a missing folder or a read-only file.
+    """
+    import contextlib
+    import os
+    import tempfile
+
+    if plan.source is None:
+        return False
+    target = Path(plan.path)
+    data = plan.new_bytes
+    mode = 0o644
+    if target.exists():
+        if target.is_dir():
+            raise InputError("-o names a folder; give a file", target)
+        with contextlib.suppress(OSError):
+            if target.read_bytes() == data:
+                return False
+        mode = target.stat().st_mode & 0o7777
+        if not mode & 0o222 or not os.access(target, os.W_OK):
+            raise InputError("the file is read-only; nothing was written", target)
+    else:
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    if not target.parent.is_dir():
+        raise InputError(f"no folder {str(target.parent)!r} to write into", target)
+    try:
+        handle, temporary = tempfile.mkstemp(
+            prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
+        )
+    except OSError as error:
+        raise InputError(f"cannot write: {error.strerror or error}", target) from None
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(data)
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.chmod(temporary, mode)
+        os.replace(temporary, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
+        raise
+    return True
+
+
+def _expanded(
+    path: Path,
+    output: Path,
+    package_paths: Sequence[str | Path],
+    xacro_args: Mapping[str, str] | None,
+) -> tuple[str, Robot]:
+    """The expanded URDF of the xacro file ``path`` as text (indented two spaces, with a
+    comment naming its source), and its model with the lines of that text; meshes and
+    packages resolve as from ``path``."""
+    import copy
+
+    from lxml import etree
+
+    from inertia_kit import model
+    from inertia_kit.loader import Builder, _start_tag_positions, parse_xml
+    from inertia_kit.packages import PackageResolver
+    from inertia_kit.xacro_expand import expand
+
+    resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
+    expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver)
+    if expanded.fragment:
+        raise InputError("a xacro fragment without links: no robot to write", path)
+    root = copy.deepcopy(expanded.root)
+    for element in root.iter():
+        if element.text is not None and not element.text.strip():
+            element.text = None
+        if element.tail is not None and not element.tail.strip():
+            element.tail = None
+    etree.indent(root, space="  ")
+    comment = f"generated by inertia-fill from {path.name}: edit that file, not this one"
+    body = etree.tostring(root, encoding="unicode")
+    text = f'<?xml version="1.0" encoding="utf-8"?>\n<!-- {comment} -->\n{body}\n'
+    data = text.encode("utf-8")
+    tree = parse_xml(data, output)
+    positions = _start_tag_positions(data, tree) or {}
+    # the same elements in the same order: where each came from in the xacro sources
+    origins = dict(zip(tree.iter(etree.Element), expanded.root.iter(etree.Element), strict=True))
+
+    def source_of(element: etree._Element) -> model.Source:
+        if element.tag != "link":
+            # relative mesh paths resolve from the file that wrote them, as for the xacro
+            return expanded.source_of(origins[element])
+        line, column = positions.get(element, (element.sourceline, None))
+        return model.Source(str(output), line, column)
+
+    robot = Builder(path, source_of, resolver, tuple(expanded.files)).robot(tree)
+    return text, robot
 
 
 # --- which links, what mass ----------------------------------------------------------------

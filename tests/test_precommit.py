@@ -45,19 +45,22 @@ GOOD = BAD.replace('name="bad"', 'name="good"').replace('value="0"', 'value="0.5
 CONFIG = '[tool.inertia-kit]\nselect = ["IN002"]\n'
 
 
-def hook() -> dict:
-    (entry,) = yaml.safe_load(MANIFEST.read_text())
+def hook(name: str = "inertia-lint") -> dict:
+    (entry,) = [e for e in yaml.safe_load(MANIFEST.read_text()) if e["id"] == name]
     return entry
 
 
 def test_manifest_is_valid_for_pre_commit():
     from pre_commit.clientlib import load_manifest
 
-    (loaded,) = load_manifest(str(MANIFEST))
-    assert loaded["id"] == "inertia-lint"
-    assert loaded["entry"] == "inertia-lint"
-    assert loaded["language"] == "python"
-    assert loaded["pass_filenames"] is True
+    loaded = load_manifest(str(MANIFEST))
+    assert [h["id"] for h in loaded] == ["inertia-lint", "inertia-fill"]
+    for entry in loaded:
+        assert entry["entry"] == entry["id"]
+        assert entry["language"] == "python"
+        assert entry["pass_filenames"] is True
+        # both hooks take the same files
+        assert (entry["files"], entry["types"]) == (loaded[0]["files"], loaded[0]["types"])
 
 
 @pytest.mark.parametrize(
@@ -148,7 +151,9 @@ def hook_repo(tmp_path_factory):
     return snapshot, commit, env
 
 
-def _try_repo(hook_repo, project: Path) -> subprocess.CompletedProcess:
+def _try_repo(
+    hook_repo, project: Path, hook_id: str = "inertia-lint"
+) -> subprocess.CompletedProcess:
     snapshot, commit, env = hook_repo
     return subprocess.run(
         [
@@ -157,7 +162,7 @@ def _try_repo(hook_repo, project: Path) -> subprocess.CompletedProcess:
             "pre_commit",
             "try-repo",
             str(snapshot),
-            "inertia-lint",
+            hook_id,
             "--ref",
             commit,
             "--all-files",
@@ -193,6 +198,45 @@ def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-lint\.+Passed", output), output
+
+
+MISSING = """<robot name="arm">
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
+    """The fixer writes the missing block and fails (exit 1) so the change is reviewed; run
+    again on the filled file, it passes and changes nothing."""
+    project = _project(tmp_path / "fill", {"urdf/arm.urdf": MISSING, "urdf/good.urdf": GOOD})
+    urdf = project / "urdf" / "arm.urdf"
+    done = _try_repo(hook_repo, project, "inertia-fill")
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert re.search(r"inertia-fill\.+Failed", output), output
+    assert "- exit code: 1" in output
+    assert "- files were modified by this hook" in output
+    # 0.1 × 0.1 × 0.4 m at 1000 kg/m³: 4 kg
+    assert "Filled 1 link in urdf/arm.urdf: arm 4 kg" in output
+    assert "good.urdf" not in output
+    filled = urdf.read_text()
+    assert '    <inertial>\n      <origin xyz="0 0 0" rpy="0 0 0"/>\n' in filled
+    assert '<mass value="4"/>' in filled
+    assert (project / "urdf" / "good.urdf").read_text() == GOOD
+
+    done = _try_repo(hook_repo, project, "inertia-fill")
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output
+    assert re.search(r"inertia-fill\.+Passed", output), output
+    assert urdf.read_text() == filled
 
 
 def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
