@@ -301,16 +301,15 @@ def plan_fill_output(
     import dataclasses
 
     from inertia_kit.fixes import SourceText
-    from inertia_kit.loader import _XACRO_AT_WORK
+    from inertia_kit.loader import needs_expansion
     from inertia_kit.safexml import read_bounded
-    from inertia_kit.xacro_expand import is_xacro
 
     masses = _check_options(density, masses, fix)
     path, output = Path(path), Path(output)
     if output.exists() and path.exists() and output.resolve() == path.resolve():
         raise InputError("-o names the input file itself; give another output file", path)
     data = read_bounded(path)
-    if not (is_xacro(data) and _XACRO_AT_WORK.search(data)):
+    if not needs_expansion(data):
         # a URDF file: its own bytes, edited (offsets into them), written elsewhere
         plan = plan_fill(path, density=density, masses=masses, fix=fix, package_paths=package_paths)
         if "a xacro fragment without links" in plan.notes:
@@ -326,52 +325,15 @@ def plan_fill_output(
 def write_output(plan: FillPlan) -> bool:
     """
     Write ``plan``'s filled text to its ``path`` (a plan from :func:`plan_fill_output`),
-    atomically (temporary file in the same folder, ``fsync``, rename); an existing file keeps
-    its permission bits and is left alone when it already holds these bytes. Returns whether
-    the file was written; ``InputError`` for a missing folder or a read-only file.
+    atomically, creating the file if need be; an existing file keeps its permission bits and
+    is left alone when it already holds these bytes. Returns whether the file was written;
+    ``InputError`` for a folder, a missing folder or a read-only file.
     """
-    import contextlib
-    import os
-    import tempfile
+    from inertia_kit.fixes import write_atomic
 
     if plan.source is None:
         return False
-    target = Path(plan.path)
-    data = plan.new_bytes
-    mode = 0o644
-    if target.exists():
-        if target.is_dir():
-            raise InputError("-o names a folder; give a file", target)
-        with contextlib.suppress(OSError):
-            if target.read_bytes() == data:
-                return False
-        mode = target.stat().st_mode & 0o7777
-        if not mode & 0o222 or not os.access(target, os.W_OK):
-            raise InputError("the file is read-only; nothing was written", target)
-    else:
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o666 & ~umask
-    if not target.parent.is_dir():
-        raise InputError(f"no folder {str(target.parent)!r} to write into", target)
-    try:
-        handle, temporary = tempfile.mkstemp(
-            prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
-        )
-    except OSError as error:
-        raise InputError(f"cannot write: {error.strerror or error}", target) from None
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(data)
-            stream.flush()
-            os.fsync(stream.fileno())
-        os.chmod(temporary, mode)
-        os.replace(temporary, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(temporary)
-        raise
-    return True
+    return write_atomic(plan.path, plan.new_bytes, create=True)
 
 
 def _expanded(
@@ -388,7 +350,7 @@ def _expanded(
     from lxml import etree
 
     from inertia_kit import model
-    from inertia_kit.loader import Builder, _start_tag_positions, parse_xml
+    from inertia_kit.loader import Builder, parse_xml, start_tag_positions
     from inertia_kit.packages import PackageResolver
     from inertia_kit.xacro_expand import expand
 
@@ -408,7 +370,7 @@ def _expanded(
     text = f'<?xml version="1.0" encoding="utf-8"?>\n<!-- {comment} -->\n{body}\n'
     data = text.encode("utf-8")
     tree = parse_xml(data, output)
-    positions = _start_tag_positions(data, tree) or {}
+    positions = start_tag_positions(data, tree) or {}
     # the same elements in the same order: where each came from in the xacro sources
     origins = dict(zip(tree.iter(etree.Element), expanded.root.iter(etree.Element), strict=True))
 

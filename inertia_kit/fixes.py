@@ -110,7 +110,9 @@ class ChangedWhileEditing(InputError):
     """The file on disk is no longer the one the edits were computed from."""
 
 
-def write_atomic(path: str | Path, data: bytes, *, expected: bytes | None = None) -> bool:
+def write_atomic(
+    path: str | Path, data: bytes, *, expected: bytes | None = None, create: bool = False
+) -> bool:
     """
     Replace ``path``'s content with ``data`` atomically (temporary file in the same folder,
     ``fsync``, ``os.replace``), keeping its permission bits. Writes nothing when the bytes are
@@ -118,27 +120,41 @@ def write_atomic(path: str | Path, data: bytes, *, expected: bytes | None = None
 
     ``expected`` is the content the edits were computed from: if the file no longer holds it
     (someone changed it meanwhile), nothing is written and ``ChangedWhileEditing`` is raised.
+    With ``create``, a missing file is created (permissions from the umask), as for ``-o OUT``.
 
     Returns whether the file was written.
     """
     target = Path(path)
-    try:
-        current = target.read_bytes()
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", path) from None
+    if target.is_dir():
+        raise InputError("is a folder, not a file; nothing was written", path)
+    if create and not target.exists():
+        if not target.parent.is_dir():
+            raise InputError(f"no folder {str(target.parent)!r} to write into", path)
+        current = None
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    else:
+        try:
+            current = target.read_bytes()
+        except OSError as error:
+            raise InputError(f"cannot read: {error.strerror or error}", path) from None
+        mode = target.stat().st_mode & 0o7777
     if expected is not None and current != expected:
         raise ChangedWhileEditing(
             "the file changed while it was being processed; nothing was written", path
         )
     if current == data:
         return False
-    mode = target.stat().st_mode & 0o7777
     # the permission bits, not os.access: a read-only file says "don't touch", even to root
-    if not mode & 0o222 or not os.access(target, os.W_OK):
+    if current is not None and (not mode & 0o222 or not os.access(target, os.W_OK)):
         raise InputError("the file is read-only; nothing was written", path)
-    handle, temporary = tempfile.mkstemp(
-        prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
-    )
+    try:
+        handle, temporary = tempfile.mkstemp(
+            prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
+        )
+    except OSError as error:
+        raise InputError(f"cannot write: {error.strerror or error}", path) from None
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(data)

@@ -18,7 +18,14 @@ from inertia_kit import model
 from inertia_kit.errors import InputError
 from inertia_kit.safexml import NO_ENTITIES, parser, read_bounded, refuse_entities
 
-__all__ = ["load", "parse_xml", "read_bounded", "refuse_entities"]
+__all__ = [
+    "load",
+    "needs_expansion",
+    "parse_xml",
+    "read_bounded",
+    "refuse_entities",
+    "start_tag_positions",
+]
 
 _BOM = b"\xef\xbb\xbf"
 # UTF-16/32 by byte-order mark or by the NUL bytes around a leading "<" (XML 1.0, appendix F)
@@ -37,6 +44,16 @@ _MARKUP = re.compile(
 _XACRO_AT_WORK = re.compile(rb"<\s*xacro:|\$\{|\$\(")
 # What urdfdom, Gazebo and Drake read as a number: ASCII digits only, no "1_000", no hex
 _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\s*")
+
+
+def needs_expansion(data: bytes) -> bool:
+    """
+    Whether a file must go through xacro: xacro by content *and* using it (macros, ``${}``,
+    ``$()``). A file that only declares the namespace, as xacro's own output does, is URDF.
+    """
+    from inertia_kit.xacro_expand import is_xacro
+
+    return is_xacro(data) and _XACRO_AT_WORK.search(data) is not None
 
 
 def parse_xml(data: bytes, path: str | Path) -> etree._Element:
@@ -120,7 +137,7 @@ def load(
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
 
     xacro = is_xacro(data)
-    if xacro and _XACRO_AT_WORK.search(data):
+    if needs_expansion(data):
         expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver)
         if expanded.fragment:
             return _fragment(path, expanded.files)
@@ -131,7 +148,7 @@ def load(
     root = parse_xml(data, path)
     if xacro and not any(isinstance(child.tag, str) for child in root):
         return _fragment(path, (str(path),))  # as expand() classes an empty xacro file
-    positions = _start_tag_positions(data, root)
+    positions = start_tag_positions(data, root)
     lines = data.split(b"\n")
 
     def source_of(element: etree._Element) -> model.Source:
@@ -200,7 +217,7 @@ def _tolerate_declaration(data: bytes) -> tuple[bytes, str | None]:
     )
 
 
-def _start_tag_positions(
+def start_tag_positions(
     data: bytes, root: etree._Element
 ) -> dict[etree._Element, tuple[int, int]] | None:
     """

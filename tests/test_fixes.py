@@ -86,3 +86,18 @@ def test_read_only_file_is_an_input_error(tmp_path):
     os.chmod(path, 0o444)
     with pytest.raises(InputError, match="read-only"):
         write_atomic(path, b"new")
+
+
+def test_create_writes_a_new_file_and_refuses_a_missing_folder(tmp_path):
+    new = tmp_path / "out.urdf"
+    assert write_atomic(new, b"data", create=True)
+    assert new.read_bytes() == b"data"
+    assert not write_atomic(new, b"data", create=True)  # same bytes: nothing written
+    with pytest.raises(InputError, match="no folder"):
+        write_atomic(tmp_path / "nowhere" / "out.urdf", b"data", create=True)
+    with pytest.raises(InputError, match="cannot read"):
+        write_atomic(
+            tmp_path / "absent.urdf", b"data"
+        )  # without create, a missing file is an error
+    with pytest.raises(InputError, match="folder"):
+        write_atomic(tmp_path, b"data", create=True)
