@@ -12,6 +12,7 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import json
+import textwrap
 from collections.abc import Callable
 from typing import Any
 
@@ -750,6 +751,8 @@ def fill(
         for refusal in plan.refused:
             refused = True
             click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
+            if refusal.block is not None:
+                click.echo(textwrap.indent(refusal.block, "    "), err=True)
     if failed:
         return 2
     return 1 if changed or refused else 0

@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -66,21 +65,22 @@ FIX_MODES = ("missing", "invalid", "all")
 
 # rules whose findings mean a declared tensor is impossible (``--fix invalid``)
 _IMPOSSIBLE = ("IN010", "IN011", "IN020", "IN023")
-XACRO_UNSUPPORTED = "xacro sources are not supported yet"
 
 
 @dataclass(frozen=True)
 class LinkFill:
     """
     One link's new ``<inertial>``: ``properties`` in the link frame, ``basis`` says where its
-    mass comes from, ``edit`` the text edit (``None`` when the file already says exactly this).
+    mass comes from, ``edits`` the text edits (none when the files already say exactly this;
+    several for values passed through a xacro macro's parameters; shared with other links
+    made from the same macro body).
     """
 
     link: str
     properties: MassProperties
     basis: str
     replaced: bool
-    edit: Edit | None
+    edits: tuple[Edit, ...] = ()
 
     @property
     def mass_text(self) -> str:
@@ -91,10 +91,12 @@ class LinkFill:
 
 @dataclass(frozen=True)
 class Refusal:
-    """A link that needs an ``<inertial>`` but was not filled, and why."""
+    """A link that needs an ``<inertial>`` but was not filled, why, and (when its values are
+    known but could not be written in place) the block to paste."""
 
     link: str
     reason: str
+    block: str | None = None
 
 
 @dataclass(frozen=True)
@@ -110,25 +112,45 @@ class FillPlan:
     # for ``-o``: the file read (``path`` is the one written, ``source`` the text filled:
     # the input's bytes, or the expanded URDF of a xacro input)
     input_path: str | None = None
+    # the other files edits go to: xacro files holding macros or included links
+    others: tuple[SourceText, ...] = ()
 
     @property
     def edits(self) -> list[Edit]:
-        return [f.edit for f in self.fills if f.edit is not None]
+        """Every edit once (links made from one macro body share its edit)."""
+        return list(dict.fromkeys(edit for fill in self.fills for edit in fill.edits))
 
     @property
     def changed_links(self) -> list[LinkFill]:
-        return [f for f in self.fills if f.edit is not None]
+        return [f for f in self.fills if f.edits]
+
+    def changes(self) -> list[tuple[SourceText, str]]:
+        """``(file as read, its new text)`` for every file whose bytes change, input first."""
+        from inertia_kit.fixes import apply_edits
+
+        result = []
+        for source in (self.source, *self.others):
+            if source is None:
+                continue
+            mine = [e for e in self.edits if _same_file(e.path, source.path)]
+            if not mine:
+                continue
+            text, applied = apply_edits(source.text, mine)
+            if len(applied) != len(mine):
+                raise InputError("two fills edit overlapping text", source.path)
+            if source.encode(text) != source.original:
+                result.append((source, text))
+        return result
 
     @property
     def new_text(self) -> str:
-        from inertia_kit.fixes import apply_edits
-
+        """The input's (``source``'s) text after the edits."""
         if self.source is None:
             return ""
-        text, applied = apply_edits(self.source.text, self.edits)
-        if len(applied) != len(self.edits):  # pragma: no cover - edits are per link, disjoint
-            raise RuntimeError("overlapping fill edits")
-        return text
+        for source, text in self.changes():
+            if source is self.source:
+                return text
+        return self.source.text
 
     @property
     def new_bytes(self) -> bytes:
@@ -138,20 +160,28 @@ class FillPlan:
 
     @property
     def changed(self) -> bool:
-        return self.source is not None and self.new_bytes != self.source.original
+        return bool(self.changes())
 
     def diff(self) -> str:
-        """A unified diff of the change (empty when nothing changes)."""
-        if not self.changed or self.source is None:
-            return ""
-        return "".join(
-            difflib.unified_diff(
-                self.source.text.splitlines(keepends=True),
-                self.new_text.splitlines(keepends=True),
-                self.path if Path(self.path).is_absolute() else f"a/{self.path}",
-                self.path if Path(self.path).is_absolute() else f"b/{self.path}",
+        """A unified diff of the change, file after file (empty when nothing changes)."""
+        parts = []
+        for source, text in self.changes():
+            name = self.path if source is self.source else source.path
+            shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
+            parts.append(
+                "".join(
+                    difflib.unified_diff(
+                        source.text.splitlines(keepends=True),
+                        text.splitlines(keepends=True),
+                        *shown,
+                    )
+                )
             )
-        )
+        return "".join(parts)
+
+
+def _same_file(a: str, b: str) -> bool:
+    return a == b or Path(a).resolve() == Path(b).resolve()
 
 
 def plan_fill(
@@ -232,7 +262,10 @@ def _plan(
         if finding.link is not None:
             flagged.setdefault(finding.link, {}).setdefault(finding.code, []).append(finding)
 
-    fills: list[LinkFill] = []
+    from inertia_kit.fill_sites import Files, Target, place
+
+    targets: list[Target] = []
+    bases: dict[str, str] = {}
     refused: list[Refusal] = []
     notes: list[str] = []
     seen: set[str] = set()
@@ -258,25 +291,61 @@ def _plan(
             continue
         unit = link.geometry.unit
         assert unit is not None  # _refusal checked
-        mass, basis = _mass(link, masses, density, unit.mass)
-        properties = unit.with_mass(mass)
-        edit = _edit(source, link, properties)
-        fills.append(LinkFill(link.name, properties, basis, link.link.inertial is not None, edit))
+        mass, bases[link.name] = _mass(link, masses, density, unit.mass)
+        targets.append(Target(link, unit.with_mass(mass)))
+
+    files = Files.for_input(source.path)
+    files.add(source)
+    placements = place(targets, analysis.links, files)
+    fills: list[LinkFill] = []
+    for target in targets:
+        placement = placements[target.name]
+        if placement.problem is not None:
+            refused.append(
+                Refusal(
+                    target.name,
+                    f"{placement.problem}; paste the block below there, or make the macro "
+                    "take the values as parameters",
+                    _paste_block(target.properties),
+                )
+            )
+            continue
+        replaced = target.link.link.inertial is not None
+        fills.append(
+            LinkFill(target.name, target.properties, bases[target.name], replaced, placement.edits)
+        )
+    main = str(Path(source.path).resolve())
+    others = tuple(s for p, s in files.sources.items() if p != main)
     return FillPlan(
-        path, source, tuple(fills), tuple(refused), tuple(notes), names, input_path=input_path
+        path,
+        source,
+        tuple(fills),
+        tuple(refused),
+        tuple(notes),
+        names,
+        input_path=input_path,
+        others=others,
     )
+
+
+def _paste_block(properties: MassProperties) -> str:
+    from inertia_kit.inertial_xml import inertial_block
+
+    return inertial_block(properties, indent="  ", level=0)
 
 
 def apply(plan: FillPlan) -> bool:
     """
-    Write the plan's edits atomically; returns whether the file was written (only when its
-    bytes change). Raises ``InputError`` for a read-only file or one changed since planning.
+    Write the plan's edits, each file atomically; returns whether a file was written (only
+    when bytes change). Raises ``InputError`` for a read-only file or one changed since
+    planning; every file is checked before any is written, so a plan spanning several xacro
+    files is not left half-applied.
     """
-    from inertia_kit.fixes import write_atomic
+    from inertia_kit.fixes import write_all_atomic
 
-    if not plan.changed or plan.source is None:
-        return False
-    return write_atomic(plan.path, plan.new_bytes, expected=plan.source.original)
+    return write_all_atomic(
+        [(source.path, source.encode(text), source.original) for source, text in plan.changes()]
+    )
 
 
 def plan_fill_output(
@@ -375,7 +444,8 @@ def _expanded(
     origins = dict(zip(tree.iter(etree.Element), expanded.root.iter(etree.Element), strict=True))
 
     def source_of(element: etree._Element) -> model.Source:
-        if element.tag != "link":
+        parent = element.getparent()
+        if parent is not None and parent.tag == "geometry":
             # relative mesh paths resolve from the file that wrote them, as for the xacro
             return expanded.source_of(origins[element])
         line, column = positions.get(element, (element.sourceline, None))
@@ -456,87 +526,3 @@ def _mass(
     if isinstance(declared, float) and math.isfinite(declared) and declared > 0:
         return declared, "declared mass"
     return density * volume, f"{density:g} kg/m³"
-
-
-# --- the text edit -------------------------------------------------------------------------
-
-
-def _edit(source: SourceText, link: LinkAnalysis, properties: MassProperties) -> Edit | None:
-    from inertia_kit.inertial_xml import inertial_block
-    from inertia_kit.xmlspan import children, element_span, indent_unit, line_indent
-
-    text = source.text
-    start = _link_offset(source, link)
-    span = element_span(text, start)
-    if span.empty:  # a link written <link/> has no geometry, so no fill; defensive
-        raise InputError(f"link `{link.name}` is an empty element", source.path)
-    if "<xacro:" in text[span.start : span.end]:
-        raise InputError(
-            f"{XACRO_UNSUPPORTED}: link `{link.name}` holds xacro elements; "
-            "write its <inertial> by hand or fill the expanded URDF",
-            source.path,
-            link.link.source.line,
-        )
-    unit = indent_unit(text)
-    newline = source.newline
-    lines = inertial_block(properties, indent=unit, level=0, newline="\n").split("\n")
-    inertials = [child for child in children(text, span) if child.tag == "inertial"]
-    if inertials:
-        if len(inertials) > 1:
-            raise InputError(
-                f"link `{link.name}` has {len(inertials)} <inertial> elements; keep one",
-                source.path,
-                link.link.source.line,
-            )
-        old = inertials[0]
-        base = line_indent(text, old.start)
-        content = newline.join([lines[0], *(base + line for line in lines[1:])])
-        if text[old.start : old.end] == content:
-            return None
-        return Edit(source.path, old.start, old.end, content)
-    base = line_indent(text, span.start) + unit
-    block = newline.join(base + line for line in lines)
-    rest = re.compile(r"[ \t]*(\r\n|\n|\r)").match(text, span.start_tag_end)
-    if rest is not None:
-        return Edit(source.path, rest.end(), rest.end(), block + newline)
-    # the link's content follows its start tag on the same line
-    return Edit(
-        source.path,
-        span.start_tag_end,
-        span.start_tag_end,
-        newline + block + newline + line_indent(text, span.start),
-    )
-
-
-def _link_offset(source: SourceText, link: LinkAnalysis) -> int:
-    """The offset of the ``<`` of the link's start tag in ``source``; ``InputError`` if it is not
-    written literally there (a xacro macro or an included file produced it)."""
-    where = link.link.source
-    literal = (
-        not where.calls
-        and where.line is not None
-        and Path(where.path).resolve() == Path(source.path).resolve()
-    )
-    if literal:
-        text = source.text
-        line = where.line
-        try:
-            line_start = source.offset(line)
-        except ValueError:
-            line_start = None
-        if line_start is not None:
-            line_end = text.find("\n", line_start)
-            line_end = len(text) if line_end < 0 else line_end
-            tag = re.compile(r"<link(?=[\s/>])")
-            column = where.column
-            if column is not None and tag.match(text, line_start + column - 1):
-                return line_start + column - 1
-            found = [m.start() for m in tag.finditer(text, line_start, line_end)]
-            if len(found) == 1:
-                return found[0]
-    raise InputError(
-        f"{XACRO_UNSUPPORTED}: link `{link.name}` comes from "
-        + ("a xacro macro" if where.calls else str(where))
-        + "; write its <inertial> by hand or fill the expanded URDF",
-        source.path,
-    )

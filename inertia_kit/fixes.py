@@ -10,7 +10,7 @@ import contextlib
 import os
 import re
 import tempfile
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -125,30 +125,9 @@ def write_atomic(
     Returns whether the file was written.
     """
     target = Path(path)
-    if target.is_dir():
-        raise InputError("is a folder, not a file; nothing was written", path)
-    if create and not target.exists():
-        if not target.parent.is_dir():
-            raise InputError(f"no folder {str(target.parent)!r} to write into", path)
-        current = None
-        umask = os.umask(0)
-        os.umask(umask)
-        mode = 0o666 & ~umask
-    else:
-        try:
-            current = target.read_bytes()
-        except OSError as error:
-            raise InputError(f"cannot read: {error.strerror or error}", path) from None
-        mode = target.stat().st_mode & 0o7777
-    if expected is not None and current != expected:
-        raise ChangedWhileEditing(
-            "the file changed while it was being processed; nothing was written", path
-        )
-    if current == data:
+    current, mode = _state(target, create)
+    if not _may_write(target, current, mode, data, expected):
         return False
-    # the permission bits, not os.access: a read-only file says "don't touch", even to root
-    if current is not None and (not mode & 0o222 or not os.access(target, os.W_OK)):
-        raise InputError("the file is read-only; nothing was written", path)
     try:
         handle, temporary = tempfile.mkstemp(
             prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
@@ -171,4 +150,52 @@ def write_atomic(
         with contextlib.suppress(OSError):
             os.unlink(temporary)
         raise
+    return True
+
+
+def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
+    """
+    ``(path, data, expected)`` for several files, each written as :func:`write_atomic` does;
+    every file is checked first (still ``expected``, writable), so one that changed or is
+    read-only stops the whole set before any file is written. Returns whether any was written.
+    """
+    for path, data, expected in writes:
+        target = Path(path)
+        _may_write(target, *_state(target, False), data, expected)
+    written = False
+    for path, data, expected in writes:
+        written = write_atomic(path, data, expected=expected) or written
+    return written
+
+
+def _state(target: Path, create: bool) -> tuple[bytes | None, int]:
+    """The file's bytes (``None``: to be created) and the permission bits to write with."""
+    if target.is_dir():
+        raise InputError("is a folder, not a file; nothing was written", target)
+    if create and not target.exists():
+        if not target.parent.is_dir():
+            raise InputError(f"no folder {str(target.parent)!r} to write into", target)
+        umask = os.umask(0)
+        os.umask(umask)
+        return None, 0o666 & ~umask
+    try:
+        current = target.read_bytes()
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", target) from None
+    return current, target.stat().st_mode & 0o7777
+
+
+def _may_write(
+    target: Path, current: bytes | None, mode: int, data: bytes, expected: bytes | None
+) -> bool:
+    """Whether ``data`` needs writing; ``InputError`` when it must not be."""
+    if expected is not None and current != expected:
+        raise ChangedWhileEditing(
+            "the file changed while it was being processed; nothing was written", target
+        )
+    if current == data:
+        return False
+    # the permission bits, not os.access: a read-only file says "don't touch", even to root
+    if current is not None and (not mode & 0o222 or not os.access(target, os.W_OK)):
+        raise InputError("the file is read-only; nothing was written", target)
     return True

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import numpy as np
+from numpy.typing import ArrayLike
+
 from inertia_kit.mass import MassProperties
 from inertia_kit.text import xml_number
 
@@ -9,31 +12,38 @@ from inertia_kit.text import xml_number
 DIGITS = 6
 
 
-def inertial_values(properties: MassProperties, digits: int = DIGITS) -> dict[str, str]:
+# products of inertia below this share of the largest moment are under half the last digit
+# written of that moment: rounding noise of a rotation (rpy="1.5708 0 0") written as zero
+PRODUCT_FLOOR = 5e-6
+TENSOR = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
+
+
+def inertial_values(
+    properties: MassProperties, digits: int = DIGITS, rpy: ArrayLike = (0.0, 0.0, 0.0)
+) -> dict[str, str]:
     """
-    The attribute values of an ``<inertial>`` block for ``properties`` in link-frame axes
-    (``rpy = 0``): ``xyz``, ``rpy``, ``mass`` and the six tensor entries, as text.
+    The attribute values of an ``<inertial>`` block for ``properties`` (link frame, about the
+    COM) whose ``<origin rpy>`` is ``rpy``: ``xyz``, ``rpy``, ``mass`` and the six tensor
+    entries in those axes, as text.
     """
+    from inertia_kit.frames import rpy_matrix
+
     clean = properties.cleaned()
-    tensor = clean.inertia
+    rotation = rpy_matrix(rpy)
+    tensor = rotation.T @ clean.inertia @ rotation
+    floor = PRODUCT_FLOOR * np.abs(np.diag(tensor)).max()
 
     def number(value: float) -> str:
         return xml_number(value, digits)
 
     values = {
         "xyz": " ".join(number(x) for x in clean.com),
-        "rpy": "0 0 0",
+        "rpy": " ".join(number(a) for a in rpy) if np.any(rpy) else "0 0 0",
         "mass": xml_number(properties.mass, digits),
     }
-    for name, (i, j) in {
-        "ixx": (0, 0),
-        "ixy": (0, 1),
-        "ixz": (0, 2),
-        "iyy": (1, 1),
-        "iyz": (1, 2),
-        "izz": (2, 2),
-    }.items():
-        values[name] = number(tensor[i, j])
+    for name, (i, j) in TENSOR.items():
+        small = i != j and abs(tensor[i, j]) <= floor
+        values[name] = number(0.0 if small else tensor[i, j])
     return values
 
 

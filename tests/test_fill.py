@@ -372,26 +372,6 @@ def test_read_only_file_is_an_error_and_untouched(tmp_path: Path):
         path.chmod(stat.S_IRUSR | stat.S_IWUSR)
 
 
-def test_xacro_macro_links_are_refused(tmp_path: Path):
-    path = tmp_path / "robot.urdf.xacro"
-    text = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="part" params="name">
-    <link name="${name}">
-      <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:part name="arm"/>
-  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-</robot>
-"""
-    path.write_text(text)
-    result = CliRunner().invoke(fill_command, [str(path)])
-    assert result.exit_code == 2
-    assert "xacro sources are not supported yet" in result.stderr
-    assert path.read_text() == text
-
-
 def test_literal_link_in_xacro_is_filled(tmp_path: Path):
     path = tmp_path / "robot.urdf.xacro"
     text = ARM.replace(
