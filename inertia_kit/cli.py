@@ -610,6 +610,23 @@ def _material_help() -> str:
     help="A link's mass, kg; its tensor is scaled to it (repeatable).",
 )
 @click.option(
+    "--total-mass",
+    type=float,
+    default=None,
+    metavar="KG",
+    help="The robot's total mass, kg: the links without a known mass share what the others "
+    "leave, in proportion to their volume (instead of --density).",
+)
+@click.option(
+    "--config",
+    "config_path",
+    default=None,
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Configuration file whose [links.NAME] tables give a link's density or mass "
+    "[default: the nearest pyproject.toml with [tool.inertia-kit], or .inertia-kit.toml].",
+)
+@click.option(
     "--fix",
     type=click.Choice(["missing", "invalid", "all"]),
     default="missing",
@@ -649,6 +666,7 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-fill --material aluminium --mass gripper=0.35 --diff robot.urdf
       inertia-fill --fix invalid --check urdf/*.urdf
       inertia-fill --density 1200 -o robot_filled.urdf robot.urdf.xacro
+      inertia-fill --total-mass 12.5 --fix all robot.urdf.xacro
     """
     ctx.exit(fill(paths, **options))
 
@@ -673,6 +691,8 @@ def fill(
     density: float | None = None,
     material: str | None = None,
     mass_options: tuple[str, ...] = (),
+    total_mass: float | None = None,
+    config_path: str | None = None,
     fix: str = "missing",
     show_diff: bool = False,
     check: bool = False,
@@ -681,7 +701,8 @@ def fill(
     xacro_args: tuple[str, ...] = (),
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
-    from inertia_kit.errors import InputError
+    from inertia_kit.config import ConfigFinder
+    from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill import MATERIALS, apply, plan_fill, plan_fill_output, write_output
 
     try:
@@ -696,29 +717,47 @@ def fill(
             if material.lower() not in MATERIALS:
                 raise UsageError(f"--material: unknown {material!r}; known: {', '.join(MATERIALS)}")
             density = MATERIALS[material.lower()]
+        if total_mass is not None:
+            if density is not None:
+                raise UsageError("give --total-mass or --density/--material, not both")
+            if not (total_mass > 0 and total_mass != float("inf")):
+                raise UsageError(f"--total-mass must be a positive number of kg, got {total_mass}")
         if density is None:
             density = 1000.0
         if not (density > 0 and density != float("inf")):
             raise UsageError(f"--density must be a positive number of kg/m³, got {density}")
         masses = _masses(mass_options)
+        finder = ConfigFinder(config_path)
     except UsageError as error:
         click.echo(f"error: {error.format_message()}", err=True)
+        return 2
+    except ConfigError as error:
+        click.echo(f"error: {error}", err=True)
         return 2
 
     plans, failed = [], False
     options = {
         "density": density,
-        "masses": masses,
         "fix": fix,
         "package_paths": package_paths,
         "xacro_args": arguments,
+        "total_mass": total_mass,
     }
     for path in paths:
         try:
+            # configured per-link settings, under --mass given on the command line
+            links = finder.for_file(path).links
+            per_file = {
+                "masses": {n: v.mass for n, v in links.items() if v.mass is not None} | masses,
+                "densities": {n: v.density for n, v in links.items() if v.density is not None},
+            }
             if output is not None:
-                plans.append(plan_fill_output(path, output, **options))
+                plans.append(plan_fill_output(path, output, **options, **per_file))
             else:
-                plans.append(plan_fill(path, **options))
+                plans.append(plan_fill(path, **options, **per_file))
+        except ConfigError as error:
+            click.echo(f"error: {error}", err=True)
+            return 2
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             failed = True

@@ -12,11 +12,12 @@ What is filled (``fix``):
   IN010, IN011, IN020 (error) or IN023.
 - ``all``: every link with geometry.
 
-The mass: ``masses[link]`` when given; else a declared mass that is finite and positive (kept:
-it is usually measured or from CAD; the tensor and centre of mass are recomputed from the
-geometry for it); else the geometry's volume times ``density``. The centre of mass and tensor
-are always the geometry's at uniform density (collision shapes, else visual ones, overlaps
-counted once).
+The mass: ``masses[link]`` when given (``--mass``, or configured); else a declared mass that is
+finite and positive (kept: it is usually measured or from CAD; the tensor and centre of mass are
+recomputed from the geometry for it); else the geometry's volume times the link's configured
+density, else the density that makes the robot weigh ``total_mass``, else ``density``. The
+centre of mass and tensor are always the geometry's at uniform density (collision shapes, else
+visual ones, overlaps counted once).
 
 A link is refused (not filled, with the reason) when its geometry cannot be trusted: a mesh
 missing, unreadable, empty or wound inside-out, a mesh that looks authored in other units without
@@ -192,6 +193,8 @@ def plan_fill(
     fix: str = "missing",
     package_paths: Sequence[str | Path] = (),
     xacro_args: Mapping[str, str] | None = None,
+    densities: Mapping[str, float] | None = None,
+    total_mass: float | None = None,
 ) -> FillPlan:
     """
     Plan the ``<inertial>`` edits for one file (nothing is written).
@@ -201,47 +204,73 @@ def plan_fill(
     density : float
       kg/m³, for links without a given or kept mass.
     masses : mapping
-      ``link name -> kg``: the link's mass, its tensor scaled to it.
+      ``link name -> kg``: the link's mass, its tensor scaled to it (wins over a declared mass).
     fix : str
       ``missing``, ``invalid`` or ``all`` (see the module docstring).
+    densities : mapping
+      ``link name -> kg/m³`` for links without a given or kept mass (configuration).
+    total_mass : float
+      kg of the whole robot: the links that would take ``density`` take instead the one
+      density that brings the robot's total mass (declared, kept and given masses included)
+      to this; they are refused when the other links already weigh that much.
 
     Raises
     ------
     InputError
-      The file cannot be read or parsed, or a link to fill is not written literally in it
-      (produced by a xacro macro or include).
+      The file cannot be read or parsed.
     ValueError
-      Bad ``density``, ``masses`` or ``fix``.
+      Bad ``density``, ``masses``, ``densities``, ``total_mass`` or ``fix``.
     """
     from inertia_kit.fixes import read_source
     from inertia_kit.loader import load
 
-    masses = _check_options(density, masses, fix)
+    choice = _check_options(density, masses, fix, densities, total_mass)
     path = Path(path)
     source = read_source(path)
     robot = load(path, xacro_args=xacro_args, package_paths=package_paths)
-    return _plan(str(path), source, robot, density=density, masses=masses, fix=fix)
+    return _plan(str(path), source, robot, choice, fix=fix)
 
 
-def _check_options(density: float, masses: Mapping[str, float] | None, fix: str) -> dict:
+@dataclass(frozen=True)
+class MassChoice:
+    """Where a filled link's mass comes from; :func:`_mass` reads it in this order."""
+
+    density: float
+    masses: Mapping[str, float]
+    densities: Mapping[str, float]
+    total_mass: float | None
+
+
+def _check_options(
+    density: float,
+    masses: Mapping[str, float] | None,
+    fix: str,
+    densities: Mapping[str, float] | None = None,
+    total_mass: float | None = None,
+) -> MassChoice:
     if fix not in FIX_MODES:
         raise ValueError(f"fix must be one of {', '.join(FIX_MODES)}, got {fix!r}")
     if not (math.isfinite(density) and density > 0):
         raise ValueError(f"density must be a positive number of kg/m³, got {density}")
+    if total_mass is not None and not (math.isfinite(total_mass) and total_mass > 0):
+        raise ValueError(f"the total mass must be a positive number of kg, got {total_mass}")
     masses = dict(masses or {})
     for name, kg in masses.items():
         if not (math.isfinite(kg) and kg > 0):
             raise ValueError(f"the mass of `{name}` must be a positive number of kg, got {kg}")
-    return masses
+    densities = dict(densities or {})
+    for name, value in densities.items():
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"the density of `{name}` must be a positive number, got {value}")
+    return MassChoice(density, masses, densities, total_mass)
 
 
 def _plan(
     path: str,
     source: SourceText,
     robot: Robot,
+    choice: MassChoice,
     *,
-    density: float,
-    masses: Mapping[str, float],
     fix: str,
     input_path: str | None = None,
 ) -> FillPlan:
@@ -266,6 +295,7 @@ def _plan(
 
     targets: list[Target] = []
     bases: dict[str, str] = {}
+    chosen: dict[str, tuple[float | None, str]] = {}  # None: the share of --total-mass
     refused: list[Refusal] = []
     notes: list[str] = []
     seen: set[str] = set()
@@ -276,9 +306,9 @@ def _plan(
         codes_here = flagged.get(link.name, {})
         if not _targeted(link, codes_here, fix):
             if (
-                link.name in masses
+                link.name in choice.masses
                 and link.link.inertial is not None
-                and link.link.inertial.mass != masses[link.name]
+                and link.link.inertial.mass != choice.masses[link.name]
             ):
                 notes.append(
                     f"--mass {link.name}: the link has an <inertial>; not replaced "
@@ -291,7 +321,18 @@ def _plan(
             continue
         unit = link.geometry.unit
         assert unit is not None  # _refusal checked
-        mass, bases[link.name] = _mass(link, masses, density, unit.mass)
+        chosen[link.name] = _mass(link, choice, unit.mass)
+
+    if choice.total_mass is not None:
+        problem = _share_total(analysis, chosen, choice.total_mass)
+        if problem is not None:
+            refused.extend(Refusal(name, problem) for name, (m, b) in chosen.items() if m is None)
+            chosen = {name: (m, b) for name, (m, b) in chosen.items() if m is not None}
+    for name, (mass, basis) in chosen.items():
+        link = analysis.by_name[name]
+        unit = link.geometry.unit
+        assert unit is not None and mass is not None
+        bases[name] = basis
         targets.append(Target(link, unit.with_mass(mass)))
 
     files = Files.for_input(source.path)
@@ -357,6 +398,8 @@ def plan_fill_output(
     fix: str = "missing",
     package_paths: Sequence[str | Path] = (),
     xacro_args: Mapping[str, str] | None = None,
+    densities: Mapping[str, float] | None = None,
+    total_mass: float | None = None,
 ) -> FillPlan:
     """
     Plan filling ``path`` into a new file ``output`` (``inertia-fill -o``); nothing is written
@@ -373,22 +416,28 @@ def plan_fill_output(
     from inertia_kit.loader import needs_expansion
     from inertia_kit.safexml import read_bounded
 
-    masses = _check_options(density, masses, fix)
+    choice = _check_options(density, masses, fix, densities, total_mass)
     path, output = Path(path), Path(output)
     if output.exists() and path.exists() and output.resolve() == path.resolve():
         raise InputError("-o names the input file itself; give another output file", path)
     data = read_bounded(path)
     if not needs_expansion(data):
         # a URDF file: its own bytes, edited (offsets into them), written elsewhere
-        plan = plan_fill(path, density=density, masses=masses, fix=fix, package_paths=package_paths)
+        plan = plan_fill(
+            path,
+            density=density,
+            masses=masses,
+            fix=fix,
+            package_paths=package_paths,
+            densities=densities,
+            total_mass=total_mass,
+        )
         if "a xacro fragment without links" in plan.notes:
             raise InputError("a xacro fragment without links: no robot to write", path)
         return dataclasses.replace(plan, path=str(output), input_path=str(path))
     text, robot = _expanded(path, output, package_paths, xacro_args)
     source = SourceText(str(output), text.encode("utf-8"), text, "utf-8", b"")
-    return _plan(
-        str(output), source, robot, density=density, masses=masses, fix=fix, input_path=str(path)
-    )
+    return _plan(str(output), source, robot, choice, fix=fix, input_path=str(path))
 
 
 def write_output(plan: FillPlan) -> bool:
@@ -516,13 +565,58 @@ def _shape_name(solid) -> str:
     return f"{solid.shape.kind} {shape_text(solid.shape.geometry)}"
 
 
-def _mass(
-    link: LinkAnalysis, masses: Mapping[str, float], density: float, volume: float
-) -> tuple[float, str]:
-    if link.name in masses:
-        return masses[link.name], "--mass"
+def _mass(link: LinkAnalysis, choice: MassChoice, volume: float) -> tuple[float | None, str]:
+    """The link's mass and where it comes from; ``None`` for a share of ``--total-mass``."""
+    if link.name in choice.masses:
+        return choice.masses[link.name], "given mass"
     inertial = link.link.inertial
     declared = None if inertial is None else inertial.mass
     if isinstance(declared, float) and math.isfinite(declared) and declared > 0:
         return declared, "declared mass"
-    return density * volume, f"{density:g} kg/m³"
+    if link.name in choice.densities:
+        density = choice.densities[link.name]
+        return density * volume, f"{density:g} kg/m³ (configured)"
+    if choice.total_mass is not None:
+        return None, "--total-mass"
+    return choice.density * volume, f"{choice.density:g} kg/m³"
+
+
+def _share_total(analysis, chosen: dict[str, tuple[float | None, str]], total: float) -> str | None:
+    """
+    Give the links waiting for a share of ``total`` (kg) the one density that makes the robot
+    weigh ``total``: what the other links weigh (declared, kept or given masses) is subtracted
+    first. Updates ``chosen``; returns why it cannot (the others already weigh that much).
+    """
+    waiting = [name for name, (mass, _) in chosen.items() if mass is None]
+    if not waiting:
+        return None
+    others = 0.0
+    for link in analysis.links:
+        if link.name in chosen:
+            mass = chosen[link.name][0]
+        else:
+            inertial = link.link.inertial
+            mass = None if inertial is None else inertial.mass
+        if isinstance(mass, float) and math.isfinite(mass) and mass > 0:
+            others += mass
+    volume = 0.0
+    for name in waiting:
+        unit = analysis.by_name[name].geometry.unit
+        assert unit is not None
+        volume += unit.mass
+    remainder = total - others
+    if not remainder > 0:
+        return (
+            f"--total-mass {total:g} kg leaves nothing for it: the other links already weigh "
+            f"{others:.6g} kg; give a larger total, or --mass LINK=KG"
+        )
+    density = remainder / volume
+    for name in waiting:
+        unit = analysis.by_name[name].geometry.unit
+        assert unit is not None
+        chosen[name] = (
+            density * unit.mass,
+            f"--total-mass {total:g} kg ({density:.6g} kg/m³ for the {len(waiting)} links "
+            "without a mass)",
+        )
+    return None

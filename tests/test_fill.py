@@ -608,3 +608,93 @@ def test_output_of_a_xacro_resolves_meshes_from_its_sources(tmp_path: Path):
     m, ixx, iyy, izz = box((0.1, 0.2, 0.3), density=1000)
     assert mass == pytest.approx(m, rel=1e-5)
     assert [inertia[k] for k in ("ixx", "iyy", "izz")] == pytest.approx([ixx, iyy, izz], rel=1e-5)
+
+
+# --- --total-mass and per-link configuration ---------------------------------------------------
+
+TWO_LINKS = """<robot name="r">
+  <link name="base">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+    <inertial><mass value="2"/>
+      <inertia ixx="0.00833333" ixy="0" ixz="0" iyy="0.00833333" iyz="0" izz="0.0133333"/>
+    </inertial>
+  </link>
+  {j1}
+  <link name="upper">
+    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+  {j2}
+  <link name="lower">
+    <collision><geometry><box size="0.1 0.1 0.2"/></geometry></collision>
+  </link>
+</robot>
+""".format(j1=joint("upper"), j2=joint("lower", parent="upper"))
+
+
+def filled_two_links(upper_mass: float, lower_mass: float) -> str:
+    return TWO_LINKS.replace(
+        '<link name="upper">\n',
+        '<link name="upper">\n'
+        + block(box((0.1, 0.1, 0.4), mass=upper_mass), indent="    ")
+        + "\n",
+    ).replace(
+        '<link name="lower">\n',
+        '<link name="lower">\n'
+        + block(box((0.1, 0.1, 0.2), mass=lower_mass), indent="    ")
+        + "\n",
+    )
+
+
+def test_total_mass_is_shared_by_volume_after_the_declared_masses(tmp_path: Path):
+    """5 kg in all, the base declares 2: the other 3 kg go 2:1 to the 4 L and 2 L boxes."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    result = CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert path.read_text() == filled_two_links(2.0, 1.0)
+    assert "upper 2 kg, lower 1 kg" in result.stderr
+    assert CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)]).exit_code == 0
+
+
+def test_total_mass_below_what_the_others_weigh_is_refused(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    result = CliRunner().invoke(fill_command, ["--total-mass", "1.5", str(path)])
+    assert result.exit_code == 1
+    assert "link `upper` not filled: --total-mass 1.5 kg leaves nothing" in result.stderr
+    assert "already weigh 2 kg" in result.stderr
+    assert path.read_text() == TWO_LINKS
+
+
+@pytest.mark.parametrize(
+    "args", [("--total-mass", "5", "--density", "1000"), ("--total-mass", "-1")]
+)
+def test_total_mass_usage_errors(args, tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    result = CliRunner().invoke(fill_command, [*args, str(path)])
+    assert result.exit_code == 2 and "--total-mass" in result.stderr
+
+
+def test_configured_link_density_and_mass(tmp_path: Path):
+    """[links.NAME] in .inertia-kit.toml: a density for one link, a mass for another; a
+    --mass on the command line wins over the configured one."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    (tmp_path / ".inertia-kit.toml").write_text(
+        "[links.upper]\ndensity = 2700.0\n\n[links.lower]\nmass = 0.75\n"
+    )
+    result = CliRunner().invoke(fill_command, ["--diff", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert "upper 10.8 kg, lower 0.75 kg" in result.stderr
+    result = CliRunner().invoke(fill_command, ["--mass", "lower=0.5", str(path)])
+    assert path.read_text() == filled_two_links(2700 * 0.004, 0.5)
+
+
+def test_bad_configuration_exits_2(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    (tmp_path / ".inertia-kit.toml").write_text("[links.upper]\ndensity = -1.0\n")
+    result = CliRunner().invoke(fill_command, [str(path)])
+    assert result.exit_code == 2 and ".inertia-kit.toml" in result.stderr
+    assert path.read_text() == TWO_LINKS
