@@ -456,3 +456,17 @@ def test_every_example_after_fix_invalid(robot: str, tmp_path: Path):
         if f.link in filled and (f.code != "IN020" or f.severity.name == "ERROR")
     ]
     assert bad == []
+
+
+def test_readme_shows_the_real_mrm_run(monkeypatch):
+    """The README's mrm run is what the command prints (its '...' stands for two hunks)."""
+    readme = (EXAMPLES.parent / "README.md").read_text()
+    command = "$ inertia-fill --fix all --density 1024 --diff mrm_description/urdf/mrm.xacro\n"
+    shown = readme[readme.index(command) + len(command) :]
+    shown = shown[: shown.index("```")]
+    monkeypatch.chdir(EXAMPLES)
+    result = CliRunner().invoke(fill_command, command.split()[1:])
+    assert result.exit_code == 1
+    printed = result.stdout + result.stderr
+    for part in shown.split("...\n"):
+        assert part in printed
