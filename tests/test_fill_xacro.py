@@ -465,8 +465,8 @@ def test_readme_shows_the_real_mrm_run(monkeypatch):
     shown = readme[readme.index(command) + len(command) :]
     shown = shown[: shown.index("```")]
     monkeypatch.chdir(EXAMPLES)
-    result = CliRunner().invoke(fill_command, command.split()[1:])
-    assert result.exit_code == 1
+    result = CliRunner().invoke(fill_command, command.split()[2:])
+    assert result.exit_code == 1, result.stderr
     printed = result.stdout + result.stderr
     for part in shown.split("...\n"):
         assert part in printed
