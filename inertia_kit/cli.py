@@ -379,16 +379,44 @@ def _xacro_args(values: tuple[str, ...]) -> dict[str, str]:
     default="text",
     show_default=True,
 )
+@click.option(
+    "--lumped",
+    is_flag=True,
+    help="Instead, the bodies each engine simulates after fixed-joint lumping: their links, "
+    "combined mass, COM and tensor, and the links the engine drops.",
+)
+@click.option(
+    "--engine",
+    "engines",
+    multiple=True,
+    metavar="NAMES",
+    help="With --lumped: mujoco, gazebo, drake, pybullet, kdl or all, comma-separated "
+    "(repeatable) [default: all].",
+)
 @package_path_option
 @xacro_arg_option
 def report_command(
-    path: str, output_format: str, package_paths: tuple[str, ...], xacro_args: tuple[str, ...]
+    path: str,
+    output_format: str,
+    lumped: bool,
+    engines: tuple[str, ...],
+    package_paths: tuple[str, ...],
+    xacro_args: tuple[str, ...],
 ) -> None:
     """A table of the robot's links: parent joint, declared mass, COM, principal moments,
-    geometry and the source line to edit; and the robot's total mass."""
+    geometry and the source line to edit; and the robot's total mass. With --lumped, the
+    bodies each engine simulates."""
+    from inertia_kit.engines import ENGINES, parse_engines
     from inertia_kit.errors import InputError
     from inertia_kit.loader import load
-    from inertia_kit.robot_report import render
+    from inertia_kit.robot_report import render, render_lumped
+
+    if engines and not lumped:
+        raise UsageError("--engine needs --lumped")
+    try:
+        chosen = parse_engines(engines) if engines else ENGINES
+    except ValueError as error:
+        raise UsageError(f"--engine: {error}") from None
 
     try:
         robot = load(path, xacro_args=_xacro_args(xacro_args), package_paths=package_paths)
@@ -400,7 +428,10 @@ def report_command(
             err=True,
         )
         return
-    click.echo(render(robot, output_format))
+    if lumped:
+        click.echo(render_lumped(robot, chosen, output_format))
+    else:
+        click.echo(render(robot, output_format))
 
 
 # --- inertia-lint (inertia-kit lint) ----------------------------------------------------------
@@ -445,6 +476,15 @@ def _colour() -> bool | None:
     help="Rules not to run, as --select (repeatable); added to the configured ignore list.",
 )
 @click.option(
+    "--engine",
+    "engines",
+    multiple=True,
+    metavar="NAMES",
+    help="Predict what these simulators do with each link (loads, silently changes or "
+    "refuses it, with the engine's own message): mujoco, gazebo, drake, pybullet, kdl or all, "
+    "comma-separated (repeatable). Replaces the configured `engines`; none by default.",
+)
+@click.option(
     "--fail-on",
     type=click.Choice(["error", "warning", "info"]),
     default=None,
@@ -484,6 +524,7 @@ def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
     Examples:
       inertia-lint urdf/
       inertia-lint --select IN01,IN020 --output-format concise robot.urdf.xacro
+      inertia-lint --engine mujoco,gazebo robot.urdf
       inertia-lint --explain IN002
     """
     ctx.exit(lint(paths, **options))
@@ -495,6 +536,7 @@ def lint(
     output_format: str = "full",
     select: tuple[str, ...] = (),
     ignore: tuple[str, ...] = (),
+    engines: tuple[str, ...] = (),
     fail_on: str | None = None,
     exit_zero: bool = False,
     statistics: bool = False,
@@ -529,6 +571,7 @@ def lint(
             config=config_path,
             select=_codes(select),
             ignore=_codes(ignore),
+            engines=engines or None,
             fail_on=None if fail_on is None else Severity.parse(fail_on),
             xacro_args=_xacro_args(xacro_args),
             package_paths=package_paths,

@@ -18,6 +18,8 @@ and the key (the command exits 2).
     extend-select = []                # added to select
     ignore = ["IN013"]
     fail-on = "warning"               # error | warning | info
+    engines = ["mujoco"]              # verdict rules (IN07x) of: mujoco gazebo drake pybullet
+                                      # kdl, or "all"; none by default
     [tool.inertia-kit.per-file-ignores]
     "urdf/legacy/*.xacro" = ["IN02"]  # globs relative to this file's folder; no "/": any folder
     [tool.inertia-kit.rules.IN012]    # a code or a rule name
@@ -52,7 +54,16 @@ else:  # pragma: no cover - exercised on Python 3.10 only
 CONFIG_NAME = ".inertia-kit.toml"
 PYPROJECT = "pyproject.toml"
 
-KEYS = ("select", "extend-select", "ignore", "per-file-ignores", "fail-on", "rules", "links")
+KEYS = (
+    "select",
+    "extend-select",
+    "ignore",
+    "per-file-ignores",
+    "fail-on",
+    "engines",
+    "rules",
+    "links",
+)
 LINK_KEYS = ("density", "mass")
 _CODE = re.compile(r"IN[0-9]{0,3}", re.IGNORECASE)
 
@@ -166,6 +177,7 @@ class Config:
     options: dict[str, dict[str, Any]] = field(default_factory=dict)  # code -> option -> value
     severities: dict[str, Severity] = field(default_factory=dict)  # code -> severity
     links: dict[str, LinkSettings] = field(default_factory=dict)
+    engines: tuple[str, ...] = ()  # engines whose verdict rules run (IN07x)
 
 
 # --- reading ----------------------------------------------------------------------------------
@@ -291,6 +303,7 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
         options=options,
         severities=severities,
         links=_links(where, table.get("links", {})),
+        engines=where.engines(table.get("engines", []), "engines"),
     )
 
 
@@ -433,6 +446,20 @@ class _Where:
                 self.fail(key, selector_error(item, known))
             selectors.append(selector)
         return tuple(selectors)
+
+    def engines(self, value: Any, key: str) -> tuple[str, ...]:
+        from inertia_kit.engines import ALL, ENGINES, parse_engines
+
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            self.fail(
+                key,
+                f'expected a list of engine names, e.g. ["mujoco"] ({", ".join(ENGINES)} or '
+                f'"{ALL}"), got {_shown(value)}',
+            )
+        try:
+            return parse_engines(value)
+        except ValueError as error:
+            self.fail(key, str(error))
 
     def severity(self, value: Any, key: str) -> Severity:
         try:

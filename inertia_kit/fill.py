@@ -9,7 +9,10 @@ What is filled (``fix``):
   fixed links with visual geometry only, are left alone.
 - ``invalid``: those, and links whose ``<inertial>`` is impossible: incomplete or not numeric
   (IN003/IN004), not a possible rigid body (``MassProperties.validity``), or reported by
-  IN010, IN011, IN020 (error) or IN023.
+  IN010, IN011, IN020 (error) or IN023; and links whose tensor shows a recognised slip
+  (IN060-IN064: about the link origin, flipped product signs, other axes, a unit slip,
+  transposed values), which get their declared values with the slip undone
+  (:func:`inertia_kit.forensics.diagnose_link`), not the geometry's.
 - ``all``: every link with geometry.
 
 The mass: ``masses[link]`` when given (``--mass``, or configured); else a declared mass that is
@@ -41,11 +44,11 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.errors import InputError
 from inertia_kit.findings import Edit, Severity
+from inertia_kit.mass import MassProperties
 
 if TYPE_CHECKING:
     from inertia_kit.analysis import LinkAnalysis
     from inertia_kit.fixes import SourceText
-    from inertia_kit.mass import MassProperties
     from inertia_kit.model import Robot
 
 # kg/m³, typical values for ``--material``: solid parts; 3D-printed parts are lighter at partial
@@ -284,7 +287,7 @@ def _plan(
             path, source, notes=("a xacro fragment without links",), input_path=input_path
         )
     analysis = analyse(robot)
-    codes = ("IN001", "IN031") + (_IMPOSSIBLE if fix != "missing" else ())
+    codes = ("IN001", "IN031") + ((*_IMPOSSIBLE, "IN021") if fix != "missing" else ())
     findings = run_rules(analysis, Selection(select=codes))
     flagged: dict[str, dict[str, list]] = {}
     for finding in findings:
@@ -296,6 +299,7 @@ def _plan(
     targets: list[Target] = []
     bases: dict[str, str] = {}
     chosen: dict[str, tuple[float | None, str]] = {}  # None: the share of --total-mass
+    corrected: dict[str, MassProperties] = {}  # declared values with a known slip undone
     refused: list[Refusal] = []
     notes: list[str] = []
     seen: set[str] = set()
@@ -321,6 +325,18 @@ def _plan(
             continue
         unit = link.geometry.unit
         assert unit is not None  # _refusal checked
+        diagnosis = None if fix != "invalid" else _diagnosis(link, choice)
+        if diagnosis is not None:
+            # a recognised slip (IN06x): the declared values with the slip undone keep what
+            # CAD knew about the real part; the geometry's uniform solid would lose it. A
+            # centre of mass IN021 rejects is the geometry's (the tensor is about the COM,
+            # wherever that is)
+            fixed = diagnosis.corrected
+            if "IN021" in codes_here:
+                fixed = MassProperties(fixed.mass, unit.com, fixed.inertia)
+            corrected[link.name] = fixed
+            chosen[link.name] = (fixed.mass, f"declared, corrected ({diagnosis.code})")
+            continue
         chosen[link.name] = _mass(link, choice, unit.mass)
 
     if choice.total_mass is not None:
@@ -333,7 +349,8 @@ def _plan(
         unit = link.geometry.unit
         assert unit is not None and mass is not None
         bases[name] = basis
-        targets.append(Target(link, unit.with_mass(mass)))
+        properties = corrected.get(name) or unit.with_mass(mass)
+        targets.append(Target(link, properties))
 
     files = Files.for_input(source.path)
     files.add(source)
@@ -521,7 +538,21 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
         return True  # incomplete, not numeric, or no possible rigid body
     if any(code in codes for code in ("IN010", "IN011", "IN023")):
         return True
-    return any(f.severity >= Severity.ERROR for f in codes.get("IN020", ()))
+    if any(f.severity >= Severity.ERROR for f in codes.get("IN020", ())):
+        return True
+    from inertia_kit.forensics import diagnose_link
+
+    return diagnose_link(link) is not None  # a recognised slip (IN06x)
+
+
+def _diagnosis(link: LinkAnalysis, choice: MassChoice):
+    """The IN06x diagnosis whose corrected values ``--fix invalid`` writes (``None`` when the
+    link has none, or a mass is given for it: then the geometry's tensor for that mass)."""
+    from inertia_kit.forensics import diagnose_link
+
+    if link.name in choice.masses:
+        return None
+    return diagnose_link(link)
 
 
 def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:

@@ -49,6 +49,8 @@ class Selection:
     options: dict[str, dict[str, Any]] = field(default_factory=dict)  # code -> option -> value
     severities: dict[str, Severity] = field(default_factory=dict)  # code -> severity
     per_file_ignores: tuple[PerFileIgnore, ...] = ()
+    # engines whose rules (IN07x, modules with an ENGINE) run: they never run by ``select``
+    engines: tuple[str, ...] = ()
 
     @staticmethod
     def matches(rule: ModuleType, patterns: Iterable[str]) -> bool:
@@ -58,7 +60,12 @@ class Selection:
         return [
             rule
             for rule in rules
-            if self.matches(rule, self.select) and not self.matches(rule, self.ignore)
+            if (
+                rule.ENGINE in self.engines
+                if hasattr(rule, "ENGINE")
+                else self.matches(rule, self.select)
+            )
+            and not self.matches(rule, self.ignore)
         ]
 
     def ignored(self, finding: Finding, linted: str | Path) -> bool:
@@ -77,19 +84,30 @@ class Selection:
 
 
 def selection_for(
-    config: Config, select: Sequence[str] = (), ignore: Sequence[str] = ()
+    config: Config,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
+    engines: Sequence[str] | None = None,
 ) -> Selection:
     """
     The selection for files under ``config``, with the command line's ``--select`` and
     ``--ignore`` on top (as ruff: ``--select`` replaces the configured select and ignore lists;
     ``--ignore`` adds to them). Options, severities and per-file ignores always apply.
+    ``engines`` (``--engine``), when given, replaces the configured ``engines``.
     """
     if select:
         chosen, dropped = tuple(select), tuple(ignore)
     else:
         chosen = (DEFAULT_SELECT if config.select is None else config.select) + config.extend_select
         dropped = config.ignore + tuple(ignore)
-    return Selection(chosen, dropped, config.options, config.severities, config.per_file_ignores)
+    return Selection(
+        chosen,
+        dropped,
+        config.options,
+        config.severities,
+        config.per_file_ignores,
+        config.engines if engines is None else tuple(engines),
+    )
 
 
 def run_rules(
@@ -99,7 +117,10 @@ def run_rules(
 ) -> list[Finding]:
     """Every finding of the enabled rules on one analysed robot, sorted, duplicates once."""
     findings: dict[tuple, Finding] = {}
-    for rule in selection.enabled(registry.load_rules() if rules is None else rules):
+    enabled = selection.enabled(registry.load_rules() if rules is None else rules)
+    # code -> the codes whose findings on the same link it replaces (IN06x explains an IN020)
+    supersedes = {rule.CODE: getattr(rule, "SUPERSEDES", ()) for rule in enabled}
+    for rule in enabled:
         ctx = RuleContext(
             rule, selection.options.get(rule.CODE, {}), selection.severities.get(rule.CODE)
         )
@@ -112,7 +133,11 @@ def run_rules(
                     finding = dataclasses.replace(finding, severity=configured)
                 # Finding compares by place and code only: two messages at one place are two
                 findings.setdefault(_order(finding), finding)
-    return [findings[key] for key in sorted(findings)]
+    replaced = {
+        (code, f.link) for f in findings.values() if f.link for code in supersedes.get(f.code, ())
+    }
+    kept = [findings[key] for key in sorted(findings)]
+    return [f for f in kept if (f.code, f.link) not in replaced]
 
 
 def _order(finding: Finding) -> tuple:
@@ -224,13 +249,16 @@ def lint_paths(
     xacro_args: dict[str, str] | None = None,
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
+    engines: Sequence[str] | None = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
-    nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one.
+    nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one,
+    ``engines`` (names, comma-separated or ``all``; ``None``: the configured ones) instead of
+    the configured ones.
 
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
-    configuration or a ``select``/``ignore`` entry that names no rule.
+    configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     """
     from inertia_kit.config import ConfigFinder, catalog, normalize_selector, selector_error
     from inertia_kit.errors import ConfigError
@@ -245,13 +273,20 @@ def lint_paths(
         return selectors  # type: ignore[return-value]
 
     select, ignore = checked("--select", select), checked("--ignore", ignore)
+    if engines is not None:
+        from inertia_kit.engines import parse_engines
+
+        try:
+            engines = parse_engines(engines)
+        except ValueError as error:
+            raise ConfigError(f"--engine: {error}") from None
     finder = ConfigFinder(config)
     plan = [(file, finder.for_file(file)) for file in expand_paths(paths)]
     results = []
     for file, found in plan:
         result = lint_file(
             file,
-            selection_for(found, select, ignore),
+            selection_for(found, select, ignore, engines),
             xacro_args=xacro_args,
             package_paths=package_paths,
             load_mesh=load_mesh,

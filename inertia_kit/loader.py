@@ -364,6 +364,7 @@ class Builder:
             )
         self.order = {element: index for index, element in enumerate(root.iter())}
         links, joints, materials = [], [], []
+        extensions: list[model.Extension] = []
         for child in root:
             tag = self.tag(child)
             if tag == "link":
@@ -372,6 +373,8 @@ class Builder:
                 joints.append(self.joint(child))
             elif tag == "material":
                 materials.append(model.Material(child.get("name", ""), self.source_of(child)))
+            elif tag == "gazebo":
+                extensions.append(self.extension(child))
         return model.Robot(
             root.get("name"),
             tuple(links),
@@ -380,7 +383,16 @@ class Builder:
             self.source_of(root),
             self.files,
             tuple(sorted(self.invalid, key=self.document_order)),
+            extensions=tuple(extensions),
         )
+
+    def extension(self, element: etree._Element) -> model.Extension:
+        tags = tuple(
+            (etree.QName(child).localname, (child.text or "").strip())
+            for child in element
+            if isinstance(child.tag, str)
+        )
+        return model.Extension(element.get("reference"), tags, self.source_of(element))
 
     def document_order(self, invalid: model.Invalid) -> tuple[int, int]:
         element, attribute = self.located[id(invalid)]

@@ -198,6 +198,22 @@ class Material:
 
 
 @dataclass(frozen=True)
+class Extension:
+    """
+    A ``<gazebo>`` element (SDFormat's URDF extension): ``reference`` names a link or joint, or is
+    ``None`` for the robot; ``tags`` are its child elements as (tag, text) pairs, in order.
+    """
+
+    reference: str | None
+    tags: tuple[tuple[str, str], ...]
+    source: Source
+
+    def flag(self, tag: str) -> bool:
+        """Whether ``<tag>`` is set to true (``true``, ``yes`` or ``1``, as sdformat reads it)."""
+        return any(t == tag and v.strip().lower() in ("true", "yes", "1") for t, v in self.tags)
+
+
+@dataclass(frozen=True)
 class Robot:
     """
     A robot description as loaded: links and joints in document order (names may repeat in a
@@ -212,6 +228,7 @@ class Robot:
     files: tuple[str, ...] = ()
     invalid: tuple[Invalid, ...] = field(default=())
     fragment: bool = False  # a xacro file of macros and properties only, meant to be included
+    extensions: tuple[Extension, ...] = ()  # <gazebo> elements, in document order
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

@@ -173,7 +173,8 @@ def test_no_config_gives_the_defaults(tmp_path):
         (
             "[tool.inertia-kit]\nselct = []\n",
             "`tool.inertia-kit.selct`: unknown key (did you mean `select`?); known here: "
-            "`select`, `extend-select`, `ignore`, `per-file-ignores`, `fail-on`, `rules`, `links`",
+            "`select`, `extend-select`, `ignore`, `per-file-ignores`, `fail-on`, `engines`, "
+            "`rules`, `links`",
         ),
         (
             "[tool.inertia-kit.rules.IN098]\nlimt = 1\n",

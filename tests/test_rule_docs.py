@@ -42,14 +42,28 @@ def meshes(doc: Path) -> list[tuple[str, str]]:
     return MESH.findall(doc.read_text())
 
 
-def lint_example(tmp_path: Path, name: str, text: str, files: Iterable[tuple[str, str]] = ()):
+def engines_of(doc: Path) -> tuple[str, ...]:
+    """An engine rule's document is linted with its engine chosen (`--engine`); others with none."""
+    code = doc.stem.split("-", 1)[0]
+    rule = {r.CODE: r for r in load_rules()}.get(code)
+    engine = getattr(rule, "ENGINE", None)
+    return () if engine is None else (engine,)
+
+
+def lint_example(
+    tmp_path: Path,
+    name: str,
+    text: str,
+    files: Iterable[tuple[str, str]] = (),
+    engines: tuple[str, ...] = (),
+):
     for mesh_name, mesh_text in files:
         mesh_path = tmp_path / mesh_name
         mesh_path.parent.mkdir(parents=True, exist_ok=True)
         mesh_path.write_text(mesh_text)
     path = tmp_path / name
     path.write_text(text)
-    result = lint_file(path, Selection())
+    result = lint_file(path, Selection(engines=engines))
     assert result.error is None, result.error
     return result.findings
 
@@ -72,7 +86,7 @@ def test_document_shape(doc):
 def test_fail_example_triggers_only_its_rule(doc, tmp_path):
     code = doc.stem.split("-", 1)[0]
     for name, text in examples(doc)["fail"]:
-        findings = lint_example(tmp_path, name, text, meshes(doc))
+        findings = lint_example(tmp_path, name, text, meshes(doc), engines_of(doc))
         codes = {f.code for f in findings}
         assert codes == {code}, [str((f.code, f.message)) for f in findings]
 
@@ -80,7 +94,7 @@ def test_fail_example_triggers_only_its_rule(doc, tmp_path):
 @pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
 def test_fixed_example_triggers_nothing(doc, tmp_path):
     for name, text in examples(doc)["fixed"]:
-        findings = lint_example(tmp_path, name, text, meshes(doc))
+        findings = lint_example(tmp_path, name, text, meshes(doc), engines_of(doc))
         assert findings == [], [str((f.code, f.message)) for f in findings]
 
 

@@ -55,6 +55,16 @@ RULE_MODULES: tuple[str, ...] = (
     "in042_extreme_mass_ratio",
     "in050_joint_limits",
     "in051_joint_axis",
+    "in060_inertia_about_other_point",
+    "in061_product_signs_flipped",
+    "in062_inertia_in_other_axes",
+    "in063_inertia_unit_slip",
+    "in064_inertia_attributes_transposed",
+    "in070_mujoco_verdict",
+    "in071_gazebo_verdict",
+    "in072_drake_verdict",
+    "in073_pybullet_verdict",
+    "in074_kdl_verdict",
 )
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 
 import numpy as np
@@ -11,7 +10,8 @@ from numpy.typing import NDArray
 from inertia_kit import model
 from inertia_kit.analysis import LinkAnalysis, RobotAnalysis
 from inertia_kit.findings import Finding, Severity
-from inertia_kit.frames import inverse, rpy_matrix, transform
+from inertia_kit.frames import rpy_matrix
+from inertia_kit.lumping import lumped, positive_mass
 from inertia_kit.mass import MassProperties
 from inertia_kit.rules import RuleContext
 from inertia_kit.text import fmt
@@ -33,16 +33,6 @@ ZERO_ATOL = 1e-18  # kg·m²: 1 mg at 1 µm
 # --- shared with IN011/IN012 ------------------------------------------------------------------
 
 
-def positive_mass(link: LinkAnalysis) -> MassProperties | None:
-    """The declared values when complete, finite and with mass > 0 (else another rule's)."""
-    declared = link.declared
-    if declared is None or not (declared.mass > 0 and math.isfinite(declared.mass)):
-        return None
-    if not np.isfinite(declared.inertia).all():
-        return None
-    return declared
-
-
 def moments(declared: MassProperties) -> NDArray[np.float64]:
     """(3,) principal moments, ascending, kg·m²."""
     return declared.principal_moments
@@ -55,53 +45,6 @@ def zero_tolerance(principal: NDArray[np.float64]) -> float:
 def welded_to_world(robot: RobotAnalysis, name: str) -> bool:
     """Whether a fixed-joint path joins ``name`` to a link called ``world`` (a static body)."""
     return any(member.name == "world" for member in robot.group_of(name))
-
-
-def _joint_pose(joint: model.Joint) -> NDArray[np.float64] | None:
-    xyz, rpy = joint.origin.xyz, joint.origin.rpy
-    if not isinstance(xyz, tuple) or not isinstance(rpy, tuple):
-        return None
-    return transform(xyz, rpy)
-
-
-def lumped(robot: RobotAnalysis, name: str) -> MassProperties | None:
-    """
-    The body simulators make of ``name`` and the links welded to it by fixed joints: the sum of
-    their declared mass properties (complete, finite, mass > 0), in ``name``'s frame.
-
-    ``None`` when no member has usable values, or a fixed joint's origin is not numeric.
-    """
-    poses: dict[str, NDArray[np.float64]] = {name: np.eye(4)}
-    stack = [name]
-    total: MassProperties | None = None
-    while stack:
-        current = stack.pop()
-        link = robot.by_name.get(current)
-        if link is None:
-            continue
-        pose = poses[current]
-        declared = positive_mass(link)
-        if declared is not None:
-            placed = declared.transformed(pose)
-            total = placed if total is None else total + placed
-        neighbours = []
-        parent = link.parent
-        if parent is not None and parent.type == "fixed" and parent.parent:
-            origin = _joint_pose(parent)
-            if origin is None:
-                return None
-            neighbours.append((parent.parent, pose @ inverse(origin)))
-        for joint in link.children:
-            if joint.type == "fixed" and joint.child:
-                origin = _joint_pose(joint)
-                if origin is None:
-                    return None
-                neighbours.append((joint.child, pose @ origin))
-        for other, other_pose in neighbours:
-            if other not in poses:
-                poses[other] = other_pose
-                stack.append(other)
-    return total
 
 
 def lumped_positive_definite(robot: RobotAnalysis, link: LinkAnalysis) -> bool:

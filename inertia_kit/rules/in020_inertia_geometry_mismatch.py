@@ -15,7 +15,8 @@ from inertia_kit.analysis import (
     compare_tensors,
 )
 from inertia_kit.findings import Finding, Severity
-from inertia_kit.mass import MassProperties, shift_tensor
+from inertia_kit.forensics import diagnose_basis
+from inertia_kit.mass import MassProperties
 from inertia_kit.rules import RuleContext
 from inertia_kit.text import fmt
 
@@ -30,10 +31,10 @@ SUMMARY = (
 OPTIONS = {"factor": float, "factor_below": float}
 DEFAULTS = {"factor": 2.5, "factor_below": 5.0}
 
-# A recognised mistake is reported from a smaller deviation than the factors: the declared
-# tensor matches (within MATCH) the geometry's written for other axes, or about the link
-# origin, yet differs from the right one by more than MISMATCH about some axis.
-MATCH = 1.1
+# A slip that forensics recognises (inertia_kit.forensics: about another point, other axes, a
+# unit, flipped signs, transposed values) is reported from a smaller deviation than the factors:
+# more than MISMATCH about some axis. With its IN06x rule enabled, that rule's finding replaces
+# this one (SUPERSEDES); otherwise the slip is named here.
 MISMATCH = 1.5
 
 
@@ -62,41 +63,22 @@ def _prefer_link_axis(
     return axis
 
 
-def _mistake(declared: MassProperties, expected: MassProperties) -> str | None:
-    """Why the declared tensor differs, when it is a known mistake; else ``None``."""
-    principal = declared.principal_moments / expected.principal_moments
-    if np.all(np.abs(np.log(principal)) <= np.log(MATCH)):
-        return (
-            "its principal moments match the geometry's: the tensor is written for other axes "
-            "(check <inertial><origin rpy>)"
-        )
-    offset = declared.com
-    if np.linalg.norm(offset) > 0:
-        about_origin = expected.inertia + shift_tensor(declared.mass, offset)
-        match = compare_tensors(declared.inertia, about_origin)
-        if match is not None and match.factor <= MATCH:
-            term = declared.mass * float(offset @ offset)
-            return (
-                "it is the geometry's tensor about the link origin, not about the centre of "
-                f"mass (the parallel-axis term m·d² is {fmt(term, 4)} kg·m²)"
-            )
-    return None
-
-
 def _verdict(
-    declared: MassProperties, expected: MassProperties, above: float, below: float
+    declared: MassProperties,
+    expected: MassProperties,
+    above: float,
+    below: float,
+    mistake: str | None,
 ) -> tuple[TensorComparison, str | None] | None:
-    """The comparison with one geometry and the mistake it shows, if it is far; else None."""
+    """The comparison with one geometry and the slip it shows, if it is far; else None."""
     comparison = compare_tensors(declared.inertia, expected.inertia)
     if comparison is None:
         return None
     ratios = comparison.ratios
     if ratios.max() > above or ratios.min() < 1.0 / below:
-        return comparison, _mistake(declared, expected)
-    if comparison.factor > MISMATCH:
-        mistake = _mistake(declared, expected)
-        if mistake is not None:
-            return comparison, mistake
+        return comparison, mistake
+    if comparison.factor > MISMATCH and mistake is not None:
+        return comparison, mistake
     return None
 
 
@@ -110,7 +92,10 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         expected = basis.at_mass(declared.mass)
         if expected is None:
             return
-        verdict = _verdict(declared, expected, above, below)
+        # a slip explained within rounding (an IN06x finding), else the likely one
+        diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
+        mistake = None if diagnosis is None else f"likely {diagnosis.summary} ({diagnosis.code})"
+        verdict = _verdict(declared, expected, above, below, mistake)
         # a tensor that agrees with either the collision or the visual geometry is fine
         if verdict is None:
             return

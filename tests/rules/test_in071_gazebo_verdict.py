@@ -1,0 +1,74 @@
+"""IN071 gazebo-verdict: edge cases beyond the document's examples."""
+
+from __future__ import annotations
+
+LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+BOX = (
+    '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+    'izz="0.01"/></inertial>'
+)
+
+
+def run(lint, body):
+    return lint(f'<robot name="r">{body}</robot>', select="IN071", engines=("gazebo",))
+
+
+def test_loads_unchanged_gives_nothing(lint):
+    assert run(lint, f'<link name="a">{BOX}</link>') == []
+
+
+def test_runs_only_with_its_engine(lint):
+    text = '<robot name="r"><link name="a"/></robot>'
+    assert lint(text, select="IN071") == []
+
+
+def test_massless_moving_link_dropped_with_subtree(lint):
+    found = run(
+        lint,
+        f"""<link name="a">{BOX}</link>
+        <joint name="j" type="revolute"><parent link="a"/><child link="b"/>{LIMIT}</joint>
+        <link name="b"><inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0"
+          iyz="0" izz="0"/></inertial></link>
+        <joint name="k" type="revolute"><parent link="b"/><child link="c"/>{LIMIT}</joint>
+        <link name="c">{BOX}</link>""",
+    )
+    assert [(f.link, f.joint) for f in found] == [("b", "j"), ("c", "k")]
+    first = found[0]
+    assert "has a mass value of less than or equal to zero" in first.message
+    assert "urdf2sdf: parent joint[j] ignored." in first.message
+    assert "urdf2sdf: link[b] is not modeled in sdf." in first.message
+    assert first.expected["verdict"] == "changes" and first.severity.name == "WARNING"
+    assert "ancestor `b`" in found[1].message
+
+
+def test_massless_frame_on_fixed_joint_is_lumped(lint):
+    body = f"""<link name="a">{BOX}</link>
+      <joint name="f" type="fixed"><parent link="a"/><child link="tool0"/></joint>
+      <link name="tool0"/>"""
+    assert run(lint, body) == []
+
+
+def test_preserved_massless_fixed_link_is_dropped(lint):
+    body = f"""<link name="a">{BOX}</link>
+      <joint name="f" type="fixed"><parent link="a"/><child link="tool0"/></joint>
+      <link name="tool0"/>
+      <gazebo reference="f"><preserveFixedJoint>true</preserveFixedJoint></gazebo>"""
+    (finding,) = run(lint, body)
+    assert finding.link == "tool0" and "allowing joint lumping by removing" in finding.message
+
+
+def test_tiny_mass_dropped_by_old_sdformat(lint):
+    body = f"""<link name="a">{BOX}</link>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/>{LIMIT}</joint>
+      <link name="b"><inertial><mass value="1e-7"/><inertia ixx="1e-9" ixy="0" ixz="0"
+        iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>"""
+    (finding,) = run(lint, body)
+    assert "has no inertia, not modeled in sdf" in finding.message
+
+
+def test_invalid_lumped_inertia_is_refused(lint):
+    body = """<link name="a"><inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0"
+      iyy="0.01" iyz="0" izz="0.05"/></inertial></link>"""
+    (finding,) = run(lint, body)
+    assert finding.severity.name == "ERROR"
+    assert finding.expected["engine_message"] == "A link named a has invalid inertia."

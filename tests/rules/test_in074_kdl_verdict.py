@@ -1,0 +1,35 @@
+"""IN074 kdl-verdict: edge cases beyond the document's examples."""
+
+from __future__ import annotations
+
+BOX = (
+    '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+    'izz="0.01"/></inertial>'
+)
+
+
+def run(lint, body):
+    return lint(f'<robot name="r">{body}</robot>', select="IN074", engines=("kdl",))
+
+
+def test_massless_root_gives_nothing(lint):
+    body = f"""<link name="root"/>
+      <joint name="f" type="fixed"><parent link="root"/><child link="a"/></joint>
+      <link name="a">{BOX}</link>"""
+    assert run(lint, body) == []
+
+
+def test_root_inertia_ignored_with_kdl_message(lint):
+    (finding,) = run(lint, f'<link name="a">{BOX}</link>')
+    assert finding.expected["engine_message"].startswith(
+        "The root link a has an inertia specified in the URDF, but KDL does not support"
+    )
+
+
+def test_floating_joint_becomes_fixed(lint):
+    body = f"""<link name="root"/>
+      <joint name="free" type="floating"><parent link="root"/><child link="a"/></joint>
+      <link name="a">{BOX}</link>"""
+    (finding,) = run(lint, body)
+    assert finding.joint == "free"
+    assert "Converting unknown joint type of joint 'free' into a fixed joint" in finding.message
