@@ -166,3 +166,15 @@ def test_simple_arm_tensor_for_the_wrong_axes_is_turned(tmp_path: Path):
     findings = lint_file(path, Selection()).findings
     assert not {f.code for f in findings} & {"IN062", "IN021", "IN020", "IN023"}
     assert 'cylinder_inertia mass="2.0"' in path.read_text()  # base_link was right: kept
+
+
+def test_a_mass_in_grams_is_written_in_kilograms(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(plate(values_of(turned_box()), mass=MASS * 1000))
+    assert "IN063" in {f.code for f in lint_file(path, Selection()).findings}
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1, result.stderr
+    inertial = load(path).links[1].inertial
+    assert inertial.mass == pytest.approx(MASS)
+    assert inertial.ixx == pytest.approx(turned_box()[0, 0], rel=1e-5)
+    assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 0
