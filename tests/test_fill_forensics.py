@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from robots import moving
 
 from inertia_kit import load
 from inertia_kit.cli import fill_command
@@ -38,13 +39,8 @@ def turned_box() -> np.ndarray:
 def plate(values: dict[str, float], mass: float = MASS) -> str:
     attributes = " ".join(f'{k}="{v!r}"' for k, v in values.items())
     xyz = " ".join(repr(float(v)) for v in COM)
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="plate"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="plate">
+    return moving(
+        f"""
     <inertial>
       <origin xyz="{xyz}"/>
       <mass value="{mass!r}"/>
@@ -52,9 +48,8 @@ def plate(values: dict[str, float], mass: float = MASS) -> str:
     </inertial>
     <collision><origin xyz="{xyz}" rpy="0 0 {YAW!r}"/>
       <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  </link>
-</robot>
-"""
+  """
+    )
 
 
 def values_of(tensor: np.ndarray) -> dict[str, float]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
+from robots import moving
 
 from inertia_kit.analysis import RIM_SIDES
 from inertia_kit.findings import Severity
@@ -13,14 +14,7 @@ RIM = 1.0 / math.cos(math.pi / RIM_SIDES)
 
 
 def arm(body: str) -> str:
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{body}</link>
-</robot>"""
+    return moving(body, name="arm")
 
 
 def inertial(mass, ixx, iyy, izz, xyz="0 0 0", rpy="0 0 0"):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from robots import moving
+
 from inertia_kit.findings import Severity
 
 INERTIAL = (
@@ -11,14 +13,7 @@ INERTIAL = (
 
 
 def arm(body: str) -> str:
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{body}</link>
-</robot>"""
+    return moving(body, name="arm")
 
 
 def collision(geometry: str) -> str:

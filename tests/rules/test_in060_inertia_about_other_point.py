@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from robots import moving
 
 from inertia_kit.findings import Severity
 from inertia_kit.lint import Selection, lint_file
@@ -13,14 +14,7 @@ EXAMPLES = Path(__file__).parent.parent.parent / "examples"
 
 
 def arm(body: str) -> str:
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{body}</link>
-</robot>"""
+    return moving(body, name="arm")
 
 
 def inertial(mass, ixx, iyy, izz, xyz="0 0 0"):

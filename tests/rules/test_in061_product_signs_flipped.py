@@ -6,26 +6,22 @@ import math
 
 import numpy as np
 import pytest
+from robots import moving
 
 from inertia_kit.frames import rpy_matrix
 
 
 def plate(ixy, ixz, iyz, diag, rpy):
     ixx, iyy, izz, ixy, ixz, iyz = (float(v) for v in (*diag, ixy, ixz, iyz))
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="plate"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="plate">
+    return moving(
+        f"""
     <inertial><mass value="2"/>
       <inertia ixx="{ixx!r}" ixy="{ixy!r}" ixz="{ixz!r}" iyy="{iyy!r}" iyz="{iyz!r}" izz="{izz!r}"/>
     </inertial>
     <collision><origin rpy="{" ".join(map(repr, rpy))}"/>
       <geometry><box size="0.4 0.2 0.1"/></geometry></collision>
-  </link>
-</robot>"""
+  """
+    )
 
 
 def turned_box(rpy, mass=2.0, size=(0.4, 0.2, 0.1)):

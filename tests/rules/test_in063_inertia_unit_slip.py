@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from robots import moving
 
 from inertia_kit.findings import Severity
 
@@ -15,19 +16,14 @@ def box_moments(mass):
 
 
 def plate(mass, ixx, iyy, izz):
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="plate"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="plate">
+    return moving(
+        f"""
     <inertial><mass value="{mass}"/>
       <inertia ixx="{ixx:.6g}" ixy="0" ixz="0" iyy="{iyy:.6g}" iyz="0" izz="{izz:.6g}"/>
     </inertial>
     <collision><geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  </link>
-</robot>"""
+  """
+    )
 
 
 @pytest.mark.parametrize(("factor", "unit"), [(1e6, "kg·mm²"), (1e9, "g·mm²"), (1e7, "g·cm²")])

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from robots import moving
 
 from inertia_kit.frames import rpy_matrix
 
@@ -21,18 +22,13 @@ def turned_box():
 
 def plate(**values):
     attributes = " ".join(f'{k}="{float(v)!r}"' for k, v in values.items())
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="plate"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="plate">
+    return moving(
+        f"""
     <inertial><mass value="{MASS}"/><inertia {attributes}/></inertial>
     <collision><origin rpy="0 0 {YAW!r}"/>
       <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  </link>
-</robot>"""
+  """
+    )
 
 
 def test_swapped_products(lint):
