@@ -64,20 +64,24 @@ def _prefer_link_axis(
 
 
 def _verdict(
+    link: LinkAnalysis,
+    basis: Geometry,
     declared: MassProperties,
     expected: MassProperties,
     above: float,
     below: float,
-    mistake: str | None,
 ) -> tuple[TensorComparison, str | None] | None:
     """The comparison with one geometry and the slip it shows, if it is far; else None."""
     comparison = compare_tensors(declared.inertia, expected.inertia)
-    if comparison is None:
-        return None
+    if comparison is None or comparison.factor <= min(MISMATCH, above, below):
+        return None  # close enough whatever the cause: no need to look for a slip
+    # a slip explained within rounding (an IN06x finding), else the likely one
+    diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
+    mistake = None if diagnosis is None else f"likely {diagnosis.summary} ({diagnosis.code})"
     ratios = comparison.ratios
     if ratios.max() > above or ratios.min() < 1.0 / below:
         return comparison, mistake
-    if comparison.factor > MISMATCH and mistake is not None:
+    if mistake is not None:
         return comparison, mistake
     return None
 
@@ -92,10 +96,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         expected = basis.at_mass(declared.mass)
         if expected is None:
             return
-        # a slip explained within rounding (an IN06x finding), else the likely one
-        diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
-        mistake = None if diagnosis is None else f"likely {diagnosis.summary} ({diagnosis.code})"
-        verdict = _verdict(declared, expected, above, below, mistake)
+        verdict = _verdict(link, basis, declared, expected, above, below)
         # a tensor that agrees with either the collision or the visual geometry is fine
         if verdict is None:
             return
