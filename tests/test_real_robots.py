@@ -225,3 +225,40 @@ def test_example_robot_data_meshes_resolve_in_its_ament_prefix(monkeypatch):
     robot = load(path, package_paths=[share])
     meshes = [s.geometry for link in robot.links for s in (*link.visuals, *link.collisions)]
     assert meshes and all(m.path for m in meshes if isinstance(m, model.Mesh))
+
+
+# --- inertia-fill on the xacro files -------------------------------------------------------------
+
+
+@pytest.mark.parametrize("package", sorted(PACKAGES))
+def test_fill_plans_on_real_xacro_files(package):
+    """--fix all planned on every xacro robot (nothing written): only InputError escapes, the
+    edits of a plan never overlap, and every file they change is still well-formed XML."""
+    from lxml import etree
+
+    from inertia_kit.fill import plan_fill
+
+    root = PACKAGES[package]()
+    files = [p for p in robot_files(root) if p.suffix == ".xacro"]
+    if not files:
+        pytest.skip(f"{package} has no xacro files")
+    counts: Counter = Counter()
+    crashes: list[str] = []
+    for path in files:
+        try:
+            plan = plan_fill(path, fix="all", package_paths=[root])
+            changes = plan.changes()
+        except InputError:
+            counts["input_error"] += 1
+            continue
+        except Exception as error:  # the point of the sweep
+            crashes.append(f"{path.relative_to(root)}: {type(error).__name__}: {error}")
+            continue
+        counts["planned"] += 1
+        counts["links"] += len(plan.changed_links)
+        counts["refused"] += len(plan.refused)
+        counts["files_changed"] += len(changes)
+        for source, text in changes:
+            etree.fromstring(source.encode(text))  # raises on a broken edit
+    print(f"\n{package}: {dict(counts)}")
+    assert crashes == []
