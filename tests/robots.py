@@ -8,10 +8,13 @@ SHELL = """<robot name="r">
     <parent link="base"/><child link="{name}"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
   </joint>
-  <link name="{name}">{body}</link>
+  <link name="{name}">{body}</link>{extra}
 </robot>"""
 
 
-def moving(body: str, name: str = "plate") -> str:
-    """A robot whose one moving link ``name`` (revolute on a massless base) holds ``body``."""
-    return SHELL.format(name=name, body=body)
+def moving(body: str, name: str = "plate", extra: str = "") -> str:
+    """
+    A robot whose moving link ``name`` (revolute on a massless base) holds ``body``; ``extra``
+    is written after that link (more joints and links).
+    """
+    return SHELL.format(name=name, body=body, extra=extra)

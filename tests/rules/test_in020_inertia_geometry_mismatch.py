@@ -6,6 +6,7 @@ import math
 from pathlib import Path
 
 import pytest
+from robots import moving
 
 from inertia_kit.findings import Severity
 from inertia_kit.lint import Selection, lint_file
@@ -15,14 +16,7 @@ EXAMPLES = Path(__file__).parent.parent.parent / "examples"
 
 def arm(body: str, extra: str = "") -> str:
     """A robot whose moving link `arm` holds ``body``."""
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{body}</link>{extra}
-</robot>"""
+    return moving(body, name="arm", extra=extra)
 
 
 def inertial(mass, ixx, iyy, izz, xyz="0 0 0", rpy="0 0 0", ixy=0.0, ixz=0.0, iyz=0.0):

@@ -3,19 +3,13 @@
 from __future__ import annotations
 
 import pytest
+from robots import moving
 
 from inertia_kit.findings import Severity
 
 
 def arm(body: str, extra: str = "") -> str:
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{body}</link>{extra}
-</robot>"""
+    return moving(body, name="arm", extra=extra)
 
 
 def inertial(xyz: str, mass: float = 2.0) -> str:

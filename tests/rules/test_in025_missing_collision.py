@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from robots import moving
+
 VISUAL = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
 COLLISION = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
 
@@ -22,14 +24,7 @@ def robot(arm: str, tool: str | None = None, tool_joint: str = "fixed") -> str:
   <joint name="t" type="{tool_joint}"><parent link="arm"/><child link="tool"/>
     <axis xyz="0 0 1"/>{limit if tool_joint != "fixed" else ""}</joint>
   <link name="tool">{tool}</link>"""
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">{arm}</link>{extra}
-</robot>"""
+    return moving(arm, name="arm", extra=extra)
 
 
 def test_moving_link_with_mass_and_visual_only_fires(lint):

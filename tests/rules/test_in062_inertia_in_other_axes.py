@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from robots import moving
 
 from inertia_kit.frames import rpy_matrix
 from inertia_kit.lint import Selection, lint_file
@@ -19,20 +20,16 @@ def rod(inertial_rpy="0 0 0", shape_rpy=f"0 {math.pi / 2} 0"):
     transverse = mass * (3 * radius**2 + length**2) / 12
     axial = mass * radius**2 / 2
     return (
-        f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
+        moving(
+            f"""
     <inertial><origin xyz="0.15 0 0" rpy="{inertial_rpy}"/><mass value="{mass}"/>
       <inertia ixx="{transverse}" ixy="0" ixz="0" iyy="{transverse}" iyz="0" izz="{axial}"/>
     </inertial>
     <collision><origin xyz="0.15 0 0" rpy="{shape_rpy}"/>
       <geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>
-  </link>
-</robot>""",
+  """,
+            name="arm",
+        ),
         transverse,
         axial,
     )
