@@ -7,7 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis import LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis import LinkAnalysis, RobotAnalysis, compare_tensors
 from inertia_kit.findings import Finding, Severity
 from inertia_kit.rules import RuleContext
 from inertia_kit.rules.in010_inertia_not_positive_definite import (
@@ -33,26 +33,6 @@ DEFAULTS = {"anisotropy": 2.0, "copy_factor": 2.0}
 
 ISOTROPIC_RTOL = 1e-6  # ixx = iyy = izz to this relative precision counts as equal
 NEGLIGIBLE = 0.01  # a welded link's tensor below this share of its body's moments cannot matter
-
-
-def factor(a: NDArray[np.float64], b: NDArray[np.float64]) -> float | None:
-    """
-    How far apart two tensors (3, 3) in the same axes are: the largest ratio between their
-    moments about any one axis, either way (generalised eigenvalues); ``None`` unless both are
-    positive definite.
-    """
-    a, b = 0.5 * (a + a.T), 0.5 * (b + b.T)
-    try:
-        lower = np.linalg.cholesky(b)
-        np.linalg.cholesky(a)
-    except np.linalg.LinAlgError:
-        return None
-    inverse = np.linalg.inv(lower)
-    # eigvalsh: L⁻¹ A L⁻ᵀ is symmetric, its eigenvalues are those of (A, B)
-    ratios = np.linalg.eigvalsh(inverse @ a @ inverse.T)
-    if not ratios.min() > 0:
-        return None
-    return float(max(ratios.max(), 1.0 / ratios.min()))
 
 
 def _spread(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
@@ -160,9 +140,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 candidates.append((member, declared.mass, at))
         if len(candidates) < 2:
             continue
-        closeness = [factor(declared_tensor, at[2]) for _, _, at in candidates]
-        if any(c is None for c in closeness):
+        comparisons = [compare_tensors(declared_tensor, at[2]) for _, _, at in candidates]
+        if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
+        closeness = [c.factor for c in comparisons if c is not None]
         original, _, (_, _, original_tensor) = candidates[int(np.argmin(closeness))]
         for member, mass, (payload, text, tensor) in candidates:
             if member is original or member.name in flagged:

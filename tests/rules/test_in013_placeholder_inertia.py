@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from inertia_kit.rules.in013_placeholder_inertia import factor
+from inertia_kit.analysis import compare_tensors
 from inertia_kit.text import fmt
 
 
@@ -141,6 +141,8 @@ def test_placeholder_on_a_negligible_welded_frame(lint):
 
 
 def test_factor_is_the_largest_moment_ratio_about_any_axis():
+    """What IN013 measures copies with: the largest ratio either way, about any axis."""
     a = [[2.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]]
     b = [[1.0, 0, 0], [0, 4.0, 0], [0, 0, 1.0]]
-    assert factor(np.array(a), np.array(b)) == pytest.approx(4.0)
+    comparison = compare_tensors(np.array(a), np.array(b))
+    assert comparison is not None and comparison.factor == pytest.approx(4.0)
