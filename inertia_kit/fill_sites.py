@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from inertia_kit.findings import Edit
+from inertia_kit.model import Inertial
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -40,7 +41,6 @@ if TYPE_CHECKING:
     from inertia_kit.model import Source
 
 Key = tuple[str, int | None, int | None]
-TENSOR = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _PARAMETER = re.compile(r"^\$\{\s*([A-Za-z_]\w*)\s*\}$")
 _EXPRESSION = re.compile(r"\$\{([^}]*)\}")
 
@@ -342,7 +342,7 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
     old.update(
         {
             name: _number_text(getattr(inertial, name))
-            for name in TENSOR
+            for name in Inertial.TENSOR
             if isinstance(getattr(inertial, name), float)
         }
     )
@@ -350,7 +350,7 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
     attributes = {
         "mass": (_child(body, "mass"), "value"),
         "xyz": (_child(body, "origin"), "xyz"),
-        **{name: (_child(body, "inertia"), name) for name in TENSOR},
+        **{name: (_child(body, "inertia"), name) for name in Inertial.TENSOR},
     }
     parameters = _parameter_names(macro)
     changes: dict[str, str] = {}  # parameter -> new text

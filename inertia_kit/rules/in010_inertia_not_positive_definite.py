@@ -58,7 +58,7 @@ def lumped_positive_definite(robot: RobotAnalysis, link: LinkAnalysis) -> bool:
     return bool(principal[0] > zero_tolerance(principal))
 
 
-TENSOR = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+TENSOR = model.Inertial.TENSOR
 _INDEX = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
 
 
