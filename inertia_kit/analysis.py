@@ -31,6 +31,13 @@ def _finite(value: model.Number) -> float | None:
     return value if isinstance(value, float) else None
 
 
+def declared_mass(link: model.Link) -> float | None:
+    """The link's declared ``<mass value>`` when it is a finite positive number, else ``None``."""
+    inertial = link.inertial
+    mass = None if inertial is None else inertial.mass
+    return mass if isinstance(mass, float) and math.isfinite(mass) and mass > 0 else None
+
+
 def declared(link: model.Link) -> MassProperties | None:
     """
     The link's ``<inertial>`` as mass properties in the link frame, or ``None`` when it is
@@ -881,22 +888,15 @@ class RobotAnalysis:
         or a group without mass): what its own values weigh in the body a simulator lumps.
         """
         link = self.by_name.get(name)
-        inertial = None if link is None else link.link.inertial
-        mass = None if inertial is None else inertial.mass
+        mass = None if link is None else declared_mass(link.link)
         total = self.group_mass(name)
-        if not isinstance(mass, float) or not (math.isfinite(mass) and mass > 0) or total <= 0:
+        if mass is None or total <= 0:
             return 1.0
         return mass / total
 
     def group_mass(self, name: str) -> float:
         """Total declared mass of ``name``'s fixed-joint group (finite positive masses only)."""
-        total = 0.0
-        for link in self.group_of(name):
-            inertial = link.link.inertial
-            mass = None if inertial is None else inertial.mass
-            if isinstance(mass, float) and math.isfinite(mass) and mass > 0:
-                total += mass
-        return total
+        return sum((declared_mass(link.link) or 0.0 for link in self.group_of(name)), 0.0)
 
 
 def analyse(robot: model.Robot, load_mesh: MeshLoader = _default_mesh_loader) -> RobotAnalysis:

@@ -598,11 +598,12 @@ def _shape_name(solid) -> str:
 
 def _mass(link: LinkAnalysis, choice: MassChoice, volume: float) -> tuple[float | None, str]:
     """The link's mass and where it comes from; ``None`` for a share of ``--total-mass``."""
+    from inertia_kit.analysis import declared_mass
+
     if link.name in choice.masses:
         return choice.masses[link.name], "given mass"
-    inertial = link.link.inertial
-    declared = None if inertial is None else inertial.mass
-    if isinstance(declared, float) and math.isfinite(declared) and declared > 0:
+    declared = declared_mass(link.link)
+    if declared is not None:
         return declared, "declared mass"
     if link.name in choice.densities:
         density = choice.densities[link.name]
@@ -618,18 +619,19 @@ def _share_total(analysis, chosen: dict[str, tuple[float | None, str]], total: f
     weigh ``total``: what the other links weigh (declared, kept or given masses) is subtracted
     first. Updates ``chosen``; returns why it cannot (the others already weigh that much).
     """
+    from inertia_kit.analysis import declared_mass
+
     waiting = [name for name, (mass, _) in chosen.items() if mass is None]
     if not waiting:
         return None
-    others = 0.0
-    for link in analysis.links:
-        if link.name in chosen:
-            mass = chosen[link.name][0]
-        else:
-            inertial = link.link.inertial
-            mass = None if inertial is None else inertial.mass
-        if isinstance(mass, float) and math.isfinite(mass) and mass > 0:
-            others += mass
+    # what the links not waiting weigh: chosen (given, kept, configured) or declared
+    others = sum(
+        (
+            (chosen[link.name][0] if link.name in chosen else declared_mass(link.link)) or 0.0
+            for link in analysis.links
+        ),
+        0.0,
+    )
     volume = 0.0
     for name in waiting:
         unit = analysis.by_name[name].geometry.unit

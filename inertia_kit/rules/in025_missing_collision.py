@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterator
 
-from inertia_kit.analysis import LinkAnalysis, geometry_summary
+from inertia_kit.analysis import LinkAnalysis, declared_mass, geometry_summary
 from inertia_kit.findings import Finding, Severity
 from inertia_kit.rules import RuleContext
 from inertia_kit.text import fmt
@@ -23,9 +22,9 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     element = link.link
     if element.collisions or not element.visuals or element.inertial is None:
         return
-    mass = element.inertial.mass
+    mass = declared_mass(element)
     # a massless (or invalid-mass) frame is decoration: IN001/IN002/IN004 speak about its mass
-    if not isinstance(mass, float) or not (math.isfinite(mass) and mass > 0):
+    if mass is None:
         return
     # a placeholder mass on a frame welded to a real body (a 0.1 g marker) is decoration too
     if link.mass_share < float(ctx.option("min_mass_share")):

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from inertia_kit import model
-from inertia_kit.analysis import LinkAnalysis, Solid, shape_text
+from inertia_kit.analysis import LinkAnalysis, Solid, declared_mass, shape_text
 from inertia_kit.findings import Finding, Severity
 from inertia_kit.rules import RuleContext
 from inertia_kit.text import fmt, xml_number
@@ -103,14 +103,6 @@ def _extent(solid: Solid) -> float:
     return float(np.max(bounds[1] - bounds[0]))
 
 
-def _mass(link: LinkAnalysis) -> float | None:
-    inertial = link.link.inertial
-    mass = None if inertial is None else inertial.mass
-    if isinstance(mass, float) and math.isfinite(mass) and mass > 0:
-        return mass
-    return None
-
-
 def _joint_offset(link: LinkAnalysis) -> float | None:
     """The longest offset of the joints at the link (parent and children), m."""
     lengths = []
@@ -153,7 +145,7 @@ def _evidence(
     # a shape's size alone says something only of a robot part: a link with mass, one that
     # moves, or one of several links (a lone massless 120 m mesh is a scene, not a slip)
     several = link.robot is not None and len(link.robot.links) > 1
-    if _mass(link) is not None or link.moves or several:
+    if declared_mass(link.link) is not None or link.moves or several:
         found.append(
             Evidence(
                 "size",
@@ -187,7 +179,7 @@ def _evidence(
                     ),
                 )
             )
-    mass = _mass(link)
+    mass = declared_mass(link.link)
     basis = link.geometry
     if mass is not None and basis.unit is not None and any(s is solid for s in basis.solids):
         own, total = mesh.volume, basis.volume
