@@ -23,6 +23,7 @@ holding the nearest ``package.xml``, else the input's folder) are never edited.
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -69,8 +70,9 @@ class Target:
     def name(self) -> str:
         return self.link.name
 
-    @property
+    @functools.cached_property
     def values(self) -> dict[str, str]:
+        """The text written for each value (compared across links sharing a macro body)."""
         return written_values(self.properties)
 
 
