@@ -136,8 +136,8 @@ def robot(name: str, links: list[tuple[str, str]]) -> str:
 
 
 def primitive_robot() -> str:
-    from inertia_kit import primitives
-    from inertia_kit.inertial_xml import inertial_block
+    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.physics import primitives
 
     links = []
     for index in range(LINKS):
@@ -160,8 +160,8 @@ def primitive_robot() -> str:
 
 
 def mesh_robot(folder: Path) -> str:
-    from inertia_kit.inertial_xml import inertial_block
-    from inertia_kit.meshes import mesh
+    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.physics.meshes import mesh
 
     links = []
     for index in range(LINKS):
@@ -271,7 +271,7 @@ def best(command: list[str], runs: int, env_of, ok=(0, 1)) -> Timing:
 
 
 def wait_out_racy_window(files: list[Path]) -> None:
-    """The cache does not store a file changed in the last 2 s (see inertia_kit.mesh_cache)."""
+    """The cache does not store a file changed in the last 2 s (see physics.mesh_cache)."""
     newest = max(max(p.stat().st_mtime, p.stat().st_ctime) for p in files)
     delay = newest + 2.5 - time.time()
     if delay > 0:
@@ -280,8 +280,8 @@ def wait_out_racy_window(files: list[Path]) -> None:
 
 def per_mesh(stls: list[Path], cache: str, runs: int) -> tuple[float, float]:
     """Median seconds per mesh: computed (no cache), and a cache hit (this process)."""
-    from inertia_kit.mesh_cache import cached_mesh_solid
-    from inertia_kit.meshes import mesh_solid
+    from inertia_kit.physics.mesh_cache import cached_mesh_solid
+    from inertia_kit.physics.meshes import mesh_solid
 
     def median(function) -> float:
         samples = []

@@ -30,7 +30,7 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from inertia_kit.stl import HEADER_BYTES, RECORD, read_stl  # noqa: E402
+from inertia_kit.physics.stl import HEADER_BYTES, RECORD, read_stl  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / ".data"
 DENSITY = 1000.0

@@ -13,21 +13,21 @@ from typing import TYPE_CHECKING, Any
 __version__ = "0.1.0"
 
 _EXPORTS = {
-    "MassProperties": "inertia_kit.mass",
-    "Validity": "inertia_kit.mass",
-    "box": "inertia_kit.primitives",
-    "cylinder": "inertia_kit.primitives",
-    "sphere": "inertia_kit.primitives",
-    "capsule": "inertia_kit.primitives",
-    "ellipsoid": "inertia_kit.primitives",
-    "mesh": "inertia_kit.meshes",
-    "mesh_solid": "inertia_kit.meshes",
-    "MeshSolid": "inertia_kit.meshes",
-    "MeshMassProperties": "inertia_kit.meshes",
-    "Part": "inertia_kit.unions",
-    "union": "inertia_kit.unions",
-    "UnionResult": "inertia_kit.unions",
-    "load": "inertia_kit.loader",
+    "MassProperties": "inertia_kit.physics.mass",
+    "Validity": "inertia_kit.physics.mass",
+    "box": "inertia_kit.physics.primitives",
+    "cylinder": "inertia_kit.physics.primitives",
+    "sphere": "inertia_kit.physics.primitives",
+    "capsule": "inertia_kit.physics.primitives",
+    "ellipsoid": "inertia_kit.physics.primitives",
+    "mesh": "inertia_kit.physics.meshes",
+    "mesh_solid": "inertia_kit.physics.meshes",
+    "MeshSolid": "inertia_kit.physics.meshes",
+    "MeshMassProperties": "inertia_kit.physics.meshes",
+    "Part": "inertia_kit.physics.unions",
+    "union": "inertia_kit.physics.unions",
+    "UnionResult": "inertia_kit.physics.unions",
+    "load": "inertia_kit.description.loader",
     "InputError": "inertia_kit.errors",
     "MeshError": "inertia_kit.errors",
 }
@@ -54,12 +54,12 @@ __all__ = [  # noqa: RUF022  (grouped as _EXPORTS, not sorted)
 ]
 
 if TYPE_CHECKING:
+    from inertia_kit.description.loader import load
     from inertia_kit.errors import InputError, MeshError
-    from inertia_kit.loader import load
-    from inertia_kit.mass import MassProperties, Validity
-    from inertia_kit.meshes import MeshMassProperties, MeshSolid, mesh, mesh_solid
-    from inertia_kit.primitives import box, capsule, cylinder, ellipsoid, sphere
-    from inertia_kit.unions import Part, UnionResult, union
+    from inertia_kit.physics.mass import MassProperties, Validity
+    from inertia_kit.physics.meshes import MeshMassProperties, MeshSolid, mesh, mesh_solid
+    from inertia_kit.physics.primitives import box, capsule, cylinder, ellipsoid, sphere
+    from inertia_kit.physics.unions import Part, UnionResult, union
 
 
 def __getattr__(name: str) -> Any:

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from inertia_kit.findings import Finding
-from inertia_kit.lint import Selection, lint_file
+from inertia_kit.lint.findings import Finding
+from inertia_kit.lint.runner import Selection, lint_file
 
 
 def lint_text(

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import re
 import shlex
-from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from kit import REPO
 
 from inertia_kit.cli import lint_command
 
-ROOT = Path(__file__).parent.parent
+ROOT = REPO
 README = (ROOT / "README.md").read_text()
 RUNS = re.findall(r"```console\n\$ (inertia-lint [^\n]*)\n(.*?)```", README, re.DOTALL)
 

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from inertia_kit import model
+from inertia_kit.description import model
+from inertia_kit.description.loader import load
 from inertia_kit.errors import InputError
-from inertia_kit.loader import load
 
 #: Files loaded per package at most; larger packages are sampled evenly, the same files each run.
 MAX_FILES = 1500
@@ -236,7 +236,7 @@ def test_fill_plans_on_real_xacro_files(package):
     edits of a plan never overlap, and every file they change is still well-formed XML."""
     from lxml import etree
 
-    from inertia_kit.fill import plan_fill
+    from inertia_kit.fill.plan import plan_fill
 
     root = PACKAGES[package]()
     files = [p for p in robot_files(root) if p.suffix == ".xacro"]

@@ -12,9 +12,15 @@ import pytest
 from click.testing import CliRunner
 
 from inertia_kit.cli import lint_main
-from inertia_kit.engines import ENGINES, Verdict, parse_engines, verdict_expected, verdict_message
-from inertia_kit.findings import Severity
-from inertia_kit.lint import Selection
+from inertia_kit.engines.verdicts import (
+    ENGINES,
+    Verdict,
+    parse_engines,
+    verdict_expected,
+    verdict_message,
+)
+from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.runner import Selection
 
 # the root link carries 5 kg: MuJoCo fixes it to the world and drops them (IN070, a warning);
 # IN041 says the same for KDL, so the tests select IN002 (quiet here) to see IN070 alone
@@ -45,7 +51,7 @@ def run(tmp_path, *args: str):
 
 
 def _stub(code: str, engine: str | None) -> types.ModuleType:
-    rule = types.ModuleType(f"inertia_kit.rules.{code.lower()}_stub")
+    rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_stub")
     rule.CODE, rule.NAME = code, f"stub-{code.lower()}"
     if engine is not None:
         rule.ENGINE = engine

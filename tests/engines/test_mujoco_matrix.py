@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from inertia_kit.lint import Selection, lint_file
+from inertia_kit.lint.runner import Selection, lint_file
 
 mujoco = pytest.importorskip("mujoco")
 

@@ -1,0 +1,79 @@
+"""A URDF ``<inertial>`` element as text, with deterministic numbers, ready to paste or insert."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from inertia_kit.physics.formatting import xml_number
+from inertia_kit.physics.mass import MassProperties
+
+# significant digits written: CAD tools report about six; more only adds churn
+DIGITS = 6
+
+
+# products of inertia below this share of the largest moment are under half the last digit
+# written of that moment: rounding noise of a rotation (rpy="1.5708 0 0") written as zero
+PRODUCT_FLOOR = 5e-6
+TENSOR = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
+
+
+def inertial_values(
+    properties: MassProperties, digits: int = DIGITS, rpy: ArrayLike = (0.0, 0.0, 0.0)
+) -> dict[str, str]:
+    """
+    The attribute values of an ``<inertial>`` block for ``properties`` (link frame, about the
+    COM) whose ``<origin rpy>`` is ``rpy``: ``xyz``, ``rpy``, ``mass`` and the six tensor
+    entries in those axes, as text.
+    """
+    from inertia_kit.physics.frames import rpy_matrix
+
+    clean = properties.cleaned()
+    rotation = rpy_matrix(rpy)
+    tensor = rotation.T @ clean.inertia @ rotation
+    floor = PRODUCT_FLOOR * np.abs(np.diag(tensor)).max()
+
+    def number(value: float) -> str:
+        return xml_number(value, digits)
+
+    values = {
+        "xyz": " ".join(number(x) for x in clean.com),
+        "rpy": " ".join(number(a) for a in rpy) if np.any(rpy) else "0 0 0",
+        "mass": xml_number(properties.mass, digits),
+    }
+    for name, (i, j) in TENSOR.items():
+        small = i != j and abs(tensor[i, j]) <= floor
+        values[name] = number(0.0 if small else tensor[i, j])
+    return values
+
+
+def inertial_block(
+    properties: MassProperties,
+    *,
+    indent: str = "  ",
+    level: int = 0,
+    newline: str = "\n",
+    digits: int = DIGITS,
+) -> str:
+    """
+    The ``<inertial>`` element for ``properties`` (in link-frame axes), without a trailing newline.
+
+    Parameters
+    ----------
+    indent : str
+      One level of indentation, as the surrounding file uses it.
+    level : int
+      How many levels the ``<inertial>`` line itself is indented.
+    """
+    v = inertial_values(properties, digits)
+    outer, inner = indent * level, indent * (level + 1)
+    return newline.join(
+        [
+            f"{outer}<inertial>",
+            f'{inner}<origin xyz="{v["xyz"]}" rpy="{v["rpy"]}"/>',
+            f'{inner}<mass value="{v["mass"]}"/>',
+            f'{inner}<inertia ixx="{v["ixx"]}" ixy="{v["ixy"]}" ixz="{v["ixz"]}" '
+            f'iyy="{v["iyy"]}" iyz="{v["iyz"]}" izz="{v["izz"]}"/>',
+            f"{outer}</inertial>",
+        ]
+    )

@@ -1,0 +1,175 @@
+"""IN004 invalid-number: a numeric attribute whose text is not a finite number."""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.description import model
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN004"
+NAME = "invalid-number"
+SEVERITY = Severity.ERROR
+SCOPE = "robot"
+SUMMARY = "a numeric attribute is not a finite number (`abc`, `nan`, `inf`, `1,5`, `2kg`)"
+OPTIONS: dict[str, type] = {}
+DEFAULTS: dict[str, object] = {}
+
+# what C's strtod (which PyBullet's URDF reader uses) takes from the start of a text
+_STRTOD = re.compile(
+    r"\s*[+-]?(?:inf(?:inity)?|nan|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)", re.IGNORECASE
+)
+
+
+def strtod(text: str) -> float:
+    """The number strtod reads from the start of ``text`` (0 when none), as PyBullet does."""
+    match = _STRTOD.match(text)
+    if match is None:
+        return 0.0
+    try:
+        return float(match.group(0))
+    except (ValueError, OverflowError):
+        return 0.0
+
+
+def pybullet_reading(invalid: model.Invalid, vector: bool) -> str:
+    """What PyBullet silently makes of the text: it never refuses a number."""
+    if not vector:
+        return fmt(strtod(invalid.text))
+    pieces = invalid.text.split()
+    if len(pieces) < 3:
+        return '0 0 0 ("Couldn\'t parse vector3")'
+    return " ".join(fmt(strtod(p)) for p in pieces[:3])
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where an invalid value sits: ``<mass value>`` of link `arm`."""
+
+    element: str  # "<mass value>"
+    link: str | None = None
+    joint: str | None = None
+    vector: bool = False
+
+    @property
+    def owner(self) -> str:
+        if self.link is not None:
+            return f"link `{self.link}`"
+        if self.joint is not None:
+            return f"joint `{self.joint}`"
+        return "the robot"
+
+
+def _places(robot: model.Robot) -> dict[int, Place]:
+    """Every ``Invalid`` the model holds, by identity, with the element and owner it sits in."""
+    found: dict[int, Place] = {}
+
+    def note(value: object, element: str, *, link=None, joint=None, vector=False) -> None:
+        if isinstance(value, model.Invalid):
+            found[id(value)] = Place(f"<{element} {value.attribute}>", link, joint, vector)
+
+    def origin(value: model.Origin, parent: str, **owner) -> None:
+        note(value.xyz, f"{parent}><origin", vector=True, **owner)
+        note(value.rpy, f"{parent}><origin", vector=True, **owner)
+
+    for link in robot.links:
+        inertial = link.inertial
+        if inertial is not None:
+            origin(inertial.origin, "inertial", link=link.name)
+            note(inertial.mass, "mass", link=link.name)
+            for value in inertial.tensor_values().values():
+                note(value, "inertia", link=link.name)
+        for shape in (*link.visuals, *link.collisions):
+            origin(shape.origin, shape.kind, link=link.name)
+            geometry = shape.geometry
+            tag = type(geometry).__name__.lower()
+            if isinstance(geometry, model.Box):
+                note(geometry.size, "box", link=link.name, vector=True)
+            elif isinstance(geometry, model.Cylinder | model.Capsule):
+                note(geometry.radius, tag, link=link.name)
+                note(geometry.length, tag, link=link.name)
+            elif isinstance(geometry, model.Sphere):
+                note(geometry.radius, "sphere", link=link.name)
+            elif isinstance(geometry, model.Mesh):
+                note(geometry.scale, "mesh", link=link.name, vector=True)
+    for joint in robot.joints:
+        origin(joint.origin, "joint", joint=joint.name)
+        note(joint.axis, "axis", joint=joint.name, vector=True)
+        limit, dynamics, mimic = joint.limit, joint.dynamics, joint.mimic
+        if limit is not None:
+            for value in (limit.lower, limit.upper, limit.effort, limit.velocity):
+                note(value, "limit", joint=joint.name)
+        if dynamics is not None:
+            for value in (dynamics.damping, dynamics.friction):
+                note(value, "dynamics", joint=joint.name)
+        if mimic is not None:
+            for value in (mimic.multiplier, mimic.offset):
+                note(value, "mimic", joint=joint.name)
+    return found
+
+
+def _describe(text: str, vector: bool) -> str:
+    if vector:
+        count = len(text.split())
+        return f"{count} values, not 3" if count != 3 else "not three plain numbers"
+    lowered = text.strip().lower()
+    if lowered.lstrip("+-") == "nan":
+        return "not a number"
+    try:
+        value = float(text)
+    except ValueError:
+        return "not a number"
+    return "infinite" if math.isinf(value) else "not a number URDF accepts"
+
+
+def _special(text: str) -> bool:
+    """``nan``/``inf``: texts MuJoCo's number reader accepts."""
+    return text.strip().lower().lstrip("+-") in ("nan", "inf", "infinity")
+
+
+def _location(invalid: model.Invalid) -> tuple:
+    source = invalid.source
+    site = source.calls[-1] if source.calls else source
+    return (site.path, site.line, site.column)
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    places = _places(robot.robot)
+    # one finding per location: attributes of one element (or of one xacro macro call) together
+    groups: dict[tuple, list[model.Invalid]] = {}
+    for invalid in robot.robot.invalid:
+        groups.setdefault(_location(invalid), []).append(invalid)
+    for invalids in groups.values():
+        items = []
+        pybullet = []
+        owners = []
+        for invalid in invalids:
+            place = places.get(id(invalid), Place(f"<… {invalid.attribute}>"))
+            if place.owner not in owners:
+                owners.append(place.owner)
+            items.append(
+                f"`{place.element}` = {invalid.text!r} ({_describe(invalid.text, place.vector)})"
+            )
+            pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
+        first = places.get(id(invalids[0]), Place(""))
+        mujoco = (
+            "MuJoCo reads nan/inf as they are"
+            if all(_special(i.text) for i in invalids)
+            else "MuJoCo refuses the file (bad format)"
+        )
+        yield ctx.finding(
+            f"{' and '.join(owners)}: {'; '.join(items)}: ROS (urdfdom) and Gazebo refuse the "
+            f"file, {mujoco}, PyBullet silently reads {', '.join(pybullet)}",
+            invalids[0].source,
+            link=first.link,
+            joint=first.joint,
+            help="write a plain decimal number (`0.5`, `1e-3`: a dot for the decimal point, "
+            "spaces between the three values of a vector, no units); in xacro, check the "
+            "expression or property that produced it",
+        )

@@ -1,0 +1,117 @@
+"""IN011 inertia-triangle-inequality: the principal moments break A + B ≥ C."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from decimal import Decimal
+
+import numpy as np
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.description import model
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
+    ZERO_ATOL,
+    geometry_tensor,
+    lumped_positive_definite,
+    moments_text,
+    positive_mass,
+    welded_to_world,
+    zero_tolerance,
+)
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN011"
+NAME = "inertia-triangle-inequality"
+SEVERITY = Severity.ERROR
+SCOPE = "robot"
+SUMMARY = "the principal moments break the triangle inequality A + B ≥ C"
+OPTIONS = {"rtol": float, "digits_aware": bool}
+# 0.01: the worst violation that rounding a body on the bound (a disk, a plate) to 3
+# significant digits produces is 0.86 % of C; 4 digits: 0.086 %
+DEFAULTS = {"rtol": 0.01, "digits_aware": True}
+
+# below this fraction of C a violation is floating-point noise, whatever the digits
+NOISE_RTOL = 1e-9
+
+
+def half_unit(value: float) -> float:
+    """
+    Half a unit in the last written digit of ``value``: the most rounding can have moved it.
+
+    The model keeps floats, not the text; the shortest text that reads back as the float has the
+    digits the file had (trailing zeros aside, which only makes this larger).
+    """
+    if value == 0 or not math.isfinite(value):
+        return 0.0
+    exponent = Decimal(repr(abs(value))).normalize().as_tuple().exponent
+    return 0.5 * 10.0 ** int(exponent)
+
+
+def rounding_bound(inertial: model.Inertial) -> float:
+    """
+    The largest amount, kg·m², by which rounding the six written values can push C - A - B up:
+    each eigenvalue moves by at most the spectral norm of the rounding error (Weyl), which the
+    Frobenius norm of the half-units bounds; A + B - C moves by at most three times that.
+    """
+    u = {name: half_unit(v) for name, v in inertial.tensor_values().items()}  # type: ignore[arg-type]
+    frobenius = math.sqrt(
+        u["ixx"] ** 2
+        + u["iyy"] ** 2
+        + u["izz"] ** 2
+        + 2 * (u["ixy"] ** 2 + u["ixz"] ** 2 + u["iyz"] ** 2)
+    )
+    return 3.0 * frobenius
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    rtol = float(ctx.option("rtol"))
+    digits_aware = bool(ctx.option("digits_aware"))
+    for link in robot.links:
+        declared = positive_mass(link)
+        if declared is None:
+            continue
+        a, b, c = (float(v) for v in declared.principal_moments)
+        tol0 = zero_tolerance(np.array([a, b, c]))
+        if a < -tol0:
+            continue  # a negative moment: IN010's
+        if a <= tol0 and not (
+            welded_to_world(robot, link.name) or lumped_positive_definite(robot, link)
+        ):
+            continue  # a zero moment IN010 reports
+        inertial = link.link.inertial
+        assert inertial is not None
+        shortfall = c - (a + b)
+        allowed = rtol * c
+        if digits_aware:
+            allowed = min(allowed, rounding_bound(inertial))
+        allowed = max(allowed, NOISE_RTOL * c, 3 * ZERO_ATOL)
+        if shortfall <= allowed:
+            continue
+        payload = None
+        basis = ""
+        values_at = geometry_tensor(link, declared.mass)
+        if values_at is not None:
+            payload, text, _ = values_at
+            basis = (
+                f"; its {link.geometry.describe()} with the declared {fmt(declared.mass)} kg "
+                f"gives {text}"
+            )
+        principal = np.array([a, b, c])
+        shown = [0.0 if abs(v) <= tol0 else v for v in (a, b)]
+        yield ctx.finding(
+            f"link `{link.name}`: principal moments {moments_text(principal)} break "
+            f"A + B ≥ C: {fmt(shown[0], 4)} + {fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)}"
+            f" < {fmt(c, 4)}, "
+            f"{fmt(100 * shortfall / c, 3)} % short (no rigid body has such a tensor; MuJoCo "
+            f"refuses it, Gazebo and Drake reject it, PyBullet zeroes it){basis}",
+            inertial.inertia_source or inertial.source,
+            link=link.name,
+            expected=payload,
+            help="the tensor is impossible: check that it is about the centre of mass (not the "
+            "link origin), that the products of inertia have the URDF sign (ixy = -∫xy dm), and "
+            "that the values were not typed by hand; `inertia-fill --fix invalid` recomputes it "
+            "from the geometry",
+        )

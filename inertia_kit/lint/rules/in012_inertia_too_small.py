@@ -1,0 +1,93 @@
+"""IN012 inertia-too-small: a principal moment below the floor simulators integrate stably."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
+    lumped,
+    positive_mass,
+    welded_to_world,
+    zero_tolerance,
+)
+from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.mass import MassProperties
+
+CODE = "IN012"
+NAME = "inertia-too-small"
+SEVERITY = Severity.WARNING
+SCOPE = "robot"
+SUMMARY = (
+    "a principal moment is below an absolute floor, or its radius of gyration below a length "
+    "floor: too small to integrate stably"
+)
+OPTIONS = {"min_moment": float, "min_radius": float}
+# measured on the robots shipped by pybullet_data, rtb-data, example-robot-data, dexmate-urdf
+# and fourier-robot-descriptions (rules/IN012-inertia-too-small.md): the smallest moment of a
+# correct moving part is 3.7e-8 kg·m² (a 2.6 g finger link, radius of gyration 3.8 mm)
+DEFAULTS = {"min_moment": 1e-9, "min_radius": 0.001}
+
+
+def _too_small(body: MassProperties, min_moment: float, min_radius: float) -> bool:
+    smallest = float(body.principal_moments[0])
+    return smallest < min_moment or smallest < body.mass * min_radius**2
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    min_moment = float(ctx.option("min_moment"))
+    min_radius = float(ctx.option("min_radius"))
+    for link in robot.links:
+        declared = positive_mass(link)
+        if declared is None:
+            continue
+        principal = declared.principal_moments
+        smallest = float(principal[0])
+        if smallest <= zero_tolerance(principal):
+            continue  # zero or negative: IN010's
+        if not _too_small(declared, min_moment, min_radius):
+            continue
+        if welded_to_world(robot, link.name):
+            continue  # static: never integrated
+        if len(robot.group_of(link.name)) > 1:
+            body = lumped(robot, link.name)
+            if body is not None and not _too_small(body, min_moment, min_radius):
+                # welded to a body that carries the inertia: engines integrate the lumped body
+                continue
+        inertial = link.link.inertial
+        assert inertial is not None
+        mass = declared.mass
+        radius = math.sqrt(smallest / mass)
+        floor = max(min_moment, mass * min_radius**2)
+        if smallest < min_moment and smallest >= mass * min_radius**2:
+            basis = f"the floor of {fmt(min_moment)} kg·m²"
+        else:
+            basis = (
+                f"{fmt(mass * min_radius**2, 3)} kg·m², a {fmt(min_radius * 1000, 3)} mm radius "
+                f"of gyration for {fmt(mass)} kg"
+            )
+        payload: dict[str, object] = {"min_moment": floor}
+        geometry_text = ""
+        expected = link.expected
+        if expected is not None:
+            geometry_moments = expected.principal_moments
+            payload["geometry_principal_moments"] = [float(v) for v in geometry_moments]
+            geometry_text = (
+                f"; its {link.geometry.describe()} with the declared {fmt(mass)} kg gives "
+                f"principal moments ({', '.join(fmt(v, 3) for v in geometry_moments)}) kg·m²"
+            )
+        yield ctx.finding(
+            f"link `{link.name}`: smallest principal moment {fmt(smallest, 3)} kg·m² (radius of "
+            f"gyration {fmt(radius * 1000, 3)} mm for {fmt(mass)} kg) is below {basis}: "
+            f"simulators integrate such a light rotation stiffly and it jitters or blows up"
+            f"{geometry_text}",
+            inertial.inertia_source or inertial.source,
+            link=link.name,
+            expected=payload,
+            help="use the part's real tensor about its centre of mass (from CAD, or "
+            "`inertia-fill --fix invalid` from the geometry); lower `min_moment`/`min_radius` "
+            "in [tool.inertia-kit.rules.IN012] if this part really is that small",
+        )

@@ -1,0 +1,168 @@
+"""IN013 placeholder-inertia: a made-up tensor (copied between shapes, or isotropic)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+from numpy.typing import NDArray
+
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
+    geometry_tensor,
+    lumped,
+    positive_mass,
+    tensor_text,
+)
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN013"
+NAME = "placeholder-inertia"
+SEVERITY = Severity.WARNING
+SCOPE = "robot"
+SUMMARY = (
+    "a made-up tensor: the same six values on links of clearly different geometry, or an "
+    "isotropic tensor on clearly anisotropic geometry"
+)
+OPTIONS = {"anisotropy": float, "copy_factor": float}
+# 2.0: a box of sides 1 : 1 : 1.7 already has principal moments 1 : 2, and an isotropic value
+# can then be no closer than a factor √2 to both; see rules/IN013-placeholder-inertia.md
+DEFAULTS = {"anisotropy": 2.0, "copy_factor": 2.0}
+
+ISOTROPIC_RTOL = 1e-6  # ixx = iyy = izz to this relative precision counts as equal
+NEGLIGIBLE = 0.01  # a welded link's tensor below this share of its body's moments cannot matter
+
+
+def _spread(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
+    """How far apart two shapes are: the largest ratio between matching principal moments."""
+    p, q = np.linalg.eigvalsh(a), np.linalg.eigvalsh(b)
+    if not (p.min() > 0 and q.min() > 0):
+        return float("inf")
+    return float(np.max(np.maximum(p / q, q / p)))
+
+
+def _negligible(robot: RobotAnalysis, link: LinkAnalysis, geometry: NDArray[np.float64]) -> bool:
+    """
+    Whether the link is welded into a body so much larger that neither its declared tensor nor
+    its geometry's can change that body's moments by more than ``NEGLIGIBLE``: a dummy frame
+    whose placeholder cannot matter.
+    """
+    if len(robot.group_of(link.name)) < 2:
+        return False
+    body = lumped(robot, link.name)
+    declared = positive_mass(link)
+    if body is None or declared is None:
+        return False
+    own = max(
+        float(np.abs(declared.principal_moments).max()), float(np.linalg.eigvalsh(geometry).max())
+    )
+    return own < NEGLIGIBLE * float(body.principal_moments[0])
+
+
+def _values(link: LinkAnalysis) -> tuple[float, ...] | None:
+    inertial = link.link.inertial
+    if inertial is None or positive_mass(link) is None:
+        return None
+    values = tuple(inertial.tensor_values().values())
+    if not all(isinstance(v, float) for v in values) or not any(values):
+        return None
+    return values  # type: ignore[return-value]
+
+
+def _isotropic(values: tuple[float, ...]) -> bool:
+    ixx, ixy, ixz, iyy, iyz, izz = values
+    return (
+        ixx > 0
+        and ixy == ixz == iyz == 0
+        and abs(iyy - ixx) <= ISOTROPIC_RTOL * ixx
+        and abs(izz - ixx) <= ISOTROPIC_RTOL * ixx
+    )
+
+
+def _written(values: tuple[float, ...]) -> NDArray[np.float64]:
+    ixx, ixy, ixz, iyy, iyz, izz = values
+    return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    anisotropy = float(ctx.option("anisotropy"))
+    copy_factor = float(ctx.option("copy_factor"))
+    flagged: set[str] = set()
+    copies: dict[tuple[float, ...], list[LinkAnalysis]] = {}
+    for link in robot.links:
+        values = _values(link)
+        if values is None:
+            continue
+        copies.setdefault(values, []).append(link)
+        if not _isotropic(values):
+            continue
+        declared = positive_mass(link)
+        assert declared is not None
+        expected = link.expected
+        if expected is None:
+            continue
+        principal = expected.principal_moments
+        if not principal[0] > 0 or principal[2] / principal[0] <= anisotropy:
+            continue  # a sphere, a cube, a near-cube: an isotropic tensor is right
+        at = geometry_tensor(link, declared.mass)
+        if at is None:
+            continue
+        payload, text, tensor = at
+        if _negligible(robot, link, tensor):
+            continue
+        inertial = link.link.inertial
+        assert inertial is not None
+        flagged.add(link.name)
+        yield ctx.finding(
+            f"link `{link.name}`: ixx = iyy = izz = {fmt(values[0], 4)} kg·m² with no products "
+            f"of inertia is an isotropic placeholder, but its {link.geometry.describe()} has "
+            f"principal moments in the ratio 1 : {fmt(principal[1] / principal[0], 3)} : "
+            f"{fmt(principal[2] / principal[0], 3)}: with the declared {fmt(declared.mass)} kg "
+            f"it gives {text}",
+            inertial.inertia_source or inertial.source,
+            link=link.name,
+            expected={"mass": declared.mass, **payload},
+            help="replace the placeholder with the part's tensor about its centre of mass (from "
+            "CAD, or `inertia-fill --fix invalid` from the geometry)",
+        )
+    for values, members in copies.items():
+        if len({m.name for m in members}) < 2:
+            continue
+        declared_tensor = _written(values)
+        candidates = []
+        for member in members:
+            declared = positive_mass(member)
+            assert declared is not None
+            at = geometry_tensor(member, declared.mass)
+            if at is not None:
+                candidates.append((member, declared.mass, at))
+        if len(candidates) < 2:
+            continue
+        comparisons = [compare_tensors(declared_tensor, at[2]) for _, _, at in candidates]
+        if any(c is None for c in comparisons):
+            continue  # not positive definite: IN010/IN011's
+        closeness = [c.factor for c in comparisons if c is not None]
+        original, _, (_, _, original_tensor) = candidates[int(np.argmin(closeness))]
+        for member, mass, (payload, text, tensor) in candidates:
+            if member is original or member.name in flagged:
+                continue
+            # principal moments: a mirrored or turned copy of the same part is the same shape
+            apart = _spread(tensor, original_tensor)
+            if apart <= copy_factor or _negligible(robot, member, tensor):
+                continue
+            inertial = member.link.inertial
+            assert inertial is not None
+            flagged.add(member.name)
+            yield ctx.finding(
+                f"link `{member.name}`: its six `<inertia>` values are those of link "
+                f"`{original.name}` ({tensor_text(declared_tensor)} kg·m²), but the two shapes' "
+                f"principal moments differ by a factor of {fmt(apart, 3)}: its "
+                f"{member.geometry.describe()} with the declared {fmt(mass)} kg gives {text}",
+                inertial.inertia_source or inertial.source,
+                link=member.name,
+                expected={"mass": mass, **payload},
+                help="compute this link's own tensor (from CAD, or `inertia-fill --fix invalid` "
+                "from the geometry) instead of copying another link's",
+            )

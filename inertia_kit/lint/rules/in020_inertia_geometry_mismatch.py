@@ -1,0 +1,144 @@
+"""IN020 inertia-geometry-mismatch: the declared tensor is far from the geometry's."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+
+from inertia_kit.analysis.forensics import diagnose_basis
+from inertia_kit.analysis.links import (
+    BOUND_RTOL,
+    Geometry,
+    LinkAnalysis,
+    TensorComparison,
+    axis_name,
+    compare_tensors,
+)
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.mass import MassProperties
+
+CODE = "IN020"
+NAME = "inertia-geometry-mismatch"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = (
+    "the declared tensor differs from the geometry's (declared mass, uniform density) by more "
+    "than a factor about some axis"
+)
+OPTIONS = {"factor": float, "factor_below": float}
+DEFAULTS = {"factor": 2.5, "factor_below": 5.0}
+
+# A slip that forensics recognises (analysis.forensics: about another point, other axes, a
+# unit, flipped signs, transposed values) is reported from a smaller deviation than the factors:
+# more than MISMATCH about some axis. With its IN06x rule enabled, that rule's finding replaces
+# this one (SUPERSEDES); otherwise the slip is named here.
+MISMATCH = 1.5
+
+
+def _about(axis: np.ndarray) -> str:
+    """``ixx`` for a link axis, else the moment about the axis."""
+    name = axis_name(axis)
+    if name is not None:
+        return f"i{name}{name}"
+    if axis[np.argmax(np.abs(axis))] < 0:
+        axis = -axis
+    return "the moment about the axis (" + ", ".join(fmt(v, 3) for v in axis) + ")"
+
+
+def _prefer_link_axis(
+    axis: np.ndarray, ratio: float, declared: np.ndarray, expected: np.ndarray
+) -> np.ndarray:
+    """
+    A link axis with the same moment ratio as ``axis``, if there is one: when two ratios are
+    equal (a symmetric body) the eigenvector is any axis of their plane, and ``ixx`` reads
+    better than an arbitrary direction in it.
+    """
+    for candidate in np.eye(3):
+        value = (candidate @ declared @ candidate) / (candidate @ expected @ candidate)
+        if abs(value - ratio) <= 1e-6 * ratio:
+            return candidate
+    return axis
+
+
+def _verdict(
+    link: LinkAnalysis,
+    basis: Geometry,
+    declared: MassProperties,
+    expected: MassProperties,
+    above: float,
+    below: float,
+) -> tuple[TensorComparison, str | None] | None:
+    """The comparison with one geometry and the slip it shows, if it is far; else None."""
+    comparison = compare_tensors(declared.inertia, expected.inertia)
+    if comparison is None or comparison.factor <= min(MISMATCH, above, below):
+        return None  # close enough whatever the cause: no need to look for a slip
+    # a slip explained within rounding (an IN06x finding), else the likely one
+    diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
+    mistake = None if diagnosis is None else f"likely {diagnosis.summary} ({diagnosis.code})"
+    ratios = comparison.ratios
+    if ratios.max() > above or ratios.min() < 1.0 / below:
+        return comparison, mistake
+    if mistake is not None:
+        return comparison, mistake
+    return None
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return
+    above, below = float(ctx.option("factor")), float(ctx.option("factor_below"))
+    verdicts: list[tuple[Geometry, MassProperties, TensorComparison, str | None]] = []
+    for basis in link.bases:
+        expected = basis.at_mass(declared.mass)
+        if expected is None:
+            return
+        verdict = _verdict(link, basis, declared, expected, above, below)
+        # a tensor that agrees with either the collision or the visual geometry is fine
+        if verdict is None:
+            return
+        verdicts.append((basis, expected, *verdict))
+    if not verdicts:
+        return
+    geometry, expected, comparison, mistake = verdicts[0]
+    worst = comparison.worst
+    ratio = float(comparison.ratios[worst])
+    axis = _prefer_link_axis(comparison.axes[worst], ratio, declared.inertia, expected.inertia)
+    moment = float(axis @ declared.inertia @ axis)
+    estimate = float(axis @ expected.inertia @ axis)
+    relation = f"{fmt(ratio, 3)} times" if ratio > 1 else f"1/{fmt(1 / ratio, 3)} of"
+    notes = [] if mistake is None else [mistake]
+    severity = None
+    excess = link.excess
+    if excess is not None and excess.ratio > 1.0 + BOUND_RTOL:
+        severity = Severity.ERROR
+        notes.append(f"no {fmt(declared.mass)} kg inside the link's geometry can have it (IN023)")
+    tensor = expected.cleaned().inertia
+    inertial = link.link.inertial
+    assert inertial is not None
+    yield ctx.finding(
+        f"link `{link.name}`: {_about(axis)} = {fmt(moment, 4)} kg·m² but its "
+        f"{geometry.describe()} with the declared {fmt(declared.mass)} kg gives "
+        f"{fmt(estimate, 4)} kg·m² ({relation} that)" + "".join(f"; {n}" for n in notes),
+        inertial.inertia_source or inertial.source,
+        link=link.name,
+        expected={
+            "mass": declared.mass,
+            "xyz": [float(v) for v in expected.cleaned().com],
+            "ixx": float(tensor[0, 0]),
+            "ixy": float(tensor[0, 1]),
+            "ixz": float(tensor[0, 2]),
+            "iyy": float(tensor[1, 1]),
+            "iyz": float(tensor[1, 2]),
+            "izz": float(tensor[2, 2]),
+            "basis": geometry.kind,
+            "ratio": ratio,
+            "axis": [float(v) for v in axis],
+        },
+        help="write the tensor of the link's real mass distribution about its centre of mass, "
+        "in the axes of <inertial><origin rpy>; the expected values assume uniform density",
+        severity=severity,
+    )

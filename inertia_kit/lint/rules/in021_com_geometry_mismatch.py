@@ -1,0 +1,99 @@
+"""IN021 com-geometry-mismatch: the centre of mass is outside the geometry or far from it."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+
+from inertia_kit.analysis.links import Geometry, LinkAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN021"
+NAME = "com-geometry-mismatch"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = "the centre of mass lies outside the link's geometry, or far from its centroid"
+OPTIONS = {"max_offset": float, "margin": float, "min_mass_share": float}
+DEFAULTS = {"max_offset": 0.6, "margin": 0.02, "min_mass_share": 0.01}
+
+_AXES = np.concatenate((np.eye(3), -np.eye(3)))
+
+
+def offset_fraction(geometry: Geometry, com: np.ndarray) -> float:
+    """
+    How far ``com`` lies from the geometry's centroid, as a fraction of the way to the edge of
+    the geometry's hull in that direction (and along each link axis); above 1 it is outside.
+    """
+    assert geometry.unit is not None and geometry.hull is not None
+    centroid = geometry.unit.com
+    offset = com - centroid
+    length = float(np.linalg.norm(offset))
+    if length == 0.0:
+        return 0.0
+    directions = np.vstack((offset / length, _AXES))
+    along = directions @ offset
+    reach = geometry.hull.half_widths(centroid, directions)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fractions = np.where(along > 0, along / reach, 0.0)
+    return float(np.nanmax(fractions))
+
+
+def _xyz(point: np.ndarray) -> str:
+    return "(" + ", ".join(fmt(v, 4) for v in point) + ")"
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    declared = link.declared
+    if declared is None or not declared.mass > 0 or not np.isfinite(declared.com).all():
+        return
+    # a negligible part of a welded body: its centre of mass moves the lumped one by nothing
+    if link.mass_share < float(ctx.option("min_mass_share")):
+        return
+    inertial = link.link.inertial
+    assert inertial is not None
+    source = inertial.origin.source or inertial.source
+    com = declared.com
+    envelope = link.envelope
+    if envelope is not None:
+        low, high = envelope.bounds
+        size = float((high - low).max())
+        outside = envelope.distance_outside(com)
+        if outside > float(ctx.option("margin")) * size:
+            shapes = " and ".join(g.describe() for g in (link.collision, link.visual) if g.solids)
+            centroid = link.bases[0].unit.com if link.bases else None  # type: ignore[union-attr]
+            yield ctx.finding(
+                f"link `{link.name}`: the centre of mass {_xyz(com)} m lies at least "
+                f"{fmt(outside, 3)} m outside its {shapes}: no mass inside the geometry has it",
+                source,
+                link=link.name,
+                expected=None if centroid is None else {"xyz": [float(v) for v in centroid]},
+                help="the centre of mass is in the link frame (check the sign, the axes and the "
+                "unit of <inertial><origin xyz>), or the geometry is misplaced",
+                severity=Severity.ERROR,
+            )
+            return
+    bases = [g for g in link.bases if g.hull is not None]
+    if not bases:
+        return
+    fractions = [offset_fraction(g, com) for g in bases]
+    limit = float(ctx.option("max_offset"))
+    # a centre of mass near the centroid of either the collision or the visual geometry is fine
+    if min(fractions) <= limit:
+        return
+    geometry = bases[0]
+    assert geometry.unit is not None
+    centroid = geometry.unit.com
+    distance = float(np.linalg.norm(com - centroid))
+    yield ctx.finding(
+        f"link `{link.name}`: the centre of mass {_xyz(com)} m is {fmt(distance, 3)} m from the "
+        f"centroid {_xyz(centroid)} m of its {geometry.describe()}, "
+        f"{fmt(100 * fractions[0], 3)}% of the way to its edge",
+        source,
+        link=link.name,
+        expected={"xyz": [float(v) for v in centroid], "offset_fraction": fractions[0]},
+        help="check <inertial><origin xyz> (link frame, metres); a heavy motor or counterweight "
+        "at one end explains an offset, a value about another frame does not",
+    )

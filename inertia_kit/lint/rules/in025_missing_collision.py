@@ -1,0 +1,44 @@
+"""IN025 missing-collision: a link with mass and visual geometry has no collision geometry."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import LinkAnalysis, declared_mass, geometry_summary
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN025"
+NAME = "missing-collision"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = "a link with mass and visual geometry has no `<collision>`"
+OPTIONS = {"min_mass_share": float}
+DEFAULTS = {"min_mass_share": 0.01}
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    element = link.link
+    if element.collisions or not element.visuals or element.inertial is None:
+        return
+    mass = declared_mass(element)
+    # a massless (or invalid-mass) frame is decoration: IN001/IN002/IN004 speak about its mass
+    if mass is None:
+        return
+    # a placeholder mass on a frame welded to a real body (a 0.1 g marker) is decoration too
+    if link.mass_share < float(ctx.option("min_mass_share")):
+        return
+    # simulators weld fixed-joint groups into one body: a collision shape anywhere in it counts
+    if link.robot is not None and any(
+        other.link.collisions for other in link.robot.group_of(link.name)
+    ):
+        return
+    yield ctx.finding(
+        f"link `{link.name}` has {fmt(mass)} kg and a visual shape but no <collision>: "
+        f"it falls through the floor and passes through other bodies ({geometry_summary(element)})",
+        element.source,
+        link=link.name,
+        help="add a <collision> element: the visual geometry, or a simpler box, cylinder or "
+        "convex mesh around it",
+    )

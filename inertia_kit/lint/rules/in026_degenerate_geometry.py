@@ -1,0 +1,63 @@
+"""IN026 degenerate-geometry: a shape with a zero or negative size, or a mesh with no volume."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import LinkAnalysis, shape_text
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+
+CODE = "IN026"
+NAME = "degenerate-geometry"
+SEVERITY = Severity.ERROR
+SCOPE = "link"
+SUMMARY = "a visual/collision shape has a zero or negative size, or a mesh encloses no volume"
+OPTIONS: dict[str, type] = {}
+DEFAULTS: dict[str, object] = {}
+
+# Solid.problem kinds this rule reports; the others belong to IN004 (invalid-number), IN030
+# (mesh-not-found) and IN034 (mesh-unreadable)
+KINDS = ("degenerate", "mesh-empty")
+
+HELP = {
+    "degenerate": "give every dimension a positive size in metres (a mirrored mesh takes a "
+    "negative scale factor, never a zero one); a frame with no body needs no shape at all",
+    "mesh-empty": "export the part's solid body (not a sketch, a sheet or a curve), or remove "
+    "the shape",
+}
+
+
+def _has_mass(link: LinkAnalysis) -> bool:
+    inertial = link.link.inertial
+    return inertial is not None and isinstance(inertial.mass, float) and inertial.mass > 0
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    element = link.link
+    # the visual shapes matter for mass only when there is no collision geometry
+    visual_is_basis = not element.collisions and _has_mass(link)
+    for shapes, geometry in (
+        (element.collisions, lambda: link.collision),
+        (element.visuals, lambda: link.visual),
+    ):
+        if not shapes:
+            continue
+        for solid in geometry().solids:
+            if solid.problem is None or solid.problem[0] not in KINDS:
+                continue
+            kind, detail = solid.problem
+            shape = solid.shape
+            severity = None
+            if shape.kind == "visual" and not visual_is_basis:
+                if kind == "mesh-empty":
+                    continue  # a flat decal or ground plane draws fine and weighs nothing
+                severity = Severity.WARNING
+            yield ctx.finding(
+                f"link `{link.name}`: its {shape.kind} {shape_text(shape.geometry)} is "
+                f"degenerate: {detail}",
+                shape.geometry.source or shape.source,
+                link=link.name,
+                help=HELP[kind],
+                severity=severity,
+            )

@@ -1,0 +1,160 @@
+"""IN030 mesh-not-found: a ``<mesh filename>`` that does not resolve to a file."""
+
+from __future__ import annotations
+
+import difflib
+import os
+from collections.abc import Iterator
+from pathlib import Path
+
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description import model
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+
+CODE = "IN030"
+NAME = "mesh-not-found"
+SEVERITY = Severity.ERROR
+SCOPE = "link"
+SUMMARY = "a visual/collision mesh URI does not resolve to a file"
+OPTIONS: dict[str, type] = {}
+DEFAULTS: dict[str, object] = {}
+
+PACKAGE = "package://"
+# folders above the robot file searched for a package named by a URI that did not resolve
+MAX_ANCESTORS = 8
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    for shape in (*link.link.visuals, *link.link.collisions):
+        mesh = shape.geometry
+        if not isinstance(mesh, model.Mesh) or mesh.path is not None:
+            continue
+        reason, advice = _split(mesh.problem or "the URI names no file")
+        hint = _hint(mesh)
+        yield ctx.finding(
+            f"link `{link.name}`: {shape.kind} mesh `{mesh.filename}` not found: {reason}",
+            mesh.source,
+            link=link.name,
+            expected={"filename": mesh.filename, "kind": shape.kind, "found": hint[1]}
+            if hint
+            else None,
+            help=hint[0] if hint else advice,
+        )
+
+
+def _split(problem: str) -> tuple[str, str]:
+    """The resolver's problem as (why, what to do)."""
+    reason, sep, advice = problem.partition(": pass ")
+    if sep:
+        return reason, "pass " + advice
+    return problem, (
+        "check the path (a relative path is relative to the file that names it), or name the "
+        "file through its package (`package://pkg/...`) and pass --package-path DIR"
+    )
+
+
+def _hint(mesh: model.Mesh) -> tuple[str, str] | None:
+    """
+    Where the file probably is, with what to do: ``(help, path)``, or ``None``.
+
+    Looks only at a few named places (a name that differs in case; a package folder next to
+    the robot file or one of its ancestors), never a recursive search.
+    """
+    uri = mesh.filename.strip()
+    base = Path(mesh.source.path).parent
+    if uri.startswith(PACKAGE):
+        rest = uri[len(PACKAGE) :]
+        if rest.startswith("/"):
+            fixed = PACKAGE + rest.lstrip("/")
+            return (
+                f"`package:///` names an empty package: write `{fixed}` (two slashes, then "
+                "the package name)",
+                fixed,
+            )
+        package, _, relative = rest.partition("/")
+        if package and relative:
+            return _package_hint(package, relative, base)
+        return None
+    if "://" in uri:
+        return None
+    path = Path(uri[len("file://") :] if uri.startswith("file://") else uri)
+    target = path if path.is_absolute() else base / path
+    target = Path(os.path.normpath(target))
+    variant = _case_variant(target)
+    if variant is not None:
+        return (
+            f"`{variant}` exists: the name differs only in case (Windows and macOS ignore "
+            "case, Linux and the simulators on it do not); write the name as it is on disk",
+            str(variant),
+        )
+    similar = _similar(target)
+    if similar is not None:
+        return f"did you mean `{similar}`? It is in the same folder", str(similar)
+    return None
+
+
+def _similar(path: Path) -> Path | None:
+    """A mesh file in the same folder with a close name (one listing, no recursion)."""
+    try:
+        names = [e.name for e in os.scandir(path.parent) if e.is_file()]
+    except OSError:
+        return None
+    suffix = path.suffix.lower()
+    candidates = [n for n in names if Path(n).suffix.lower() == suffix]
+    close = difflib.get_close_matches(path.name, candidates, n=1, cutoff=0.7)
+    return path.parent / close[0] if close else None
+
+
+def _package_hint(package: str, relative: str, base: Path) -> tuple[str, str] | None:
+    from inertia_kit.description.packages import package_name
+
+    for ancestor in [base, *base.parents][:MAX_ANCESTORS]:
+        candidates = [(ancestor / package, ancestor)]
+        if ancestor.name == package:
+            candidates.append((ancestor, ancestor.parent))
+        for folder, holder in candidates:
+            found = folder / relative
+            if not found.is_file():
+                variant = _case_variant(found)
+                if variant is None:
+                    continue
+                found = variant
+            declared = package_name(folder)
+            if declared is not None and declared != package:
+                return (
+                    f"`{found}` exists, in the folder `{folder}` named after the package, but "
+                    f"its package.xml names the package `{declared}`: write "
+                    f"`package://{declared}/{relative}`, or rename the package",
+                    str(found),
+                )
+            return (
+                f"`{found}` exists: pass --package-path {holder} (PyBullet finds it by "
+                "stripping `package://`; ROS, Gazebo and Drake need the package on their path)",
+                str(found),
+            )
+    return None
+
+
+def _case_variant(path: Path) -> Path | None:
+    """An existing file whose path differs from ``path`` only in letter case, or ``None``."""
+    parts = path.parts
+    if not parts:
+        return None
+    current = Path(parts[0])
+    for index, part in enumerate(parts[1:], start=1):
+        exact = current / part
+        if exact.exists():
+            current = exact
+            continue
+        try:
+            names = os.listdir(current)
+        except OSError:
+            return None
+        matches = [name for name in names if name.lower() == part.lower()]
+        if len(matches) != 1:
+            return None
+        current = current / matches[0]
+        if index < len(parts) - 1 and not current.is_dir():
+            return None
+    return current if current.is_file() and current != path else None

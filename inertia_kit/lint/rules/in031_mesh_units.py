@@ -1,0 +1,326 @@
+"""IN031 mesh-units: a mesh whose size says it was authored in mm, cm or inches."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from inertia_kit.analysis.links import LinkAnalysis, Solid, declared_mass, shape_text
+from inertia_kit.description import model
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt, xml_number
+
+CODE = "IN031"
+NAME = "mesh-units"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = "a mesh's size says it was authored in mm, cm or inches: suggests the exact `scale`"
+OPTIONS = {
+    "min_size": float,
+    "max_size": float,
+    "min_density": float,
+    "max_density": float,
+    "min_evidence": int,
+}
+DEFAULTS = {
+    "min_size": 0.001,
+    "max_size": 5.0,
+    "min_density": 1.0,
+    "max_density": 1e7,
+    "min_evidence": 2,
+}
+
+# unit slips: the factor the mesh's size is wrong by, and how that happens. A factor below 1
+# shrinks the mesh (a file in mm read as m); above 1 grows it (a scale for mm applied to a file
+# already in m)
+SLIPS = {
+    0.001: "as if millimetres were read as metres",
+    0.01: "as if centimetres were read as metres",
+    0.0254: "as if inches were read as metres",
+    1000.0: "as if a millimetre scale were put on a mesh already in metres",
+    100.0: "as if a centimetre scale were put on a mesh already in metres",
+    1 / 0.0254: "as if an inch scale were put on a mesh already in metres",
+}
+
+# A mesh's size compared with the link's other evidence, as log10 ratios, and the bands real
+# robots fall in (measured on the 8 781 meshes of 1 245 published robot files: see the rule's
+# document). Joint offsets and the link's primitives are written in metres in the URDF itself,
+# so they cannot share a mesh's unit slip.
+JOINT_BAND = (-1.5, 1.2)  # log10(mesh extent / largest joint offset at the link)
+PEER_BAND = (-1.5, 1.5)  # log10(mesh extent / extent of the link's other shapes)
+# joint offsets shorter than this say nothing about a link's size
+MIN_OFFSET = 0.001
+# millimetre exports are the common slip: between slips that explain the evidence equally well,
+# the others pay this many decades (measured: finds 2 points more mm and metre-scale slips for
+# 4 points fewer cm ones)
+PRIOR = {0.01: 0.3, 100.0: 0.3, 0.0254: 0.3, 1 / 0.0254: 0.3}
+# an alternative slip is named in the message when it fits within this many decades per
+# observation of the best one (cm and inches, 0.4 decades apart, often do)
+ALTERNATIVE = 0.5
+# a mesh vouches for the size of the link's other meshes when this many observations of its
+# own, all in band, back it (its size alone would let a tiny slipped mesh accuse a sound one)
+TRUST = 2
+# an evidence item counts as against the current scale beyond this many decades out of band
+# (a factor of 2): borderline values are the normal spread of real robots
+VIOLATION = 0.3
+# the best slip must explain the evidence: at most this many decades out of band in total
+EXPLAINED = 0.3
+
+
+@dataclass(frozen=True)
+class Evidence:
+    """
+    One observation about a mesh's size: ``value(log_r)`` is its log10 if the mesh were
+    ``10**log_r`` times its size, ``band`` the log10 range real robots fall in.
+    """
+
+    kind: str  # size | joints | peer | density
+    value: Callable[[float], float]
+    band: tuple[float, float]
+    text: Callable[[float], str]  # what the observation is, at a slip (0: as written)
+
+    def excess(self, log_r: float = 0.0) -> float:
+        x = self.value(log_r)
+        return max(self.band[0] - x, 0.0, x - self.band[1])
+
+    def off_centre(self, log_r: float) -> float:
+        return abs(self.value(log_r) - 0.5 * (self.band[0] + self.band[1]))
+
+
+def _extent(solid: Solid) -> float:
+    """Largest dimension of the solid's bounding box in its own frame, m."""
+    if solid.mesh is not None:
+        bounds = solid.mesh.bounds
+    elif solid.corners is not None:
+        bounds = np.array([solid.corners.min(axis=0), solid.corners.max(axis=0)])
+    else:
+        return 0.0
+    return float(np.max(bounds[1] - bounds[0]))
+
+
+def _joint_offset(link: LinkAnalysis) -> float | None:
+    """The longest offset of the joints at the link (parent and children), m."""
+    lengths = []
+    for joint in (link.parent, *link.children):
+        if joint is not None and isinstance(joint.origin.xyz, tuple):
+            lengths.append(math.sqrt(sum(v * v for v in joint.origin.xyz)))
+    longest = max(lengths, default=0.0)
+    return longest if longest >= MIN_OFFSET else None
+
+
+def _same_file(a: Solid, b: Solid) -> bool:
+    """Two shapes that use the same file at the same scale share any unit slip."""
+    ga, gb = a.shape.geometry, b.shape.geometry
+    return (
+        isinstance(ga, model.Mesh)
+        and isinstance(gb, model.Mesh)
+        and ga.path == gb.path
+        and ga.scale == gb.scale
+    )
+
+
+def _describe(solid: Solid) -> str:
+    geometry = solid.shape.geometry
+    if isinstance(geometry, model.Mesh):
+        return f"{solid.shape.kind} mesh `{Path(geometry.filename).name}`"
+    return f"{solid.shape.kind} {shape_text(geometry)}"
+
+
+def _evidence(
+    link: LinkAnalysis, solid: Solid, peers: list[Solid], ctx: RuleContext
+) -> list[Evidence]:
+    mesh = solid.mesh
+    assert mesh is not None
+    extent = _extent(solid)
+    if not extent > 0:
+        return []
+    size = math.log10(extent)
+    found = []
+    low, high = float(ctx.option("min_size")), float(ctx.option("max_size"))
+    # a shape's size alone says something only of a robot part: a link with mass, one that
+    # moves, or one of several links (a lone massless 120 m mesh is a scene, not a slip)
+    several = link.robot is not None and len(link.robot.links) > 1
+    if declared_mass(link.link) is not None or link.moves or several:
+        found.append(
+            Evidence(
+                "size",
+                lambda r: size + r,
+                (math.log10(low), math.log10(high)),
+                lambda r: (
+                    "no robot part is that " + ("large" if size + r > math.log10(high) else "small")
+                ),
+            )
+        )
+    offset = _joint_offset(link)
+    if offset is not None:
+        found.append(
+            Evidence(
+                "joints",
+                lambda r: size + r - math.log10(offset),
+                JOINT_BAND,
+                lambda r: f"the link's longest joint offset is {fmt(offset, 3)} m",
+            )
+        )
+    for peer in peers:
+        other = _extent(peer)
+        if other > 0:
+            found.append(
+                Evidence(
+                    "peer",
+                    lambda r, other=other: size + r - math.log10(other),
+                    PEER_BAND,
+                    lambda r, peer=peer, other=other: (
+                        f"its {_describe(peer)} spans {fmt(other, 3)} m"
+                    ),
+                )
+            )
+    mass = declared_mass(link.link)
+    basis = link.geometry
+    if mass is not None and basis.unit is not None and any(s is solid for s in basis.solids):
+        own, total = mesh.volume, basis.volume
+        rest = max(total - own, 0.0)
+        low_d, high_d = float(ctx.option("min_density")), float(ctx.option("max_density"))
+
+        def density(r: float) -> float:
+            return mass / (rest + own * 10 ** (3 * r))
+
+        found.append(
+            Evidence(
+                "density",
+                lambda r: math.log10(density(r)),
+                (math.log10(low_d), math.log10(high_d)),
+                lambda r: f"{fmt(mass, 3)} kg in it is {fmt(density(r), 4)} kg/m³",
+            )
+        )
+    return found
+
+
+@dataclass(frozen=True)
+class Verdict:
+    solid: Solid
+    slip: float | None  # the unit slip that explains the evidence, None when none is needed
+    evidence: tuple[Evidence, ...]
+    others: tuple[float, ...] = ()  # other slips that explain it as well (cm or inches?)
+
+
+def _judge(link: LinkAnalysis, solid: Solid, peers: list[Solid], ctx: RuleContext) -> Verdict:
+    evidence = _evidence(link, solid, peers, ctx)
+    against = [e for e in evidence if e.excess() > VIOLATION]
+    if len(against) < int(ctx.option("min_evidence")):
+        return Verdict(solid, None, tuple(evidence))
+    now = sum(e.excess() for e in evidence)
+
+    def score(slip: float) -> tuple[float, float]:
+        r = math.log10(slip)
+        return (
+            sum(e.excess(r) for e in evidence),
+            sum(e.off_centre(r) for e in evidence) + PRIOR.get(slip, 0.0),
+        )
+
+    ranked = sorted(SLIPS, key=score)
+    best = ranked[0]
+    explained = score(best)[0]
+    if explained > EXPLAINED or not explained < 0.25 * now:
+        return Verdict(solid, None, tuple(evidence))
+    others = tuple(
+        s
+        for s in ranked[1:]
+        if score(s)[0] <= EXPLAINED and score(s)[1] <= score(best)[1] + ALTERNATIVE * len(evidence)
+    )
+    return Verdict(solid, best, tuple(evidence), others)
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    kinds = [
+        kind
+        for kind, shapes in (("visual", link.link.visuals), ("collision", link.link.collisions))
+        if shapes
+    ]
+    solids = [s for kind in kinds for s in getattr(link, kind).solids]
+    meshes = [s for s in solids if s.mesh is not None]
+    if not meshes:
+        return
+    # primitives are sized in metres in the URDF itself: always trusted peers. Meshes first
+    # judged on everything else; one that passes then vouches for the others, so that a
+    # visual mesh in mm next to its collision mesh in m is told apart, and a robot exported
+    # all in mm is not excused by its own meshes
+    primitives = [s for s in solids if s.part is not None]
+    first = {id(s): _judge(link, s, primitives, ctx) for s in meshes}
+    trusted = [
+        s
+        for s in meshes
+        if first[id(s)].slip is None and len(first[id(s)].evidence) >= TRUST
+        if all(e.excess() == 0 for e in first[id(s)].evidence)
+    ]
+    verdicts = []
+    for solid in meshes:
+        verdict = first[id(solid)]
+        if verdict.slip is None:
+            peers = [
+                p
+                for p in trusted
+                if p is not solid and p.shape.kind != solid.shape.kind and not _same_file(p, solid)
+            ]
+            if peers:
+                verdict = _judge(link, solid, primitives + peers, ctx)
+        verdicts.append(verdict)
+    for verdict in verdicts:
+        if verdict.slip is None:
+            # the same file at the same scale as a slipped shape has slipped the same way (a
+            # visual mesh that is also the collision mesh, where only the latter has a density)
+            twin = next(
+                (v for v in verdicts if v.slip is not None and _same_file(v.solid, verdict.solid)),
+                None,
+            )
+            if twin is None:
+                continue
+            verdict = Verdict(verdict.solid, twin.slip, twin.evidence, twin.others)
+        yield _finding(link, verdict, ctx)
+
+
+def _finding(link: LinkAnalysis, verdict: Verdict, ctx: RuleContext) -> Finding:
+    solid, slip = verdict.solid, verdict.slip
+    assert slip is not None and solid.mesh is not None
+    element = solid.shape.geometry
+    assert isinstance(element, model.Mesh)
+    scale = element.scale if isinstance(element.scale, tuple) else (1.0, 1.0, 1.0)
+    new = tuple(v * slip for v in scale)
+    uniform = len(set(new)) == 1
+    text = " ".join(xml_number(v, 6) for v in new)
+    extent = _extent(solid)
+    r = math.log10(slip)
+    against = [e.text(0.0) for e in verdict.evidence if e.excess() > VIOLATION]
+    written = (
+        "no scale" if scale == (1.0, 1.0, 1.0) else f'scale="{" ".join(fmt(v) for v in scale)}"'
+    )
+    density = [e.text(r) for e in verdict.evidence if e.kind == "density"]
+    alternatives = [
+        f'scale="{" ".join(xml_number(v * other, 6) for v in scale)}" '
+        f"({SLIPS[other].removeprefix('as if ')})"
+        for other in verdict.others
+    ]
+    also = f"; {' or '.join(alternatives)} would fit too" if alternatives else ""
+    return ctx.finding(
+        f"link `{link.name}`: {_describe(solid)} spans {fmt(extent, 3)} m with {written}, "
+        f'{SLIPS[slip]}: {"; ".join(against)}; with scale="{text}" it spans '
+        f"{fmt(extent * slip, 3)} m" + (f" and {density[0]}" if density else "") + also,
+        element.source,
+        link=link.name,
+        expected={
+            "scale": list(new),
+            "factor": slip,
+            "extent": float(extent * slip),
+            "uniform": uniform,
+            "filename": element.filename,
+            "kind": solid.shape.kind,
+            "alternatives": [[v * other for v in scale] for other in verdict.others],
+        },
+        help=f'set <mesh ... scale="{text}"/>, or re-export the mesh in metres'
+        if slip < 1
+        else f'set <mesh ... scale="{text}"/>: the mesh is in metres already',
+    )

@@ -1,0 +1,80 @@
+"""IN032 mesh-not-watertight: an open or inconsistently wound mesh whose volume mass comes from."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description import model
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN032"
+NAME = "mesh-not-watertight"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = "a collision mesh (or the visual mesh mass comes from) is open or wound inconsistently"
+OPTIONS = {"tolerance": float, "repaired": bool}
+DEFAULTS = {"tolerance": 0.05, "repaired": True}
+
+
+def _kinds(link: LinkAnalysis) -> tuple[str, ...]:
+    """
+    Where a mesh's volume matters: collision meshes always (engines derive mass, contact
+    volumes and hulls from them); visual meshes only when the link has no collision geometry
+    and has mass or moves, so that mass properties come from them.
+    """
+    if link.link.collisions:
+        return ("collision",)
+    if link.link.visuals and (link.link.inertial is not None or link.moves):
+        return ("visual",)
+    return ()
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    tolerance = float(ctx.option("tolerance"))
+    for solid in link.mesh_kind_solids(tuple(_kinds(link))):
+        kind = solid.shape.kind
+        mesh = solid.mesh
+        if mesh is None:
+            continue
+        element = solid.shape.geometry
+        assert isinstance(element, model.Mesh)
+        name = Path(element.filename).name
+        count = f"{mesh.triangle_count} triangles"
+        if mesh.method == "convex-hull" and mesh.volume_error > tolerance:
+            yield ctx.finding(
+                f"link `{link.name}`: {kind} mesh `{name}` is not closed ({count}): its "
+                f"mass properties are those of its convex hull, whose volume "
+                f"({fmt(mesh.volume, 4)} m³) differs from the open surface's by "
+                f"{fmt(100 * mesh.volume_error, 3)}%",
+                element.source,
+                link=link.name,
+                expected={
+                    "method": mesh.method,
+                    "volume": float(mesh.volume),
+                    "volume_error": float(mesh.volume_error),
+                },
+                help="export the part as a closed solid (fill its holes, e.g. with "
+                "Blender's 3D-Print Toolbox or `trimesh.repair.fill_holes`); engines that "
+                "integrate the surface itself (Drake, MuJoCo's exact inertia) get "
+                "another, wrong volume",
+            )
+        elif mesh.method == "repaired" and ctx.option("repaired"):
+            yield ctx.finding(
+                f"link `{link.name}`: {kind} mesh `{name}` is closed ({count}) but its "
+                "triangles are wound inconsistently: computed after repairing the "
+                "winding, but engines that integrate the triangles as given get a wrong "
+                "volume",
+                element.source,
+                link=link.name,
+                expected={
+                    "method": mesh.method,
+                    "volume": float(mesh.volume),
+                    "volume_error": 0.0,
+                },
+                help="re-export the mesh with consistent outward normals (Blender: "
+                "Recalculate Outside; `trimesh.repair.fix_normals`)",
+            )

@@ -1,0 +1,52 @@
+"""IN041 root-link-inertia: the root link carries an ``<inertial>``, which KDL ignores."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN041"
+NAME = "root-link-inertia"
+SEVERITY = Severity.WARNING
+SCOPE = "robot"
+SUMMARY = "the root link carries an `<inertial>`: KDL (robot_state_publisher, MoveIt) ignores it"
+OPTIONS = {"single_link": bool}
+DEFAULTS = {"single_link": False}
+
+KDL = (
+    "The root link {name} has an inertia specified in the URDF, but KDL does not support a "
+    "root link with an inertia."
+)
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    urdf = robot.robot
+    name = urdf.root
+    if name is None:
+        return  # no root or several: IN040's business
+    if not urdf.joints and not ctx.option("single_link"):
+        return  # a single rigid object (a cube, a table) is never a KDL tree
+    link = robot.by_name.get(name)
+    inertial = None if link is None else link.link.inertial
+    if inertial is None:
+        return
+    mass = inertial.mass if isinstance(inertial.mass, float) else None
+    weight = "" if mass is None else f" ({fmt(mass)} kg)"
+    yield ctx.finding(
+        f"root link `{name}` has an <inertial>{weight}: KDL, so robot_state_publisher, "
+        f'MoveIt\'s KDL plugins and KDL dynamics, leave it out ("{KDL.format(name=name)}"), '
+        "and MuJoCo's URDF import fuses the root with the world body; Gazebo, Drake and "
+        "PyBullet keep it, which a floating base needs",
+        inertial.source,
+        link=name,
+        expected={"root": name, "mass": mass},
+        help=f'add a massless root above it: <link name="base_footprint"/> and <joint '
+        f'name="base_footprint_joint" type="fixed"><parent link="base_footprint"/><child '
+        f'link="{name}"/></joint>; Gazebo and Drake lump the two into one body (PyBullet fixes '
+        "a massless base to the world: load a floating robot with "
+        "flags=p.URDF_MERGE_FIXED_LINKS)",
+    )

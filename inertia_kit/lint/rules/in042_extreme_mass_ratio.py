@@ -1,0 +1,66 @@
+"""IN042 extreme-mass-ratio: two bodies joined by a moving joint differ hugely in mass."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN042"
+NAME = "extreme-mass-ratio"
+SEVERITY = Severity.WARNING
+SCOPE = "robot"
+SUMMARY = "the bodies on the two sides of a moving joint differ in mass by more than a ratio"
+OPTIONS = {"max_ratio": float}
+DEFAULTS = {"max_ratio": 1000.0}
+
+
+def _body(robot: RobotAnalysis, name: str) -> str:
+    """``link`` or ``link (+ 2 welded links)``: what a simulator lumps into one body."""
+    others = len(robot.group_of(name)) - 1
+    if others <= 0:
+        return f"`{name}`"
+    return f"`{name}` (with {others} welded link{'s' if others > 1 else ''})"
+
+
+def _ratio(value: float) -> str:
+    return f"{value:.0f}" if value >= 100 else fmt(value, 3)
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    limit = float(ctx.option("max_ratio"))
+    for joint in robot.robot.joints:
+        if joint.type in ("fixed", "") or not joint.parent or not joint.child:
+            continue
+        if joint.parent not in robot.by_name or joint.child not in robot.by_name:
+            continue
+        parent, child = robot.group_mass(joint.parent), robot.group_mass(joint.child)
+        if not (parent > 0 and child > 0):
+            continue  # a massless side is IN001's business
+        ratio = max(parent, child) / min(parent, child)
+        if not ratio > limit:
+            continue
+        light, heavy = (
+            (joint.child, joint.parent) if child < parent else (joint.parent, joint.child)
+        )
+        yield ctx.finding(
+            f"joint `{joint.name}`: {_body(robot, light)} weighs "
+            f"{fmt(min(parent, child), 4)} kg, 1/{_ratio(ratio)} of {_body(robot, heavy)} at "
+            f"{fmt(max(parent, child), 4)} kg (beyond 1/{_ratio(limit)}): the joint's "
+            "equations are ill-conditioned, so solvers jitter, drift or need tiny time steps",
+            joint.source,
+            joint=joint.name or None,
+            link=light,
+            expected={
+                "ratio": ratio,
+                "parent_mass": parent,
+                "child_mass": child,
+                "max_ratio": limit,
+            },
+            help=f"check both masses (grams for kilograms?); if they are real, give `{light}` "
+            "at least its share of motor, cabling and housing, or weld it to its neighbour "
+            "with a fixed joint",
+        )

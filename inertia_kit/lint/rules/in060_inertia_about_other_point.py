@@ -1,0 +1,28 @@
+"""IN060 inertia-about-other-point: the declared tensor is about another point, not the COM."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.rules._forensic import diagnosed
+
+CODE = "IN060"
+NAME = "inertia-about-other-point"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = (
+    "the declared tensor is the geometry's about another point (the link origin, a joint, a mesh "
+    "origin) instead of the centre of mass"
+)
+OPTIONS: dict[str, type] = {}
+DEFAULTS: dict[str, object] = {}
+# the explanation replaces the symptoms it explains on the same link: far from the geometry
+# (IN020), beyond its hard bound (IN023)
+SUPERSEDES = ("IN020", "IN023")
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    yield from diagnosed(link, ctx)

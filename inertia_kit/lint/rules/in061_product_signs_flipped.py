@@ -1,0 +1,25 @@
+"""IN061 product-signs-flipped: the products of inertia are written with the opposite sign."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.rules._forensic import diagnosed
+
+CODE = "IN061"
+NAME = "product-signs-flipped"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+SUMMARY = "the products of inertia are written with the opposite sign convention (ixy = +∫xy dm)"
+OPTIONS: dict[str, type] = {}
+DEFAULTS: dict[str, object] = {}
+# the explanation replaces the symptoms it explains on the same link: far from the geometry
+# (IN020), beyond its hard bound (IN023)
+SUPERSEDES = ("IN020", "IN023")
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    yield from diagnosed(link, ctx)

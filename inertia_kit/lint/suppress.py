@@ -1,0 +1,186 @@
+"""
+Suppression comments in URDF and xacro files.
+
+``<!-- inertia-lint: ignore[IN012, inertia-too-small] -->`` directly before an element covers
+that element and everything inside it: every line from its start tag to its end tag. Codes,
+code prefixes and rule names are accepted; text after the ``]`` is a free reason.
+``<!-- inertia-lint: disable-file -->`` anywhere covers the whole file.
+
+A finding is covered when its location is: the file and line it is reported at, or, for an
+element a xacro macro produced, the element's line in the macro body (so a comment in a macro
+covers every instance, and a comment before a macro call covers that call). Each file's
+comments are read once (per content: the cache is keyed on size and modification time).
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from inertia_kit.errors import InputError
+from inertia_kit.lint.config import selects
+from inertia_kit.lint.findings import Finding
+
+_DIRECTIVE = re.compile(r"\s*inertia-lint\s*:\s*(.*?)\s*\Z", re.DOTALL)
+_IGNORE = re.compile(r"ignore\s*\[([^\]]*)\](.*)\Z", re.DOTALL)
+_MARKER = b"inertia-lint"
+
+
+@dataclass(frozen=True)
+class Ignore:
+    """An ``ignore[...]`` comment: its selectors and the lines of the element it covers."""
+
+    selectors: tuple[str, ...]
+    first: int
+    last: int
+    line: int  # of the comment
+
+    def covers(self, finding: Finding, line: int) -> bool:
+        return self.first <= line <= self.last and selects(
+            self.selectors, finding.code, finding.name
+        )
+
+
+@dataclass(frozen=True)
+class Directives:
+    """The suppression comments of one file, and the ones that say nothing we understand."""
+
+    path: str
+    disabled: bool = False
+    ignores: tuple[Ignore, ...] = ()
+    problems: tuple[tuple[int | None, str], ...] = ()  # (line, message)
+
+    def covers(self, finding: Finding, line: int | None) -> bool:
+        if self.disabled:
+            return True
+        return line is not None and any(ignore.covers(finding, line) for ignore in self.ignores)
+
+
+def directives(path: str | Path) -> Directives:
+    """The suppression comments of the file at ``path`` (none when it cannot be read)."""
+    try:
+        stat = os.stat(path)
+    except (OSError, ValueError):
+        return Directives(str(path))
+    return _directives(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+def suppressed(finding: Finding) -> bool:
+    """Whether a comment in the files the finding points at covers it."""
+    if finding.path and directives(finding.path).covers(finding, finding.line):
+        return True
+    return bool(finding.macro_path) and directives(finding.macro_path).covers(  # type: ignore[arg-type]
+        finding, finding.macro_line
+    )
+
+
+@functools.lru_cache(maxsize=512)
+def _directives(path: str, mtime_ns: int, size: int) -> Directives:
+    from inertia_kit.description.loader import parse_xml
+    from inertia_kit.description.safexml import read_bounded
+
+    try:
+        data = read_bounded(path)
+        if _MARKER not in data:  # no directive: no need to parse
+            return Directives(path)
+        root = parse_xml(data, path)
+    except InputError:
+        return Directives(path)  # the loader reports unreadable files
+    return _scan(path, root)
+
+
+def _scan(path: str, root) -> Directives:
+    from lxml import etree
+
+    from inertia_kit.lint import config
+
+    known = config.catalog()
+    disabled = False
+    ignores: list[Ignore] = []
+    problems: list[tuple[int | None, str]] = []
+    prolog = list(root.itersiblings(preceding=True))[::-1]
+    epilog = list(root.itersiblings())
+    nodes = [*prolog, *root.iter(etree.Comment), *epilog]
+    for node in nodes:
+        if not isinstance(node, etree._Comment):
+            continue
+        match = _DIRECTIVE.match(node.text or "")
+        if match is None:
+            continue
+        body = match.group(1)
+        line = node.sourceline - _newlines(node.text)  # where the comment starts
+        if body == "disable-file" or body.startswith(("disable-file ", "disable-file:")):
+            disabled = True
+            continue
+        ignore = _IGNORE.match(body)
+        if ignore is None:
+            problems.append(
+                (
+                    line,
+                    f"unknown directive `{body}`: expected `ignore[CODE, ...]` or `disable-file`",
+                )
+            )
+            continue
+        selectors = []
+        for text in ignore.group(1).split(","):
+            if not text.strip():
+                continue
+            selector = config.normalize_selector(text, known)
+            if selector is None:
+                problems.append((line, config.selector_error(text.strip(), known)))
+            else:
+                selectors.append(selector)
+        if not ignore.group(1).strip():
+            problems.append((line, "`ignore[]` names no rule: give codes or names"))
+            continue
+        target, first = _next_element(node)
+        if target is None:
+            problems.append((line, "`ignore[...]` is not followed by an element it could cover"))
+        elif selectors:
+            ignores.append(Ignore(tuple(selectors), first, _last_line(target), line))
+    return Directives(path, disabled, tuple(ignores), tuple(problems))
+
+
+def _newlines(text: str | None) -> int:
+    return text.count("\n") if text else 0
+
+
+def _next_element(comment):
+    """
+    The element a comment stands before (other comments may come between), and the line its
+    start tag begins on; ``(None, 0)`` when there is none.
+
+    lxml gives the line a node's markup *ends* on; what lies between two nodes is text (their
+    ``tail``), so a start tag begins on the previous node's end line plus the tail's newlines.
+    """
+    from lxml import etree
+
+    node = comment
+    while True:
+        line = node.sourceline + _newlines(node.tail)
+        node = node.getnext()
+        if node is None:
+            return None, 0
+        if not isinstance(node, (etree._Comment, etree._ProcessingInstruction)):
+            return node, line
+
+
+def _last_line(element) -> int:
+    """
+    The line an element's end tag is on (for ``<x/>``, its start tag's end): its last child's
+    end plus the text after it, down to the innermost last child. A line break inside an end
+    tag (``</link\\n>``) is not seen, and no finding can point there.
+    """
+    from lxml import etree
+
+    extra = 0
+    node = element
+    while len(node):
+        node = node[-1]
+        extra += _newlines(node.tail)
+    if isinstance(node, (etree._Comment, etree._ProcessingInstruction)):
+        return node.sourceline + extra  # a comment's line is where it ends
+    return node.sourceline + _newlines(node.text) + extra

@@ -1,0 +1,247 @@
+"""`inertia-kit report`: a table of a robot's links and their declared mass properties."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from inertia_kit.analysis.links import declared, geometry_summary
+from inertia_kit.description import model
+from inertia_kit.physics.formatting import fmt
+
+
+def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
+    """One record per link, in document order, with JSON-ready values (SI units)."""
+    rows = []
+    for link in robot.links:
+        joint = robot.parent_joint(link.name)
+        properties = declared(link)
+        source = link.source
+        rows.append(
+            {
+                "link": link.name,
+                "parent_joint": None if joint is None else joint.name,
+                "joint_type": None if joint is None else joint.type,
+                "mass": None if properties is None else properties.mass,
+                "com": None if properties is None else properties.com.tolist(),
+                "principal_moments": None
+                if properties is None
+                else properties.principal_moments.tolist(),
+                "inertial": "none"
+                if link.inertial is None
+                else ("complete" if properties else "incomplete"),
+                "geometry": geometry_summary(link),
+                "file": source.path,
+                "line": source.line,
+                "call_site": None
+                if not source.calls
+                else {"file": source.calls[0].path, "line": source.calls[0].line},
+            }
+        )
+    return rows
+
+
+def total_mass(rows: list[dict[str, Any]]) -> float:
+    return sum(row["mass"] for row in rows if row["mass"] is not None)
+
+
+def render(robot: model.Robot, output_format: str = "text") -> str:
+    """The report as ``text`` (aligned columns), ``markdown`` or ``json``."""
+    rows = link_rows(robot)
+    if output_format == "json":
+        return json.dumps(
+            {
+                "robot": robot.name,
+                "files": list(robot.files),
+                "links": rows,
+                "total_mass": total_mass(rows),
+            },
+            indent=2,
+        )
+    header = [
+        "link",
+        "joint (type)",
+        "mass kg",
+        "COM m",
+        "principal moments kg·m²",
+        "geometry",
+        "source",
+    ]
+    table = [header]
+    for row in rows:
+        where = f"{row['file']}:{row['line']}"
+        if row["call_site"]:
+            where += f" via {row['call_site']['file']}:{row['call_site']['line']}"
+        table.append(
+            [
+                row["link"],
+                "(root)"
+                if row["parent_joint"] is None
+                else f"{row['parent_joint']} ({row['joint_type']})",
+                "-" if row["mass"] is None else fmt(row["mass"], 6),
+                "-" if row["com"] is None else "(" + ", ".join(fmt(x, 4) for x in row["com"]) + ")",
+                ("-" if row["inertial"] == "none" else row["inertial"])
+                if row["principal_moments"] is None
+                else ", ".join(fmt(x, 4) for x in row["principal_moments"]),
+                row["geometry"],
+                where,
+            ]
+        )
+    name = robot.name or "unnamed robot"
+    footer = f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})"
+    if output_format == "markdown":
+        lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+        lines += [
+            "| " + " | ".join(cell.replace("|", "\\|") for cell in r) + " |" for r in table[1:]
+        ]
+        return "\n".join([*lines, "", f"**{footer}**"])
+    widths = [max(len(r[i]) for r in table) for i in range(len(header))]
+    lines = [
+        "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in table
+    ]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join([*lines, footer])
+
+
+# --- inertia-kit report --lumped ------------------------------------------------------------
+
+
+def lumped_records(robot: model.Robot, engines: tuple[str, ...]) -> list[dict[str, Any]]:
+    """
+    Per engine, the bodies it simulates (see :mod:`~.engines.lumping`): their links, joint,
+    combined declared mass, COM, tensor (in the body link's frame) and principal moments; and
+    the links it drops. JSON-ready, SI units.
+    """
+    from inertia_kit.analysis.links import analyse
+    from inertia_kit.engines.lumping import simulated_bodies
+
+    analysis = analyse(robot)
+    records = []
+    for engine in engines:
+        found = simulated_bodies(analysis, engine)
+        bodies = []
+        for body in found.bodies:
+            properties = body.mass_properties
+            bodies.append(
+                {
+                    "body": body.name,
+                    "links": list(body.links),
+                    "joint": body.joint,
+                    "static": body.static,
+                    "mass": None if properties is None else properties.mass,
+                    "com": None if properties is None else properties.com.tolist(),
+                    "inertia": None if properties is None else properties.inertia.tolist(),
+                    "principal_moments": None
+                    if properties is None
+                    else properties.principal_moments.tolist(),
+                    "collisions": list(body.collisions),
+                    "note": body.note,
+                }
+            )
+        records.append(
+            {
+                "engine": engine,
+                "bodies": bodies,
+                "dropped": [
+                    {"link": d.link, "joint": d.joint, "cause": d.cause, "reason": d.reason}
+                    for d in found.dropped
+                ],
+            }
+        )
+    return records
+
+
+_REASONS = {
+    "no-inertial": "no <inertial>",
+    "non-positive-mass": "mass ≤ 0",
+    "ancestor": "below a dropped link",
+}
+
+
+def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: str = "text") -> str:
+    """``report --lumped``: per engine, a table of its bodies, then the dropped links."""
+    from inertia_kit.engines.verdicts import TITLES
+
+    records = lumped_records(robot, engines)
+    if output_format == "json":
+        return json.dumps(
+            {"robot": robot.name, "files": list(robot.files), "engines": records}, indent=2
+        )
+    header = ["body", "links", "joint", "mass kg", "COM m", "inertia kg·m²", "principal kg·m²"]
+    out: list[str] = []
+    for record in records:
+        title = TITLES.get(record["engine"], record["engine"])
+        table = [header]
+        for body in record["bodies"]:
+            tensor = body["inertia"]
+            table.append(
+                [
+                    body["body"] + (" (static)" if body["static"] else ""),
+                    ", ".join(body["links"]),
+                    body["joint"] or "-",
+                    "-" if body["mass"] is None else fmt(body["mass"], 6),
+                    "-" if body["com"] is None else _vector(body["com"]),
+                    "-" if tensor is None else _tensor(tensor),
+                    "-"
+                    if body["principal_moments"] is None
+                    else ", ".join(fmt(x, 4) for x in body["principal_moments"]),
+                ]
+            )
+        notes = [f"{b['body']}: {b['note']}" for b in record["bodies"] if b["note"]]
+        dropped = [
+            f"{d['link']}"
+            + (f" (joint {d['joint']})" if d["joint"] else "")
+            + f": {_REASONS.get(d['reason'], d['reason'])}"
+            + (f" `{d['cause']}`" if d["reason"] == "ancestor" else "")
+            for d in record["dropped"]
+        ]
+        summary = (
+            f"{len(record['bodies'])} bodies from {sum(len(b['links']) for b in record['bodies'])}"
+            f" links, {len(record['dropped'])} dropped"
+        )
+        if output_format == "markdown":
+            lines = [f"## {title}", "", "| " + " | ".join(header) + " |"]
+            lines.append("|" + "---|" * len(header))
+            lines += [
+                "| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |"
+                for row in table[1:]
+            ]
+            lines += ["", f"**{summary}**"]
+            lines += [f"- note: {n}" for n in notes]
+            lines += [f"- dropped: {d}" for d in dropped]
+            out.append("\n".join(lines))
+            continue
+        widths = [max(len(r[i]) for r in table) for i in range(len(header))]
+        lines = [f"{title}:"]
+        lines += [
+            "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip()
+            for r in table
+        ]
+        lines.insert(2, "  ".join("-" * w for w in widths))
+        lines.append(summary)
+        lines += [f"note: {n}" for n in notes]
+        lines += [f"dropped: {d}" for d in dropped]
+        out.append("\n".join(lines))
+    return "\n\n".join(out)
+
+
+def _vector(values: list[float]) -> str:
+    return "(" + ", ".join(fmt(x, 4) for x in values) + ")"
+
+
+def _tensor(tensor: list[list[float]]) -> str:
+    """``ixx iyy izz`` and the products that are not negligible, as in URDF."""
+    scale = max(abs(tensor[i][i]) for i in range(3)) or 1.0
+    names = {
+        "ixx": (0, 0),
+        "iyy": (1, 1),
+        "izz": (2, 2),
+        "ixy": (0, 1),
+        "ixz": (0, 2),
+        "iyz": (1, 2),
+    }
+    return ", ".join(
+        f"{name}={fmt(tensor[i][j], 4)}"
+        for name, (i, j) in names.items()
+        if i == j or abs(tensor[i][j]) > 1e-9 * scale
+    )

@@ -1,0 +1,278 @@
+"""
+The pre-commit hook: its manifest is what pre-commit accepts, its file pattern takes .urdf,
+.xacro and .urdf.xacro files, and, for real, `pre-commit try-repo` installs this repository
+into a fresh virtualenv (each run: ~20 s here) and fails a repository holding a bad URDF and
+passes a good one; the wheel pip builds ships the rule documents.
+
+The repository under test is a snapshot of this working tree (tracked and untracked, not
+ignored files) committed to a temporary git repository: try-repo takes committed files only, and
+the tree under test may hold changes not yet committed. Nothing here touches this repository's
+git state.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+import yaml
+from kit import REPO
+
+ROOT = REPO
+MANIFEST = ROOT / ".pre-commit-hooks.yaml"
+
+BAD = """<robot name="bad">
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <inertial>
+      <mass value="0"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+    </inertial>
+  </link>
+</robot>
+"""
+GOOD = BAD.replace('name="bad"', 'name="good"').replace('value="0"', 'value="0.5"')
+# only IN002 runs, so that rules still being written cannot change what these tests see
+CONFIG = '[tool.inertia-kit]\nselect = ["IN002"]\n'
+
+
+def hook(name: str = "inertia-lint") -> dict:
+    (entry,) = [e for e in yaml.safe_load(MANIFEST.read_text()) if e["id"] == name]
+    return entry
+
+
+def test_manifest_is_valid_for_pre_commit():
+    from pre_commit.clientlib import load_manifest
+
+    loaded = load_manifest(str(MANIFEST))
+    assert [h["id"] for h in loaded] == ["inertia-lint", "inertia-fill"]
+    for entry in loaded:
+        assert entry["entry"] == entry["id"]
+        assert entry["language"] == "python"
+        assert entry["pass_filenames"] is True
+        # both hooks take the same files
+        assert (entry["files"], entry["types"]) == (loaded[0]["files"], loaded[0]["types"])
+
+
+@pytest.mark.parametrize(
+    ("name", "taken"),
+    [
+        ("robot.urdf", True),
+        ("robot.xacro", True),
+        ("robot.urdf.xacro", True),
+        ("urdf/ROBOT.URDF", True),
+        ("robot.xml", False),
+        ("robot.urdf.bak", False),
+        ("package.xml", False),
+    ],
+)
+def test_hook_takes_urdf_and_xacro_files(tmp_path, name, taken):
+    """As pre-commit filters: the `files` regex and the identify tags (`types`)."""
+    from identify import identify
+
+    path = tmp_path / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(GOOD)
+    entry = hook()
+    tags = identify.tags_from_path(str(path))
+    matched = re.search(entry["files"], name) is not None and set(entry["types"]) <= tags
+    assert matched is taken
+
+
+def _git(*args: str, cwd: Path) -> str:
+    done = subprocess.run(
+        [
+            "git",
+            "-c",
+            "user.name=inertia-kit tests",
+            "-c",
+            "user.email=tests@example.invalid",
+            "-c",
+            "commit.gpgsign=false",
+            "-c",
+            "init.defaultBranch=main",
+            *args,
+        ],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return done.stdout
+
+
+def _snapshot(target: Path) -> str:
+    """This working tree as a one-commit git repository at ``target``; its commit id."""
+    listed = _git("ls-files", "-z", "--cached", "--others", "--exclude-standard", cwd=ROOT)
+    for name in filter(None, listed.split("\0")):
+        source = ROOT / name
+        if not os.path.lexists(source):
+            continue  # deleted in the working tree
+        copy = target / name
+        copy.parent.mkdir(parents=True, exist_ok=True)
+        if source.is_symlink():
+            os.symlink(os.readlink(source), copy)
+        else:
+            shutil.copy2(source, copy)
+    _git("init", "-q", cwd=target)
+    _git("add", "-A", cwd=target)
+    _git("commit", "-q", "-m", "snapshot", cwd=target)
+    return _git("rev-parse", "HEAD", cwd=target).strip()
+
+
+def _project(path: Path, files: dict[str, str]) -> Path:
+    path.mkdir()
+    for name, text in files.items():
+        (path / name).parent.mkdir(parents=True, exist_ok=True)
+        (path / name).write_text(text)
+    _git("init", "-q", cwd=path)
+    _git("add", "-A", cwd=path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def hook_repo(tmp_path_factory):
+    """(snapshot repository, its commit, environment with a private pre-commit cache)."""
+    base = tmp_path_factory.mktemp("precommit")
+    snapshot = base / "inertia-kit"
+    snapshot.mkdir()
+    commit = _snapshot(snapshot)
+    env = {**os.environ, "PRE_COMMIT_HOME": str(base / "cache"), "NO_COLOR": "1"}
+    env.pop("PRE_COMMIT", None)
+    return snapshot, commit, env
+
+
+def _try_repo(
+    hook_repo, project: Path, hook_id: str = "inertia-lint"
+) -> subprocess.CompletedProcess:
+    snapshot, commit, env = hook_repo
+    return subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pre_commit",
+            "try-repo",
+            str(snapshot),
+            hook_id,
+            "--ref",
+            commit,
+            "--all-files",
+            "--color",
+            "never",
+        ],
+        cwd=project,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+
+
+def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
+    bad = _project(
+        tmp_path / "bad",
+        {"pyproject.toml": CONFIG, "urdf/bad.urdf": BAD, "urdf/good.urdf.xacro": GOOD},
+    )
+    done = _try_repo(hook_repo, bad)
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert re.search(r"inertia-lint\.+Failed", output), output
+    assert "- exit code: 1" in output
+    assert "urdf/bad.urdf:9:7: IN002 [error] link `arm`: mass = 0 kg is not positive" in output
+    assert "good.urdf.xacro" not in output
+    assert "Found 1 error in 1 file." in output
+
+
+def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
+    good = _project(tmp_path / "good", {"pyproject.toml": CONFIG, "urdf/good.urdf": GOOD})
+    done = _try_repo(hook_repo, good)
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output
+    assert re.search(r"inertia-lint\.+Passed", output), output
+
+
+MISSING = """<robot name="arm">
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <link name="arm">
+    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
+    """The fixer writes the missing block and fails (exit 1) so the change is reviewed; run
+    again on the filled file, it passes and changes nothing."""
+    project = _project(tmp_path / "fill", {"urdf/arm.urdf": MISSING, "urdf/good.urdf": GOOD})
+    urdf = project / "urdf" / "arm.urdf"
+    done = _try_repo(hook_repo, project, "inertia-fill")
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert re.search(r"inertia-fill\.+Failed", output), output
+    assert "- exit code: 1" in output
+    assert "- files were modified by this hook" in output
+    # 0.1 × 0.1 × 0.4 m at 1000 kg/m³: 4 kg
+    assert "Filled 1 link in urdf/arm.urdf: arm 4 kg" in output
+    assert "good.urdf" not in output
+    filled = urdf.read_text()
+    assert '    <inertial>\n      <origin xyz="0 0 0" rpy="0 0 0"/>\n' in filled
+    assert '<mass value="4"/>' in filled
+    assert (project / "urdf" / "good.urdf").read_text() == GOOD
+
+    done = _try_repo(hook_repo, project, "inertia-fill")
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output
+    assert re.search(r"inertia-fill\.+Passed", output), output
+    assert urdf.read_text() == filled
+
+
+def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
+    """
+    A wheel built from the snapshot (what pre-commit and pip install) holds the rule
+    documents as files, and `--explain` run from the unpacked wheel reads them there.
+    """
+    snapshot, _, env = hook_repo
+    subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(tmp_path), "."],
+        cwd=snapshot,
+        env=env,
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
+    (wheel,) = tmp_path.glob("inertia_kit-*.whl")
+    unpacked = tmp_path / "unpacked"
+    with zipfile.ZipFile(wheel) as archive:
+        names = archive.namelist()
+        archive.extractall(unpacked)
+    documents = sorted(n for n in names if n.startswith("inertia_kit/rule_docs/"))
+    shipped = sorted(p.name for p in (snapshot / "rules").glob("*.md"))
+    assert [n.rsplit("/", 1)[1] for n in documents] == shipped
+    explain = (
+        "import sys, inertia_kit.lint.output as r; from inertia_kit.cli import lint;"
+        "print(r.documents_folder(), file=sys.stderr); sys.exit(lint([], explain='IN002'))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", explain],
+        cwd=tmp_path,
+        env={**env, "PYTHONPATH": str(unpacked)},
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stderr.strip() == str(unpacked / "inertia_kit" / "rule_docs")
+    assert done.stdout == (snapshot / "rules" / "IN002-non-positive-mass.md").read_text()

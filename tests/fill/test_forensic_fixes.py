@@ -1,0 +1,175 @@
+"""
+inertia-fill --fix invalid undoes a recognised slip (IN060-IN064) instead of replacing the
+declared tensor with the geometry's: the closed-form tensor of a turned box is written wrongly in
+each way, filled, and read back. Expected values come from the closed form computed here.
+"""
+
+from __future__ import annotations
+
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from kit import REPO, moving
+
+from inertia_kit import load
+from inertia_kit.cli import fill_command
+from inertia_kit.lint.runner import Selection, lint_file
+from inertia_kit.physics.frames import rpy_matrix
+from inertia_kit.physics.mass import shift_tensor
+
+MASS, SIZE, YAW = 12.0, (0.4, 0.3, 0.2), math.pi / 6
+COM = np.array([0.0, 0.0, 0.25])
+NAMES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+INDEX = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+EXAMPLES = REPO / "examples"
+
+
+def turned_box() -> np.ndarray:
+    """The box's tensor about its centre, in link axes (turned by YAW about z)."""
+    x, y, z = SIZE
+    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * MASS / 12
+    rotation = rpy_matrix([0.0, 0.0, YAW])
+    return rotation @ moments @ rotation.T
+
+
+def plate(values: dict[str, float], mass: float = MASS) -> str:
+    attributes = " ".join(f'{k}="{v!r}"' for k, v in values.items())
+    xyz = " ".join(repr(float(v)) for v in COM)
+    return moving(
+        f"""
+    <inertial>
+      <origin xyz="{xyz}"/>
+      <mass value="{mass!r}"/>
+      <inertia {attributes}/>
+    </inertial>
+    <collision><origin xyz="{xyz}" rpy="0 0 {YAW!r}"/>
+      <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
+  """
+    )
+
+
+def values_of(tensor: np.ndarray) -> dict[str, float]:
+    return {name: float(tensor[i, j]) for name, (i, j) in zip(NAMES, INDEX, strict=True)}
+
+
+def about_origin(t):
+    return values_of(t + shift_tensor(MASS, COM))
+
+
+def flipped(t):
+    v = values_of(t)
+    return {k: (-x if k in ("ixy", "ixz", "iyz") else x) for k, x in v.items()}
+
+
+def in_kg_mm2(t):
+    return {k: x * 1e6 for k, x in values_of(t).items()}
+
+
+def swapped_products(t):
+    v = values_of(t)
+    v["ixy"], v["ixz"] = v["ixz"], v["ixy"]
+    return v
+
+
+SLIPS = {
+    "IN060": about_origin,
+    "IN061": flipped,
+    "IN063": in_kg_mm2,
+    "IN064": swapped_products,
+}
+
+
+@pytest.mark.parametrize("code", SLIPS)
+def test_fix_invalid_undoes_the_slip(code: str, tmp_path: Path):
+    truth = turned_box()
+    path = tmp_path / "robot.urdf"
+    path.write_text(plate(SLIPS[code](truth)))
+    before = lint_file(path, Selection()).findings
+    assert code in {f.code for f in before}, [(f.code, f.message) for f in before]
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert f"plate {MASS:g} kg" in result.stderr
+    inertial = load(path).links[1].inertial
+    written = np.array([getattr(inertial, name) for name in NAMES])
+    expected = np.array(list(values_of(truth).values()))
+    assert written == pytest.approx(expected, rel=1e-5, abs=1e-6 * truth.trace())
+    assert inertial.origin.xyz == pytest.approx(tuple(COM))
+    after = lint_file(path, Selection()).findings
+    assert not {f.code for f in after} & {code, "IN020", "IN023"}, [f.message for f in after]
+    assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 0
+
+
+def test_a_given_mass_wins_over_the_correction(tmp_path: Path):
+    """--mass: the geometry's tensor for that mass, not the declared one corrected."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(plate(about_origin(turned_box())))
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", "--mass", "plate=6", str(path)])
+    assert result.exit_code == 1, result.stderr
+    inertial = load(path).links[1].inertial
+    assert inertial.mass == 6.0
+    assert inertial.ixx == pytest.approx(turned_box()[0, 0] / 2, rel=1e-5)
+
+
+def copy(name: str, tmp_path: Path) -> Path:
+    shutil.copytree(EXAMPLES / name, tmp_path / name)
+    return tmp_path / name
+
+
+def test_mrm_cad_tensors_about_the_base_are_moved_to_the_com(tmp_path: Path):
+    """The seed arm (IN060 on every cylinder): ixx = declared − m·d² at each call site, izz
+    (about the axis through both points) unchanged; links_joints.xacro untouched."""
+    folder = copy("mrm_description", tmp_path)
+    macros = (folder / "urdf" / "links_joints.xacro").read_bytes()
+    path = folder / "urdf" / "mrm.xacro"
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert "Filled 5 links" in result.stderr
+    text = path.read_text()
+    for declared, mass, height, izz in [
+        (13.235, 157.633, 0.2, "9.655"),
+        (12.679, 57.906, 0.4, "0.651"),
+        (0.479, 18.056, 0.125, "0.204"),
+    ]:
+        about_com = declared - mass * height**2
+        assert f'ixx="{about_com:.6g}" ixy="0" ixz="0"' in text
+        assert f'iyy="{about_com:.6g}" iyz="0"\n              izz="{izz}"' in text
+    assert (folder / "urdf" / "links_joints.xacro").read_bytes() == macros
+    findings = lint_file(path, Selection()).findings
+    assert not {f.code for f in findings} & {"IN060", "IN020", "IN023"}
+    assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 0
+
+
+def test_simple_arm_tensor_for_the_wrong_axes_is_turned(tmp_path: Path):
+    """IN062 on link_1/link_2: the z formula of a rod lying along x. The inertia macro call is
+    replaced by a block with the rod's tensor in link axes and its centre of mass (IN021)."""
+    folder = copy("simple_arm", tmp_path)
+    path = folder / "urdf" / "simple_arm.urdf.xacro"
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1, result.stderr
+    robot = load(path)
+    m, r, length = 1.0, 0.02, 0.3
+    for name in ("link_1", "link_2"):
+        inertial = next(link for link in robot.links if link.name == name).inertial
+        assert inertial.origin.xyz == pytest.approx((length / 2, 0, 0))
+        assert inertial.ixx == pytest.approx(m * r * r / 2, rel=1e-5)
+        side = m * (3 * r * r + length**2) / 12
+        assert (inertial.iyy, inertial.izz) == pytest.approx((side, side), rel=1e-5)
+    findings = lint_file(path, Selection()).findings
+    assert not {f.code for f in findings} & {"IN062", "IN021", "IN020", "IN023"}
+    assert 'cylinder_inertia mass="2.0"' in path.read_text()  # base_link was right: kept
+
+
+def test_a_mass_in_grams_is_written_in_kilograms(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(plate(values_of(turned_box()), mass=MASS * 1000))
+    assert "IN063" in {f.code for f in lint_file(path, Selection()).findings}
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1, result.stderr
+    inertial = load(path).links[1].inertial
+    assert inertial.mass == pytest.approx(MASS)
+    assert inertial.ixx == pytest.approx(turned_box()[0, 0], rel=1e-5)
+    assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 0

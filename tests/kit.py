@@ -1,0 +1,25 @@
+"""The shared test kit: where the repository is, and the robot texts the tests build on."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+EXAMPLES = REPO / "examples"
+
+SHELL = """<robot name="r">
+  <link name="base"/>
+  <joint name="j" type="revolute">
+    <parent link="base"/><child link="{name}"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <link name="{name}">{body}</link>{extra}
+</robot>"""
+
+
+def moving(body: str, name: str = "plate", extra: str = "") -> str:
+    """
+    A robot whose moving link ``name`` (revolute on a massless base) holds ``body``; ``extra``
+    is written after that link (more joints and links).
+    """
+    return SHELL.format(name=name, body=body, extra=extra)

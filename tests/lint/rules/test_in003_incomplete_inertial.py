@@ -1,0 +1,111 @@
+"""IN003 incomplete-inertial: what is missing, where it is reported, what the parsers do."""
+
+from __future__ import annotations
+
+import pytest
+
+from inertia_kit.physics.formatting import fmt
+
+HEAD = (
+    '<robot name="r"><link name="base"/>'
+    '<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>\n'
+    '<link name="arm">\n'
+)
+BOX = '<collision><geometry><box size="0.1 0.2 0.3"/></geometry></collision>\n'
+SIX = 'ixx="0.0325" ixy="0" ixz="0" iyy="0.025" iyz="0" izz="0.0125"'
+
+
+def robot(inertial: str, geometry: str = BOX) -> str:
+    return HEAD + inertial + geometry + "</link></robot>"
+
+
+def in003(lint, text):
+    return [f for f in lint(text, "IN003") if f.code == "IN003"]
+
+
+def box_moments(mass, a=0.1, b=0.2, c=0.3):
+    return mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12
+
+
+def test_complete_inertial_is_quiet(lint):
+    assert in003(lint, robot(f'<inertial><mass value="3"/><inertia {SIX}/></inertial>\n')) == []
+
+
+def test_missing_diagonal_value(lint):
+    text = robot(
+        '<inertial><mass value="3"/>\n'
+        '<inertia ixx="0.0325" ixy="0" ixz="0" iyy="0.025" iyz="0"/></inertial>\n'
+    )
+    (finding,) = in003(lint, text)
+    assert "without `izz`" in finding.message
+    assert "PyBullet refuse the file" in finding.message
+    assert "Drake reads izz as 0" in finding.message and "yourdfpy izz as 1.0" in finding.message
+    _, _, izz = box_moments(3.0)
+    assert f"izz = {fmt(izz, 4)}" in finding.message
+    assert finding.expected["izz"] == pytest.approx(izz)
+    # reported on the <inertia> element, the most specific one
+    assert finding.line == 4
+
+
+def test_missing_product_pybullet_reads_zero(lint):
+    text = robot(
+        '<inertial><mass value="3"/>'
+        '<inertia ixx="0.0325" ixz="0" iyy="0.025" iyz="0" izz="0.0125"/></inertial>\n'
+    )
+    (finding,) = in003(lint, text)
+    assert "without `ixy`" in finding.message and "PyBullet as 0" in finding.message
+    assert "PyBullet refuse" not in finding.message
+
+
+def test_missing_mass_uses_1000_kg_per_m3(lint):
+    text = robot(f"<inertial>\n<inertia {SIX}/></inertial>\n")
+    (finding,) = in003(lint, text)
+    assert "no `<mass>`" in finding.message and "Drake reads mass 0" in finding.message
+    mass = 1000.0 * 0.1 * 0.2 * 0.3
+    _, iyy, _ = box_moments(mass)
+    assert f"holds {fmt(mass, 4)} kg" in finding.message
+    assert finding.expected["mass"] == pytest.approx(mass)
+    assert finding.expected["density"] == 1000.0
+    assert finding.expected["iyy"] == pytest.approx(iyy)
+    assert finding.line == 3  # the <inertial> element: there is no <mass> to point at
+
+
+def test_mass_without_value(lint):
+    text = robot(f"<inertial>\n<mass/>\n<inertia {SIX}/></inertial>\n")
+    (finding,) = in003(lint, text)
+    assert "`<mass>` without `value`" in finding.message
+    assert finding.line == 4
+
+
+def test_missing_inertia_element(lint):
+    (finding,) = in003(lint, robot('<inertial><mass value="3"/></inertial>\n'))
+    assert "no `<inertia>`" in finding.message and "Drake reads a zero tensor" in finding.message
+    ixx, iyy, _ = box_moments(3.0)
+    assert f"ixx = {fmt(ixx, 4)}" in finding.message
+    assert f"iyy = {fmt(iyy, 4)}" in finding.message
+
+
+def test_everything_missing_in_one_finding(lint):
+    (finding,) = in003(lint, robot("<inertial/>\n"))
+    assert "no `<mass>` and no `<inertia>`" in finding.message
+
+
+def test_without_geometry_no_expected_values(lint):
+    (finding,) = in003(lint, robot('<inertial><mass value="3"/></inertial>', geometry=""))
+    assert finding.expected is None
+
+
+def test_values_in_the_written_axes(lint):
+    # the inertia axes turned 90° about z: the geometry's ixx and iyy swap
+    inertial = '<inertial><origin rpy="0 0 1.5707963267948966"/><mass value="3"/></inertial>\n'
+    (finding,) = in003(lint, robot(inertial))
+    ixx, iyy, _ = box_moments(3.0)
+    assert finding.expected["ixx"] == pytest.approx(iyy)
+    assert finding.expected["iyy"] == pytest.approx(ixx)
+    assert "axes of its `<inertial><origin rpy>`" in finding.message
+
+
+def test_a_value_that_is_not_a_number_is_in004s(lint):
+    text = robot(f'<inertial><mass value="abc"/><inertia {SIX}/></inertial>\n')
+    assert in003(lint, text) == []

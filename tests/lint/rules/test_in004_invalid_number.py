@@ -1,0 +1,96 @@
+"""IN004 invalid-number: every numeric attribute, grouped per element, with PyBullet's reading."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from inertia_kit.lint.rules.in004_invalid_number import strtod
+
+SIX = 'ixx="0.025" ixy="0" ixz="0" iyy="0.025" iyz="0" izz="0.005"'
+
+
+def robot(mass: str = "3", six: str = SIX, origin: str = "0 0 0", limit: str = "10") -> str:
+    return (
+        '<robot name="r"><link name="base"/>\n'
+        '<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>\n'
+        f'<origin xyz="{origin}"/><axis xyz="0 0 1"/>\n'
+        f'<limit lower="-1" upper="1" effort="{limit}" velocity="1"/></joint>\n'
+        f'<link name="arm"><inertial><mass value="{mass}"/>\n<inertia {six}/></inertial>\n'
+        '<collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>\n'
+        "</robot>"
+    )
+
+
+def in004(lint, text):
+    return [f for f in lint(text, "IN004") if f.code == "IN004"]
+
+
+def test_valid_numbers_are_quiet(lint):
+    assert in004(lint, robot()) == []
+
+
+def test_mass_with_a_unit(lint):
+    (finding,) = in004(lint, robot(mass="3kg"))
+    assert finding.link == "arm" and finding.line == 5
+    assert "`<mass value>` = '3kg'" in finding.message
+    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.message
+    assert "MuJoCo refuses the file" in finding.message
+    assert "PyBullet silently reads '3kg' as 3" in finding.message
+
+
+def test_nan_and_inf_mujoco_reads_them(lint):
+    (finding,) = in004(lint, robot(mass="nan"))
+    assert "not a number" in finding.message and "MuJoCo reads nan/inf" in finding.message
+    (finding,) = in004(lint, robot(six=SIX.replace('izz="0.005"', 'izz="inf"')))
+    assert "`<inertia izz>` = 'inf' (infinite)" in finding.message
+
+
+def test_overflow_is_infinite(lint):
+    (finding,) = in004(lint, robot(mass="1e999"))
+    assert "(infinite)" in finding.message and "MuJoCo refuses" in finding.message
+
+
+def test_attributes_of_one_element_are_reported_together(lint):
+    six = SIX.replace('ixx="0.025"', 'ixx="a"').replace('iyy="0.025"', 'iyy="b"')
+    (finding,) = in004(lint, robot(six=six))
+    assert "`<inertia ixx>` = 'a'" in finding.message
+    assert "`<inertia iyy>` = 'b'" in finding.message
+    assert "'a' as 0, 'b' as 0" in finding.message
+
+
+def test_elements_are_reported_separately(lint):
+    findings = in004(lint, robot(mass="x", limit="ten"))
+    assert sorted((f.line, f.joint, f.link) for f in findings) == [
+        (4, "j", None),
+        (5, None, "arm"),
+    ]
+    limit = next(f for f in findings if f.joint == "j")
+    assert "joint `j`: `<limit effort>` = 'ten'" in limit.message
+
+
+@pytest.mark.parametrize(
+    ("origin", "described", "read"),
+    [
+        ("0,0,0", "1 values, not 3", '0 0 0 ("Couldn\'t parse vector3")'),
+        ("0.07, 0, -0.69", "not three plain numbers", "0.07 0 -0.69"),
+        ("1 2 3 4", "4 values, not 3", "1 2 3"),
+    ],
+)
+def test_vectors(lint, origin, described, read):
+    (finding,) = in004(lint, robot(origin=origin))
+    assert f"`<joint><origin xyz>` = {origin!r} ({described})" in finding.message
+    assert f"as {read}" in finding.message
+
+
+@pytest.mark.parametrize(
+    ("text", "value"),
+    [("2kg", 2.0), ("1.5.2", 1.5), ("abc", 0.0), ("-1.57.", -1.57), (" .5e1x", 5.0), ("", 0.0)],
+)
+def test_strtod_reads_the_numeric_prefix(text, value):
+    assert strtod(text) == value
+
+
+def test_strtod_nan():
+    assert math.isnan(strtod("nan"))

@@ -1,0 +1,113 @@
+"""IN030 mesh-not-found: mesh URIs that do not resolve, with hints where the file is."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+import trimesh
+
+from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.runner import Selection, lint_file
+
+
+@pytest.fixture(autouse=True)
+def no_ros_environment(monkeypatch):
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+
+
+def robot(visual: str, collision: str | None = None) -> str:
+    collision = visual if collision is None else collision
+    return f"""<robot name="r">
+  <link name="part">
+    <visual><geometry><mesh filename="{visual}"/></geometry></visual>
+    <collision><geometry><mesh filename="{collision}"/></geometry></collision>
+  </link>
+</robot>"""
+
+
+def box(path):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    trimesh.creation.box(extents=(0.1, 0.1, 0.1)).export(path)
+
+
+def test_existing_mesh_is_quiet(lint, tmp_path):
+    box(tmp_path / "meshes" / "part.stl")
+    assert lint(robot("meshes/part.stl"), "IN030") == []
+
+
+def test_missing_relative_path_names_the_shape_and_the_file(lint, tmp_path):
+    findings = lint(robot("meshes/part.stl"), "IN030")
+    assert [f.message.split(":")[0] for f in findings] == ["link `part`"] * 2
+    kinds = sorted(f.message.split()[2] for f in findings)
+    assert kinds == ["collision", "visual"]
+    for finding in findings:
+        assert finding.severity == Severity.ERROR and finding.link == "part"
+        assert "mesh `meshes/part.stl` not found" in finding.message
+        assert "does not exist" in finding.message
+        assert finding.line in (3, 4)
+
+
+def test_similar_name_in_the_folder_is_suggested(lint, tmp_path):
+    box(tmp_path / "meshes" / "bracket.stl")
+    findings = lint(robot("meshes/bracket_v2.stl"), "IN030")
+    assert findings and all("did you mean" in f.help and "bracket.stl" in f.help for f in findings)
+
+
+def test_name_differing_in_case(lint, tmp_path):
+    box(tmp_path / "meshes" / "Part.STL")
+    if (tmp_path / "meshes" / "part.stl").exists():
+        pytest.skip("case-insensitive file system")
+    findings = lint(robot("meshes/part.stl"), "IN030")
+    assert findings and all("differs only in case" in f.help for f in findings)
+    assert findings[0].expected["found"].endswith(os.path.join("meshes", "Part.STL"))
+
+
+def test_unknown_package_says_to_pass_package_path(lint):
+    findings = lint(robot("package://nowhere_description/meshes/part.stl"), "IN030")
+    assert len(findings) == 2
+    assert "package `nowhere_description` not found" in findings[0].message
+    assert findings[0].help.startswith("pass --package-path DIR")
+
+
+def test_package_folder_next_to_the_file_is_found_with_package_path(tmp_path):
+    box(tmp_path / "my_robot" / "meshes" / "part.stl")
+    path = tmp_path / "robot.urdf"
+    path.write_text(robot("package://my_robot/meshes/part.stl"))
+    findings = lint_file(path, Selection(select=("IN030",))).findings
+    assert len(findings) == 2
+    assert f"pass --package-path {tmp_path}" in findings[0].help
+    resolved = lint_file(path, Selection(select=("IN030",)), package_paths=[tmp_path])
+    assert resolved.findings == []
+
+
+def test_folder_named_after_the_package_with_another_package_xml(tmp_path):
+    package = tmp_path / "example-robot-data"
+    box(package / "robots" / "meshes" / "part.stl")
+    (package / "package.xml").write_text(
+        '<package format="3"><name>example_robot_descriptions</name></package>'
+    )
+    path = package / "robots" / "robot.urdf"
+    path.write_text(robot("package://example-robot-data/robots/meshes/part.stl"))
+    findings = lint_file(path, Selection(select=("IN030",))).findings
+    assert findings
+    assert "package.xml names the package `example_robot_descriptions`" in findings[0].help
+
+
+def test_three_slashes_name_an_empty_package(lint):
+    findings = lint(robot("package:///my_robot/meshes/part.stl"), "IN030")
+    assert findings and "write `package://my_robot/meshes/part.stl`" in findings[0].help
+
+
+def test_remote_uri(lint):
+    findings = lint(robot("https://example.com/part.stl"), "IN030")
+    assert len(findings) == 2 and "are not resolved" in findings[0].message
+
+
+def test_primitives_are_not_meshes(lint):
+    text = (
+        '<robot name="r"><link name="part"><visual><geometry><box size="1 1 1"/></geometry>'
+        "</visual></link></robot>"
+    )
+    assert lint(text, "IN030") == []

@@ -1,0 +1,89 @@
+"""IN032 mesh-not-watertight: open or inconsistently wound meshes where volume matters."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+from inertia_kit.lint.findings import Severity
+
+INERTIAL = (
+    '<inertial><mass value="1"/>'
+    '<inertia ixx="0.00167" ixy="0" ixz="0" iyy="0.00167" iyz="0" izz="0.00167"/></inertial>'
+)
+
+
+def robot(body: str, joint: str = "revolute") -> str:
+    limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' if joint == "revolute" else ""
+    return f"""<robot name="r">
+  <link name="base"/>
+  <joint name="j" type="{joint}"><parent link="base"/><child link="part"/>{limit}</joint>
+  <link name="part">{body}</link>
+</robot>"""
+
+
+def mesh(kind: str, name: str) -> str:
+    return f'<{kind}><geometry><mesh filename="{name}"/></geometry></{kind}>'
+
+
+@pytest.fixture
+def meshes(tmp_path):
+    box = trimesh.creation.box(extents=(0.1, 0.1, 0.1))
+    box.export(tmp_path / "closed.stl")
+    open_box = box.copy()
+    open_box.update_faces(np.arange(len(box.faces)) < len(box.faces) - 2)  # lid removed
+    open_box.export(tmp_path / "open.stl")
+    # a closed box with one triangle turned inward
+    faces = box.faces.copy()
+    faces[0] = faces[0][::-1]
+    trimesh.Trimesh(box.vertices, faces, process=False).export(tmp_path / "flipped.stl")
+    return tmp_path
+
+
+def test_closed_collision_mesh_is_quiet(lint, meshes):
+    assert lint(robot(mesh("collision", "closed.stl") + INERTIAL), "IN032") == []
+
+
+def test_open_collision_mesh_warns_with_method_and_error_bound(lint, meshes):
+    findings = lint(robot(mesh("collision", "open.stl") + INERTIAL), "IN032")
+    assert len(findings) == 1
+    finding = findings[0]
+    assert finding.severity == Severity.WARNING and finding.link == "part"
+    assert "collision mesh `open.stl` is not closed (10 triangles)" in finding.message
+    assert "convex hull" in finding.message
+    assert finding.expected["method"] == "convex-hull"
+    # the lid's pyramid about the centre is 1/6 of the box
+    assert finding.expected["volume_error"] == pytest.approx(1 / 6, rel=1e-6)
+    assert "17%" in finding.message or "16.7%" in finding.message
+
+
+def test_open_visual_next_to_collision_geometry_is_quiet(lint, meshes):
+    body = mesh("visual", "open.stl") + mesh("collision", "closed.stl") + INERTIAL
+    assert lint(robot(body), "IN032") == []
+
+
+def test_open_visual_mass_comes_from_warns(lint, meshes):
+    findings = lint(robot(mesh("visual", "open.stl") + INERTIAL), "IN032")
+    assert len(findings) == 1 and "visual mesh `open.stl`" in findings[0].message
+
+
+def test_open_visual_of_a_massless_fixed_link_is_quiet(lint, meshes):
+    assert lint(robot(mesh("visual", "open.stl"), joint="fixed"), "IN032") == []
+
+
+def test_tolerance_option(lint, meshes):
+    text = robot(mesh("collision", "open.stl") + INERTIAL)
+    assert lint(text, "IN032", options={"IN032": {"tolerance": 0.2}}) == []
+
+
+def test_inconsistent_winding_warns(lint, meshes):
+    findings = lint(robot(mesh("collision", "flipped.stl") + INERTIAL), "IN032")
+    assert len(findings) == 1
+    assert "wound inconsistently" in findings[0].message
+    assert findings[0].expected["method"] == "repaired"
+
+
+def test_repaired_option(lint, meshes):
+    text = robot(mesh("collision", "flipped.stl") + INERTIAL)
+    assert lint(text, "IN032", options={"IN032": {"repaired": False}}) == []

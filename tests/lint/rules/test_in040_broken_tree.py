@@ -1,0 +1,152 @@
+"""IN040 broken-tree: names, joint ends and types, parents, roots and cycles."""
+
+from __future__ import annotations
+
+import pytest
+
+from inertia_kit.lint.findings import Severity
+
+LIMIT = '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>'
+
+
+def joint(name: str, parent: str, child: str, kind: str = "revolute") -> str:
+    extra = LIMIT if kind == "revolute" else ""
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/>'
+        f'<child link="{child}"/>{extra}</joint>'
+    )
+
+
+def robot(*elements: str) -> str:
+    return '<robot name="r">' + "".join(elements) + "</robot>"
+
+
+def link(name: str) -> str:
+    return f'<link name="{name}"/>'
+
+
+def test_a_tree_is_quiet(lint):
+    text = robot(link("a"), link("b"), link("c"), joint("ab", "a", "b"), joint("bc", "b", "c"))
+    assert lint(text, "IN040") == []
+
+
+def test_single_link_is_quiet(lint):
+    assert lint(robot(link("a")), "IN040") == []
+
+
+def test_unknown_child_with_suggestion_and_second_root(lint):
+    findings = lint(robot(link("base"), link("arm"), joint("j", "base", "amr")), "IN040")
+    messages = [f.message for f in findings]
+    assert any(
+        "child link `amr`, which does not exist (did you mean `arm`?)" in m for m in messages
+    )
+    assert any("link `arm` is a second root" in m and "`base`" in m for m in messages)
+    assert all(f.severity == Severity.ERROR for f in findings)
+    assert {f.joint for f in findings} == {"j", None}
+
+
+def test_duplicate_names(lint):
+    text = robot(
+        link("a"), link("b"), link("b"), joint("j", "a", "b"), joint("j", "a", "b", "fixed")
+    )
+    messages = [f.message for f in lint(text, "IN040")]
+    assert any("link `b` is defined twice (first at line 1)" in m for m in messages)
+    assert any("joint `j` is defined twice" in m for m in messages)
+
+
+def test_unnamed_link_and_joint(lint):
+    text = robot(link("a"), "<link/>", '<joint type="fixed"><parent link="a"/></joint>')
+    messages = [f.message for f in lint(text, "IN040")]
+    assert "a <link> has no name: urdfdom refuses the file" in messages
+    assert "a <joint> has no name: urdfdom refuses the file" in messages
+    assert "a joint has no <child link>: urdfdom refuses the file" in messages
+
+
+def test_missing_parent_element(lint):
+    text = robot(link("a"), link("b"), '<joint name="j" type="fixed"><child link="b"/></joint>')
+    messages = [f.message for f in lint(text, "IN040")]
+    assert "joint `j` has no <parent link>: urdfdom refuses the file" in messages
+
+
+def test_joint_to_itself(lint):
+    findings = lint(robot(link("a"), joint("j", "a", "a", "fixed")), "IN040")
+    messages = [f.message for f in findings]
+    assert "joint `j` joins link `a` to itself" in messages
+    # urdfdom's view as well: `a` is a child, so there is no root
+    assert any(m.startswith("no root link") for m in messages)
+
+
+def test_link_with_two_parents(lint):
+    text = robot(
+        link("a"), link("b"), link("c"), joint("ab", "a", "b"), joint("ac", "a", "c"),
+        joint("cb", "c", "b"),
+    )  # fmt: skip
+    findings = lint(text, "IN040")
+    assert len(findings) == 1
+    assert "link `b` has two parent joints: `ab` (line 1) and `cb`" in findings[0].message
+    assert findings[0].joint == "cb" and findings[0].link == "b"
+
+
+def test_several_roots_name_the_largest_tree(lint):
+    text = robot(
+        link("lonely"), link("a"), link("b"), link("c"), link("d"), link("e"),
+        joint("ab", "a", "b"), joint("bc", "b", "c"), joint("de", "d", "e"),
+    )  # fmt: skip
+    findings = lint(text, "IN040")
+    messages = sorted(f.message for f in findings)
+    assert len(messages) == 2
+    assert "link `d` is a second root (a subtree of 2 links" in messages[0]
+    assert "tree of `a`" in messages[0]
+    assert "link `lonely` is a second root (a link no joint connects" in messages[1]
+
+
+def test_cycle(lint):
+    text = robot(
+        link("root"), link("a"), link("b"), link("c"),
+        joint("ra", "root", "a"), joint("ab", "a", "b"), joint("bc", "b", "c"),
+        joint("ca", "c", "a"),
+    )  # fmt: skip
+    messages = [f.message for f in lint(text, "IN040")]
+    assert any("link `a` has two parent joints" in m for m in messages)
+    text = robot(
+        link("root"), link("a"), link("b"), joint("ab", "a", "b"), joint("ba", "b", "a"),
+    )  # fmt: skip
+    messages = [f.message for f in lint(text, "IN040")]
+    assert any("form a cycle" in m and "`ab`" in m and "`ba`" in m for m in messages)
+
+
+def test_everything_in_a_cycle_has_no_root(lint):
+    text = robot(link("a"), link("b"), joint("ab", "a", "b"), joint("ba", "b", "a"))
+    messages = [f.message for f in lint(text, "IN040")]
+    assert any(m.startswith("no root link") for m in messages)
+    assert any("form a cycle: `a` → `b` → `a`" in m or "`b` → `a` → `b`" in m for m in messages)
+
+
+@pytest.mark.parametrize(
+    ("kind", "expected"),
+    [
+        ("revolut", "unknown type `revolut` (did you mean `revolute`?)"),
+        ("spherical", "type `spherical` (PyBullet's ball joint, no URDF type)"),
+        ("", "has no type"),
+    ],
+)
+def test_joint_types(lint, kind, expected):
+    text = robot(
+        link("a"), link("b"), f'<joint name="j" type="{kind}"><parent link="a"/>'
+        '<child link="b"/></joint>',
+    )  # fmt: skip
+    findings = lint(text, "IN040")
+    assert len(findings) == 1 and expected in findings[0].message
+
+
+def test_extra_joint_types_option(lint):
+    text = robot(
+        link("a"), link("b"), '<joint name="j" type="spherical"><parent link="a"/>'
+        '<child link="b"/></joint>',
+    )  # fmt: skip
+    assert lint(text, "IN040", options={"IN040": {"extra_joint_types": ("spherical",)}}) == []
+
+
+def test_no_links(lint):
+    findings = lint('<robot name="r"></robot>', "IN040")
+    assert len(findings) == 1 and "has no <link>" in findings[0].message

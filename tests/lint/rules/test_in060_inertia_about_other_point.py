@@ -1,0 +1,121 @@
+"""IN060 inertia-about-other-point: expected numbers from closed forms computed here."""
+
+from __future__ import annotations
+
+import pytest
+from kit import REPO, moving
+
+from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.runner import Selection, lint_file
+
+EXAMPLES = REPO / "examples"
+
+
+def arm(body: str) -> str:
+    return moving(body, name="arm")
+
+
+def inertial(mass, ixx, iyy, izz, xyz="0 0 0"):
+    return (
+        f'<inertial><origin xyz="{xyz}"/><mass value="{mass}"/>'
+        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
+    )
+
+
+def cylinder_moments(mass, radius, length):
+    transverse = mass * (3 * radius**2 + length**2) / 12
+    return transverse, mass * radius**2 / 2
+
+
+def drum(mass=2.0, radius=0.1, length=0.1, about_origin=True):
+    transverse, axial = cylinder_moments(mass, radius, length)
+    centre = length / 2
+    if about_origin:
+        transverse += mass * centre**2
+    return (
+        f'<collision><origin xyz="0 0 {centre}"/>'
+        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
+        + inertial(mass, transverse, transverse, axial, xyz=f"0 0 {centre}")
+    )
+
+
+def test_tensor_about_the_link_origin_fires_with_the_corrected_tensor(lint):
+    findings = lint(arm(drum()))
+    assert [f.code for f in findings] == ["IN060"]
+    finding = findings[0]
+    transverse, axial = cylinder_moments(2.0, 0.1, 0.1)
+    assert finding.severity == Severity.WARNING and finding.link == "arm"
+    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.05)" in finding.message
+    assert "2 kg × (0.05 m)²" in finding.message
+    expected = finding.expected
+    assert expected["ixx"] == pytest.approx(transverse) and expected["iyy"] == pytest.approx(
+        transverse
+    )
+    assert expected["izz"] == pytest.approx(axial)
+    assert expected["point"] == [0.0, 0.0, 0.0] and expected["point_name"] == "the link origin"
+    assert expected["mass"] == 2.0 and expected["xyz"] == [0.0, 0.0, 0.05]
+    assert "subtract the parallel-axis term" in finding.help
+
+
+def test_the_right_tensor_is_quiet(lint):
+    assert lint(arm(drum(about_origin=False))) == []
+
+
+def test_it_replaces_in020_only_while_enabled(lint):
+    # a rod about its end: ×4 across, beyond what any mass inside it has (IN023 too)
+    text = arm(drum(mass=2.0, radius=0.05, length=0.4))
+    findings = lint(text)
+    assert [f.code for f in findings] == ["IN060"]
+    assert findings[0].severity == Severity.ERROR  # it stands for IN023's error
+    assert "no mass inside the geometry can have it (IN023)" in findings[0].message
+    alone = lint(text, ("IN0",), ignore=("IN060",))
+    assert [f.code for f in alone] == ["IN020", "IN023"]
+    assert "likely the declared inertia is the tensor about the link origin" in alone[0].message
+    assert "(IN060)" in alone[0].message
+
+
+def test_severity_is_configurable(lint):
+    findings = lint(arm(drum()), "IN060", severities={"IN060": Severity.INFO})
+    assert [f.severity for f in findings] == [Severity.INFO]
+
+
+def test_a_child_joint_origin_is_named(lint):
+    """The tensor taken about the joint at the far end (z = 0.4) of a link whose COM is at 0.1."""
+    mass, radius, length = 3.0, 0.05, 0.2
+    transverse, axial = cylinder_moments(mass, radius, length)
+    shifted = transverse + mass * 0.3**2
+    body = (
+        '<collision><origin xyz="0 0 0.1"/>'
+        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
+        + inertial(mass, shifted, shifted, axial, xyz="0 0 0.1")
+    )
+    extra = """<joint name="tip" type="fixed"><origin xyz="0 0 0.4"/>
+    <parent link="arm"/><child link="tool"/></joint><link name="tool"/>"""
+    findings = lint(arm(body).replace("</robot>", extra + "</robot>"), "IN060")
+    assert len(findings) == 1
+    assert "about the origin of joint `tip` (0, 0, 0.4)" in findings[0].message
+    assert findings[0].expected["ixx"] == pytest.approx(transverse)
+
+
+def _seed(path: str, packages: tuple[str, ...] = ()) -> list:
+    result = lint_file(EXAMPLES / path, Selection(), package_paths=packages)
+    assert result.error is None
+    return result.findings
+
+
+def test_seed_mrm_cylinders_are_about_the_link_origin_and_the_base_is_quiet():
+    """The issue's acceptance: link_01 … link_05 explained, corrected values about the COM."""
+    findings = _seed("mrm_description/urdf/mrm.xacro", (str(EXAMPLES),))
+    forensic = [f for f in findings if f.code == "IN060"]
+    assert sorted(f.link for f in forensic) == [f"link_0{i}" for i in range(1, 6)]
+    assert not [f for f in findings if f.code == "IN020"]  # replaced
+    assert not [f for f in findings if f.link == "base_link" and f.code in ("IN020", "IN060")]
+    link_01 = next(f for f in forensic if f.link == "link_01")
+    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.2)" in link_01.message
+    # the declared 13.235 less the parallel-axis term m d²: the cylinder's m (3r² + l²) / 12
+    mass = 157.633
+    assert link_01.expected["ixx"] == pytest.approx(13.235 - mass * 0.2**2)
+    assert link_01.expected["ixx"] == pytest.approx(cylinder_moments(mass, 0.35, 0.4)[0], rel=1e-3)
+    assert round(link_01.expected["ixx"], 2) == 6.93 and link_01.expected["izz"] == 9.655
+    link_02 = next(f for f in forensic if f.link == "link_02")
+    assert link_02.expected["ixx"] == pytest.approx(12.679 - 57.906 * 0.4**2)

@@ -1,0 +1,63 @@
+"""IN061 product-signs-flipped: a turned box's products, written with the opposite sign."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from kit import moving
+
+from inertia_kit.physics.frames import rpy_matrix
+
+
+def plate(ixy, ixz, iyz, diag, rpy):
+    ixx, iyy, izz, ixy, ixz, iyz = (float(v) for v in (*diag, ixy, ixz, iyz))
+    return moving(
+        f"""
+    <inertial><mass value="2"/>
+      <inertia ixx="{ixx!r}" ixy="{ixy!r}" ixz="{ixz!r}" iyy="{iyy!r}" iyz="{iyz!r}" izz="{izz!r}"/>
+    </inertial>
+    <collision><origin rpy="{" ".join(map(repr, rpy))}"/>
+      <geometry><box size="0.4 0.2 0.1"/></geometry></collision>
+  """
+    )
+
+
+def turned_box(rpy, mass=2.0, size=(0.4, 0.2, 0.1)):
+    x, y, z = size
+    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * mass / 12
+    rotation = rpy_matrix(rpy)
+    return rotation @ moments @ rotation.T
+
+
+@pytest.mark.parametrize(
+    ("rpy", "codes"),
+    [
+        ((0.0, 0.0, math.pi / 6), ["IN061"]),
+        # three products flipped: no longer a valid tensor, which stays IN011's error
+        ((0.4, 0.3, 0.5), ["IN011", "IN061"]),
+    ],
+)
+def test_flipped_products_fire_with_the_geometry_signs(lint, rpy, codes):
+    right = turned_box(rpy)
+    diag = tuple(float(v) for v in np.diag(right))
+    flipped = plate(-right[0, 1], -right[0, 2], -right[1, 2], diag, rpy)
+    findings = lint(flipped)
+    assert [f.code for f in findings] == codes
+    expected = findings[-1].expected
+    for name, (i, j) in {"ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2), "ixx": (0, 0)}.items():
+        assert expected[name] == pytest.approx(right[i, j], abs=1e-12)
+    assert "opposite sign" in findings[-1].message and findings[-1].help == (
+        "negate ixy, ixz and iyz"
+    )
+    # the same values with URDF's signs: nothing to say
+    assert lint(plate(right[0, 1], right[0, 2], right[1, 2], diag, rpy)) == []
+
+
+def test_small_products_flipped_are_within_the_mismatch_floor(lint):
+    """A box turned by 1°: flipping its tiny product changes no moment by 10 %."""
+    rpy = (0.0, 0.0, math.radians(1))
+    right = turned_box(rpy)
+    diag = tuple(float(v) for v in np.diag(right))
+    assert lint(plate(-right[0, 1], 0.0, 0.0, diag, rpy)) == []

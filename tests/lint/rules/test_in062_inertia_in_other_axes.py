@@ -1,0 +1,78 @@
+"""IN062 inertia-in-other-axes: a tensor written for another frame's axes."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from kit import REPO, moving
+
+from inertia_kit.lint.runner import Selection, lint_file
+from inertia_kit.physics.frames import rpy_matrix
+
+EXAMPLES = REPO / "examples"
+
+
+def rod(inertial_rpy="0 0 0", shape_rpy=f"0 {math.pi / 2} 0"):
+    mass, radius, length = 1.0, 0.02, 0.3
+    transverse = mass * (3 * radius**2 + length**2) / 12
+    axial = mass * radius**2 / 2
+    return (
+        moving(
+            f"""
+    <inertial><origin xyz="0.15 0 0" rpy="{inertial_rpy}"/><mass value="{mass}"/>
+      <inertia ixx="{transverse}" ixy="0" ixz="0" iyy="{transverse}" iyz="0" izz="{axial}"/>
+    </inertial>
+    <collision><origin xyz="0.15 0 0" rpy="{shape_rpy}"/>
+      <geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>
+  """,
+            name="arm",
+        ),
+        transverse,
+        axial,
+    )
+
+
+def test_cylinder_formula_for_z_on_a_rod_along_x(lint):
+    text, transverse, axial = rod()
+    findings = lint(text)
+    assert [f.code for f in findings] == ["IN062"]
+    finding = findings[0]
+    assert "axis of least inertia along z" in finding.message and "along x" in finding.message
+    assert "the collision cylinder's own axes" in finding.message
+    assert finding.expected["ixx"] == pytest.approx(axial)
+    assert finding.expected["iyy"] == pytest.approx(transverse)
+    assert finding.expected["izz"] == pytest.approx(transverse)
+    np.testing.assert_allclose(
+        rpy_matrix(finding.expected["rpy"]), rpy_matrix([0, math.pi / 2, 0]), atol=1e-12
+    )
+    assert '<inertial><origin rpy="0 1.5708 0"/>' in finding.help
+
+
+def test_the_suggested_rpy_is_quiet(lint):
+    text, _, _ = rod(inertial_rpy=f"0 {math.pi / 2} 0")
+    assert lint(text) == []
+
+
+def test_a_rounded_quarter_turn_names_the_same_axes(lint):
+    text, _, axial = rod(shape_rpy="0 1.5708 0")
+    findings = lint(text, "IN062")
+    assert len(findings) == 1 and findings[0].expected["ixx"] == pytest.approx(axial)
+    assert findings[0].expected["ixz"] == 0.0  # snapped to the exact permutation
+
+
+def test_seed_simple_arm_links_are_written_for_other_axes_and_the_base_is_quiet():
+    """The issue's acceptance: link_1 and link_2 explained; base_link correct."""
+    result = lint_file(EXAMPLES / "simple_arm/urdf/simple_arm.urdf.xacro", Selection())
+    assert result.error is None
+    forensic = [f for f in result.findings if f.code == "IN062"]
+    assert sorted(f.link for f in forensic) == ["link_1", "link_2"]
+    assert not [f for f in result.findings if f.code == "IN020"]
+    base = {f.code for f in result.findings if f.link == "base_link"}
+    assert not base & {"IN020", "IN060", "IN061", "IN062", "IN063", "IN064"}
+    mass, radius, length = 1.0, 0.02, 0.3
+    for finding in forensic:
+        assert finding.expected["ixx"] == pytest.approx(mass * radius**2 / 2)
+        assert finding.expected["izz"] == pytest.approx(mass * (3 * radius**2 + length**2) / 12)
+        assert "written for other axes" in finding.message
