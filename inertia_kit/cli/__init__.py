@@ -18,7 +18,7 @@ from typing import Any
 
 import click
 
-from inertia_kit import __version__
+from inertia_kit.version import __version__
 
 
 class UsageError(click.ClickException):

@@ -15,9 +15,18 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from inertia_kit.errors import InputError
-from inertia_kit.lint.findings import Edit
 
 _DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*\bencoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+@dataclass(frozen=True, order=True)
+class Edit:
+    """Replace ``original[start:end]`` of the file ``path`` with ``content`` (character offsets)."""
+
+    path: str
+    start: int
+    end: int
+    content: str
 
 
 @dataclass(frozen=True)

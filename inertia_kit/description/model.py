@@ -10,6 +10,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from inertia_kit.physics.tensor_names import TENSOR
+
+#: The link name Gazebo and the URDF importers read as the world itself, not a body.
+WORLD = "world"
+
 
 @dataclass(frozen=True)
 class Source:
@@ -138,7 +143,7 @@ class Inertial:
     mass_source: Source | None = None
     inertia_source: Source | None = None
 
-    TENSOR = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    TENSOR = TENSOR
 
     def tensor_values(self) -> dict[str, Number]:
         return {name: getattr(self, name) for name in self.TENSOR}

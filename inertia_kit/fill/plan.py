@@ -42,8 +42,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from inertia_kit.description.edits import Edit
 from inertia_kit.errors import InputError
-from inertia_kit.lint.findings import Edit, Severity
+from inertia_kit.lint.findings import Severity
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:

@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from inertia_kit.description.edits import Edit
 from inertia_kit.description.model import Inertial
-from inertia_kit.lint.findings import Edit
 
 if TYPE_CHECKING:
     from lxml import etree

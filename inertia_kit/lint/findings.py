@@ -6,6 +6,8 @@ import enum
 from dataclasses import dataclass, field
 from typing import Any
 
+from inertia_kit.description.edits import Edit
+
 
 class Severity(enum.IntEnum):
     """Ordered, so ``--fail-on warning`` means warning and above."""
@@ -34,16 +36,6 @@ class Safety(enum.Enum):
 
     def __str__(self) -> str:
         return self.value
-
-
-@dataclass(frozen=True, order=True)
-class Edit:
-    """Replace ``original[start:end]`` of the file ``path`` with ``content`` (character offsets)."""
-
-    path: str
-    start: int
-    end: int
-    content: str
 
 
 @dataclass(frozen=True)

@@ -243,8 +243,8 @@ def _sarif_rule(code: str, name: str, rule: ModuleType | None) -> dict[str, Any]
 
 def sarif(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[str, Any]:
     """A SARIF 2.1.0 log of one run; the rules listed are those with findings."""
-    from inertia_kit import __version__
     from inertia_kit.lint import rules as registry
+    from inertia_kit.version import __version__
 
     loaded = {rule.CODE: rule for rule in registry.load_rules()}
     names = dict(sorted({(f.code, f.name) for f in findings}))

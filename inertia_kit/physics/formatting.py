@@ -3,6 +3,14 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+from inertia_kit.physics.tensor_names import DIAGONAL, INDEX, PRODUCTS
+
+#: A product of inertia below this fraction of the largest moment is not shown in messages and
+#: reports: it is rounding noise (an rpy of 1.5708 for π/2 leaves products ~1e-6 of the moments).
+NEGLIGIBLE_PRODUCT = 1e-6
 
 
 def fmt(value: float, digits: int = 5) -> str:
@@ -42,3 +50,32 @@ def xml_number(value: float, digits: int = 9) -> str:
     if "." in mantissa:
         mantissa = mantissa.rstrip("0").rstrip(".")
     return f"{mantissa}e{int(exponent)}"
+
+
+def vector_text(values: Iterable[float], digits: int = 4) -> str:
+    """``(0.1, -2, 3.5e-05)``: a point or direction for messages."""
+    return "(" + ", ".join(fmt(value, digits) for value in values) + ")"
+
+
+def tensor_text(
+    tensor: Any,
+    names: Sequence[str] | None = None,
+    digits: int = 4,
+    separator: str = " = ",
+) -> str:
+    """
+    ``ixx = 0.0163, iyy = 0.0163, izz = 0.0025``: the named entries of a 3×3 tensor, else the
+    three moments and every product that is not negligible (:data:`NEGLIGIBLE_PRODUCT`).
+    ``separator`` goes between a name and its value.
+    """
+    if names is None:
+        scale = max(abs(float(tensor[i][i])) for i in range(3))
+        shown = [
+            n
+            for n in PRODUCTS
+            if abs(float(tensor[INDEX[n][0]][INDEX[n][1]])) > NEGLIGIBLE_PRODUCT * scale
+        ]
+        names = (*DIAGONAL, *shown)
+    return ", ".join(
+        f"{name}{separator}{fmt(tensor[INDEX[name][0]][INDEX[name][1]], digits)}" for name in names
+    )

@@ -64,9 +64,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit import __version__
 from inertia_kit.physics.meshes import FORMATS, MeshSolid, mesh_solid
 from inertia_kit.physics.polyhedra import VolumeMoments
+from inertia_kit.version import __version__
 
 #: Version of the entry layout; part of the folder name and of every entry.
 FORMAT = 1

@@ -8,12 +8,12 @@ import pytest
 
 from inertia_kit.description.edits import (
     ChangedWhileEditing,
+    Edit,
     apply_edits,
     read_source,
     write_atomic,
 )
 from inertia_kit.errors import InputError
-from inertia_kit.lint.findings import Edit
 
 
 def test_apply_edits_splices_in_one_pass_and_skips_overlaps():

@@ -19,8 +19,9 @@ from kit import REPO
 
 from inertia_kit import __version__
 from inertia_kit.cli import main
+from inertia_kit.description.edits import Edit
 from inertia_kit.lint import rules as registry
-from inertia_kit.lint.findings import Edit, Finding, Fix, Safety, Severity
+from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.output import _escape_data, _escape_property, render, statistics, summary
 
 ARM = """<?xml version="1.0"?>
