@@ -23,3 +23,10 @@ def moving(body: str, name: str = "plate", extra: str = "") -> str:
     is written after that link (more joints and links).
     """
     return SHELL.format(name=name, body=body, extra=extra)
+
+
+def from_second_moment(mass: float, com, second_moment):
+    """Mass properties from the central second moment ``∫ r rᵀ dm`` (kg·m²): tr(S)·1 − S."""
+    from inertia_kit.physics.mass import MassProperties, inertia_from_second_moment
+
+    return MassProperties(mass, com, inertia_from_second_moment(second_moment))

@@ -255,6 +255,3 @@ class Robot:
 
     def parent_joint(self, link: str) -> Joint | None:
         return next((joint for joint in self.joints if joint.child == link), None)
-
-    def child_joints(self, link: str) -> tuple[Joint, ...]:
-        return tuple(joint for joint in self.joints if joint.parent == link)

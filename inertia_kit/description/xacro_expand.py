@@ -168,19 +168,6 @@ def expand(
         return expanded
 
 
-@contextlib.contextmanager
-def routed_find(resolver: PackageResolver, near: str | Path | None = None) -> Iterator[None]:
-    """
-    Run plain xacro (``xacro.process_file``) inside this block with ``$(find pkg)`` resolved by
-    ``resolver``, and with xacro's stderr collected rather than printed. For comparisons.
-    """
-    import xacro
-
-    session = _Session(str(near or "."), resolver)
-    with _LOCK, _patched(xacro, session, stamping=False):
-        yield
-
-
 # --- one expansion --------------------------------------------------------------------------
 
 

@@ -146,13 +146,6 @@ class MassProperties:
         rotation = rpy_matrix(rpy)
         return cls(mass, as_vector3(xyz, "xyz"), rotation @ tensor @ rotation.T)
 
-    @classmethod
-    def from_second_moment(
-        cls, mass: float, com: ArrayLike, second_moment: ArrayLike
-    ) -> MassProperties:
-        """From the central second moment ``∫ r rᵀ dm`` (kg·m²) instead of the inertia tensor."""
-        return cls(mass, com, inertia_from_second_moment(second_moment))
-
     # --- combination --------------------------------------------------------------------
 
     def __add__(self, other: MassProperties) -> MassProperties:

@@ -64,7 +64,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit.physics.meshes import FORMATS, MeshSolid, mesh_solid
+from inertia_kit.physics.meshes import FORMATS, MeshSolid, mesh_solid, scaled_solid
 from inertia_kit.physics.polyhedra import VolumeMoments
 from inertia_kit.version import __version__
 
@@ -140,7 +140,7 @@ def cached_mesh_solid(
             return mesh_solid(path, scale)
         if _storable(path, key):
             _write(folder, entry, _encode(key, code, raw))
-    return _solid(path, raw, factors)
+    return scaled_solid(path, raw.moments, raw.bounds, factors, **raw.other)
 
 
 def cache_location(cache_dir: str | Path | None = None) -> Path | None:
@@ -350,20 +350,6 @@ def _exact_inverse(unit: float) -> float | None:
         if math.isfinite(c) and unit * c == 1.0:
             return c
     return None
-
-
-def _solid(path: str | Path, raw: _Raw, scale: tuple[float, float, float]) -> MeshSolid:
-    """The solid at ``scale``, with the arithmetic of ``meshes._scaled``."""
-    factors = raw.other["unit_scale"] * np.asarray(scale)
-    bounds = np.sort(raw.bounds * factors, axis=0)
-    bounds.flags.writeable = False
-    return MeshSolid(
-        path=str(Path(path)),
-        scale=scale,
-        moments=raw.moments.scaled(factors),
-        bounds=bounds,
-        **raw.other,
-    )
 
 
 # --- entries ------------------------------------------------------------------------------------

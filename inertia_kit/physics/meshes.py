@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -317,7 +317,18 @@ def mesh_solid(path: str | Path, scale: ArrayLike = (1.0, 1.0, 1.0)) -> MeshSoli
         triangles, unit_scale = _read_scene(file, suffix)
         integrator = integrate(triangles)
     fields = _classify(file, integrator, triangles)
-    return _scaled(file, fields, integrator, unit_scale, tuple(float(s) for s in factors))
+    return scaled_solid(
+        file,
+        fields.moments,
+        integrator.bounds,
+        tuple(float(s) for s in factors),
+        unit_scale=unit_scale,
+        method=fields.method,
+        inverted=fields.inverted,
+        closed=fields.closed,
+        volume_error=fields.volume_error,
+        triangle_count=integrator.count,
+    )
 
 
 @dataclass(frozen=True)
@@ -413,27 +424,31 @@ def _merge_digits(bounds: NDArray) -> int:
     return max(0, -math.floor(math.log10(MERGE_RTOL * extent)))
 
 
-def _scaled(
-    path: Path,
-    fields: _Fields,
-    integrator: SurfaceIntegrator,
-    unit_scale: float,
+def scaled_solid(
+    path: str | Path,
+    moments: VolumeMoments,
+    bounds: NDArray[np.float64],
     scale: tuple[float, float, float],
+    *,
+    unit_scale: float,
+    **fields: Any,
 ) -> MeshSolid:
+    """
+    The solid at the URDF ``scale`` from the file's own-unit volume integrals and bounds: the
+    file's unit and the scale are applied analytically. ``fields`` are the other
+    :class:`MeshSolid` fields, which no scale changes. The mesh cache builds its hits with this
+    same arithmetic, so a hit equals a read to the last bit.
+    """
     factors = unit_scale * np.asarray(scale)
-    bounds = np.sort(integrator.bounds * factors, axis=0)
-    bounds.flags.writeable = False
+    scaled_bounds = np.sort(bounds * factors, axis=0)
+    scaled_bounds.flags.writeable = False
     return MeshSolid(
-        path=str(path),
+        path=str(Path(path)),
         scale=scale,
-        moments=fields.moments.scaled(factors),
-        method=fields.method,
-        inverted=fields.inverted,
-        closed=fields.closed,
-        volume_error=fields.volume_error,
-        bounds=bounds,
-        triangle_count=integrator.count,
+        moments=moments.scaled(factors),
+        bounds=scaled_bounds,
         unit_scale=unit_scale,
+        **fields,
     )
 
 

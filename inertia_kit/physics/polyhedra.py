@@ -468,8 +468,3 @@ def integrate(triangles: ArrayLike, origin: ArrayLike | None = None) -> SurfaceI
     integrator = SurfaceIntegrator(reference_point(tris) if origin is None else origin)
     integrator.add(tris)
     return integrator
-
-
-def volume_moments(triangles: ArrayLike, origin: ArrayLike | None = None) -> VolumeMoments:
-    """Volume integrals of the solid bounded by a triangle soup (see :func:`integrate`)."""
-    return integrate(triangles, origin).moments

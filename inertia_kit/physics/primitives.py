@@ -42,26 +42,12 @@ def body_mass(volume: float, density: float | None, mass: float | None) -> float
     return value
 
 
-def box_volume(size: ArrayLike) -> float:
-    x, y, z = _extents(size, "size")
-    return x * y * z
-
-
 def cylinder_volume(radius: float, length: float) -> float:
     return math.pi * _dimension(radius, "radius") ** 2 * _dimension(length, "length")
 
 
 def sphere_volume(radius: float) -> float:
     return 4.0 / 3.0 * math.pi * _dimension(radius, "radius") ** 3
-
-
-def capsule_volume(radius: float, length: float) -> float:
-    return cylinder_volume(radius, length) + sphere_volume(radius)
-
-
-def ellipsoid_volume(radii: ArrayLike) -> float:
-    a, b, c = _extents(radii, "radii")
-    return 4.0 / 3.0 * math.pi * a * b * c
 
 
 def box(

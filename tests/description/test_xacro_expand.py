@@ -14,7 +14,7 @@ from xacro import substitution_args
 
 from inertia_kit.description.model import Source
 from inertia_kit.description.packages import PackageResolver
-from inertia_kit.description.xacro_expand import expand, is_xacro, routed_find
+from inertia_kit.description.xacro_expand import _LOCK, _patched, _Session, expand, is_xacro
 from inertia_kit.errors import InputError
 
 EXAMPLES = REPO / "examples"
@@ -44,8 +44,13 @@ def structure(element: etree._Element) -> tuple:
 
 
 def plain_xacro(path: Path, resolver: PackageResolver, **kwargs) -> etree._Element:
-    """What xacro itself produces, with ``$(find)`` through ``resolver``."""
-    with routed_find(resolver):
+    """
+    What xacro itself produces, with ``$(find)`` through ``resolver`` and xacro's stderr
+    collected: the reference our stamped expansion is compared with. It reaches into the
+    expansion's private session because only this comparison needs plain xacro routed so.
+    """
+    session = _Session(".", resolver)
+    with _LOCK, _patched(xacro, session, stamping=False):
         doc = xacro.process_file(str(path), **kwargs)
     return etree.fromstring(doc.documentElement.toxml().encode())
 

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from kit import from_second_moment
 
 from inertia_kit.physics.frames import rpy_matrix, transform
 from inertia_kit.physics.mass import MassProperties, shift_tensor
@@ -198,9 +199,7 @@ def test_shape_errors_quote_the_shape():
 
 def test_second_moment_round_trip():
     body = random_body()
-    assert MassProperties.from_second_moment(body.mass, body.com, body.second_moment).isclose(
-        body, rtol=1e-12
-    )
+    assert from_second_moment(body.mass, body.com, body.second_moment).isclose(body, rtol=1e-12)
 
 
 def test_shift_tensor_of_a_point_mass():

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-from kit import REPO
+from kit import REPO, from_second_moment
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics import primitives
@@ -51,7 +51,7 @@ def linear_image(value: MassProperties, matrix) -> MassProperties:
     """The same body after every point x goes to A x at unchanged density (A may mirror)."""
     a = np.asarray(matrix, dtype=np.float64)
     jacobian = abs(np.linalg.det(a))
-    return MassProperties.from_second_moment(
+    return from_second_moment(
         jacobian * value.mass, a @ value.com, jacobian * a @ value.second_moment @ a.T
     )
 
@@ -260,7 +260,7 @@ def tetrahedron_reference(corners, density=DENSITY) -> MassProperties:
     volume = abs(np.linalg.det(d[1:] - d[0])) / 6
     s = d.sum(axis=0)
     second = volume / 20 * (d.T @ d + np.outer(s, s))
-    return MassProperties.from_second_moment(density * volume, centroid, density * second)
+    return from_second_moment(density * volume, centroid, density * second)
 
 
 def test_open_tetrahedron_uses_convex_hull(tmp_path: Path) -> None:

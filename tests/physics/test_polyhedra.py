@@ -16,7 +16,6 @@ from inertia_kit.physics.polyhedra import (
     SurfaceIntegrator,
     VolumeMoments,
     integrate,
-    volume_moments,
 )
 
 RNG = np.random.default_rng(20261121)
@@ -63,7 +62,7 @@ def assert_same(mine, reference, rtol=1e-12) -> None:
 @pytest.mark.parametrize("dtype", [np.float64, np.float32])
 def test_box_matches_the_closed_form(dtype):
     size, low = (0.5, 0.25, 2.0), (0.25, -0.5, 1.0)  # dyadic: exact in float32
-    properties = volume_moments(box_triangles(size, low).astype(dtype)).mass_properties(
+    properties = integrate(box_triangles(size, low).astype(dtype)).moments.mass_properties(
         density=DENSITY
     )
     mass = DENSITY * math.prod(size)
@@ -73,7 +72,7 @@ def test_box_matches_the_closed_form(dtype):
 
 
 def test_box_by_mass_and_by_density_agree():
-    moments = volume_moments(box_triangles())
+    moments = integrate(box_triangles()).moments
     by_density = moments.mass_properties(density=DENSITY)
     by_mass = moments.mass_properties(mass=by_density.mass)
     assert_same(by_mass, by_density)
@@ -84,7 +83,7 @@ def test_box_by_mass_and_by_density_agree():
 def test_sphere_is_within_its_tessellation_error_of_the_ball():
     radius = 0.3
     triangles = sphere_triangles(4, radius)
-    properties = volume_moments(triangles).mass_properties(density=DENSITY)
+    properties = integrate(triangles).moments.mass_properties(density=DENSITY)
     # the inscribed polyhedron lies between the ball of radius r and the ball touching its faces
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     inner = np.min(
@@ -106,7 +105,7 @@ def test_matches_trimesh_on_the_same_triangles(dtype):
     # an off-centre, tilted, squashed sphere: every product of inertia is non-zero
     triangles = sphere_triangles(5) * (1.0, 0.6, 0.3) @ random_rotation().T + (0.2, -0.1, 0.4)
     triangles = triangles.astype(dtype)
-    mine = volume_moments(triangles).mass_properties(density=DENSITY)
+    mine = integrate(triangles).moments.mass_properties(density=DENSITY)
     reference = trimesh.Trimesh(**trimesh.triangles.to_kwargs(triangles.astype(np.float64)))
     reference = reference.mass_properties
     size = np.ptp(triangles.reshape(-1, 3), axis=0).max()
@@ -119,8 +118,8 @@ def test_matches_trimesh_on_the_same_triangles(dtype):
 def test_moving_the_mesh_moves_the_com_and_rotates_the_inertia():
     triangles = sphere_triangles(3) * (1.0, 0.5, 0.25)
     rotation, shift = random_rotation(), np.array([3.0, -2.0, 5.0])
-    still = volume_moments(triangles).mass_properties(density=DENSITY)
-    moved = volume_moments(triangles @ rotation.T + shift).mass_properties(density=DENSITY)
+    still = integrate(triangles).moments.mass_properties(density=DENSITY)
+    moved = integrate(triangles @ rotation.T + shift).moments.mass_properties(density=DENSITY)
     assert moved.mass == pytest.approx(still.mass, rel=1e-12)
     np.testing.assert_allclose(moved.com, rotation @ still.com + shift, rtol=0, atol=1e-12)
     scale = np.abs(still.inertia).max()
@@ -131,11 +130,11 @@ def test_moving_the_mesh_moves_the_com_and_rotates_the_inertia():
 
 def test_the_reference_point_changes_nothing():
     triangles = sphere_triangles(3) + np.array([1.0, 2.0, 3.0])
-    reference = volume_moments(triangles).mass_properties(density=DENSITY)
+    reference = integrate(triangles).moments.mass_properties(density=DENSITY)
     # about a point d away the second moment is ~ (d / r)² larger than the central one, and
     # that many more digits cancel: 1e-10 allows for d / r ~ 25
     for origin in [(0.0, 0.0, 0.0), (1.0, 2.0, 3.0), (-4.0, 5.0, 0.5)]:
-        moments = volume_moments(triangles, origin)
+        moments = integrate(triangles, origin).moments
         np.testing.assert_array_equal(moments.origin, origin)
         assert_same(moments.mass_properties(density=DENSITY), reference, rtol=1e-10)
         moved = moments.about((0.5, 0.5, 0.5)).mass_properties(density=DENSITY)
@@ -144,7 +143,7 @@ def test_the_reference_point_changes_nothing():
 
 def test_far_from_the_coordinate_origin_the_central_moments_keep_their_precision():
     size, low = (0.5, 0.25, 2.0), (1000.25, -2000.5, 500.0)  # exact in float64
-    properties = volume_moments(box_triangles(size, low)).mass_properties(density=DENSITY)
+    properties = integrate(box_triangles(size, low)).moments.mass_properties(density=DENSITY)
     mass = DENSITY * math.prod(size)
     np.testing.assert_allclose(properties.inertia, box_inertia(size, mass), atol=1e-12 * mass)
 
@@ -157,15 +156,15 @@ def test_scaled_equals_integrating_the_scaled_mesh(scale):
     scaled = triangles * scale
     if np.prod(scale) < 0:  # a mirror turns the winding inside out
         scaled = scaled[:, ::-1]
-    expected = volume_moments(scaled).mass_properties(density=DENSITY)
-    moments = volume_moments(triangles).scaled(scale)
+    expected = integrate(scaled).moments.mass_properties(density=DENSITY)
+    moments = integrate(triangles).moments.scaled(scale)
     assert moments.volume > 0
     assert_same(moments.mass_properties(density=DENSITY), expected)
 
 
 def test_millimetre_mesh_scaled_to_metres():
     size, low = (500.0, 250.0, 2000.0), (250.0, -500.0, 1000.0)
-    moments = volume_moments(box_triangles(size, low).astype(np.float32)).scaled((1e-3,) * 3)
+    moments = integrate(box_triangles(size, low).astype(np.float32)).moments.scaled((1e-3,) * 3)
     properties = moments.mass_properties(density=DENSITY)
     metres = np.multiply(size, 1e-3)
     mass = DENSITY * math.prod(metres)
@@ -175,7 +174,7 @@ def test_millimetre_mesh_scaled_to_metres():
 
 
 def test_scaled_rejects_zero_and_non_finite_factors():
-    moments = volume_moments(box_triangles())
+    moments = integrate(box_triangles()).moments
     for scale in [(1.0, 0.0, 1.0), (1.0, np.nan, 1.0), (1.0, 1.0)]:
         with pytest.raises(ValueError, match="scale"):
             moments.scaled(scale)
@@ -195,8 +194,8 @@ def test_reversed_winding_gives_negative_volume_and_stays_closed():
 
 def test_moments_add_up_about_a_common_point():
     low, high = box_triangles((1.0, 1.0, 1.0)), box_triangles((1.0, 1.0, 1.0), (0.0, 0.0, 1.0))
-    both = volume_moments(low, (0.0, 0.0, 0.0)) + volume_moments(high, (3.0, 1.0, 2.0))
-    tall = volume_moments(box_triangles((1.0, 1.0, 2.0)))
+    both = integrate(low, (0.0, 0.0, 0.0)).moments + integrate(high, (3.0, 1.0, 2.0)).moments
+    tall = integrate(box_triangles((1.0, 1.0, 2.0))).moments
     assert_same(both.mass_properties(density=DENSITY), tall.mass_properties(density=DENSITY))
 
 
@@ -252,7 +251,7 @@ def test_adding_after_reading_the_results_goes_on_adding():
     integrator.add(triangles[700:])
     assert integrator.closed
     assert integrator.count == len(triangles)
-    whole = volume_moments(triangles, (0.0, 0.0, 0.0)).volume
+    whole = integrate(triangles, (0.0, 0.0, 0.0)).moments.volume
     assert integrator.moments.volume == pytest.approx(whole, rel=1e-13)
     assert partial < whole
 
@@ -271,7 +270,7 @@ def test_any_strides_are_accepted():
     padded[:, :3, 1:4] = triangles
     view = padded[:, :3, 1:4]
     assert not view.flags.c_contiguous
-    a, b = volume_moments(view), volume_moments(triangles)
+    a, b = integrate(view).moments, integrate(triangles).moments
     assert a.volume == b.volume
     np.testing.assert_array_equal(a.second, b.second)
 
@@ -355,6 +354,6 @@ def test_the_fingerprint_does_not_depend_on_chunking_or_order():
 
 
 def test_volume_moments_type():
-    moments = volume_moments(box_triangles())
+    moments = integrate(box_triangles()).moments
     assert isinstance(moments, VolumeMoments)
     np.testing.assert_allclose(moments.centroid, (0.25, 0.125, 1.0), atol=1e-15)

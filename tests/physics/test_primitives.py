@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.physics.polyhedra import volume_moments
+from inertia_kit.physics.polyhedra import integrate
 from inertia_kit.physics.primitives import box, capsule, cylinder, ellipsoid, sphere
 
 trimesh = pytest.importorskip("trimesh")
@@ -60,7 +60,7 @@ def test_capsule_matches_a_fine_mesh():
     r, h = 0.1, 0.4
     mesh = trimesh.creation.capsule(height=h, radius=r, count=[128, 128])
     assert mesh.is_watertight
-    from_mesh = volume_moments(mesh.triangles).mass_properties(density=1.0)
+    from_mesh = integrate(mesh.triangles).moments.mass_properties(density=1.0)
     exact = capsule(r, h, density=1.0)
     np.testing.assert_allclose(from_mesh.mass, exact.mass, rtol=2e-3)
     np.testing.assert_allclose(np.diag(from_mesh.inertia), np.diag(exact.inertia), rtol=4e-3)
@@ -73,7 +73,7 @@ def test_ellipsoid_with_equal_radii_is_a_sphere():
 def test_ellipsoid_matches_a_scaled_icosphere():
     radii = np.array([0.1, 0.2, 0.35])
     sphere_mesh = trimesh.creation.icosphere(subdivisions=6)
-    moments = volume_moments(sphere_mesh.triangles).scaled(radii)
+    moments = integrate(sphere_mesh.triangles).moments.scaled(radii)
     from_mesh = moments.mass_properties(density=1.0)
     exact = ellipsoid(radii, density=1.0)
     np.testing.assert_allclose(from_mesh.mass, exact.mass, rtol=1e-3)
