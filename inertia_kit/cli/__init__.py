@@ -547,7 +547,7 @@ def lint(
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
     if explain is not None:
-        from inertia_kit.lint.output import explain as document
+        from inertia_kit.lint.documents import explain as document
 
         try:
             click.echo(document(explain), nl=False)

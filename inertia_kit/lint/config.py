@@ -44,6 +44,7 @@ from pathlib import Path
 from typing import Any
 
 from inertia_kit.errors import ConfigError
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
 
 if sys.version_info >= (3, 11):
@@ -65,66 +66,6 @@ KEYS = (
     "links",
 )
 LINK_KEYS = ("density", "mass")
-_CODE = re.compile(r"IN[0-9]{0,3}", re.IGNORECASE)
-
-
-# --- the rule catalog, as selectors see it ----------------------------------------------------
-
-
-def planned_rules() -> dict[str, str]:
-    """``code -> name`` from the registry's module names (``in012_inertia_too_small``)."""
-    from inertia_kit.lint.rules import RULE_MODULES
-
-    return {module[:5].upper(): module[6:].replace("_", "-") for module in RULE_MODULES}
-
-
-def catalog() -> dict[str, str]:
-    """
-    ``code -> name`` of every rule: the registry's planned modules and the rules that exist,
-    whose own ``NAME`` wins. Imports the rules.
-    """
-    from inertia_kit.lint import rules
-
-    known = planned_rules()
-    known.update({rule.CODE: rule.NAME for rule in rules.load_rules()})
-    return known
-
-
-def normalize_selector(text: str, known: Mapping[str, str] | None = None) -> str | None:
-    """
-    ``text`` as a selector: an upper-case code or code prefix (``IN012``, ``IN01``, ``IN``) that
-    some rule's code starts with, or a rule name; ``None`` when it selects no rule.
-    """
-    known = catalog() if known is None else known
-    text = text.strip()
-    if _CODE.fullmatch(text):
-        prefix = text.upper()
-        return prefix if any(code.startswith(prefix) for code in known) else None
-    return text if text in known.values() else None
-
-
-def selects(selectors: Iterable[str], code: str, name: str) -> bool:
-    """Whether a selector (a code, a code prefix or a name) picks the rule ``code``/``name``."""
-    return any(code.startswith(s.upper()) or s == name for s in selectors)
-
-
-def suggestions(text: str, known: Mapping[str, str]) -> list[str]:
-    """
-    What ``text`` may have meant: for a code, the zero-padded code (``IN12`` → ``IN012``); for
-    a name, the nearest names.
-    """
-    text = text.strip()
-    if re.fullmatch(r"(?i)IN[0-9]{1,2}", text):
-        padded = "IN" + text[2:].zfill(3)
-        return [padded] if padded in known else []
-    return difflib.get_close_matches(text, list(known.values()), n=3, cutoff=0.75)
-
-
-def selector_error(text: str, known: Mapping[str, str]) -> str:
-    """Why ``text`` is no selector, with what it may have meant."""
-    close = suggestions(text, known)
-    hint = f" (did you mean {', '.join(f'`{c}`' for c in close)}?)" if close else ""
-    return f"`{text}` is no rule code, code prefix or rule name{hint}"
 
 
 # --- values -----------------------------------------------------------------------------------
@@ -277,7 +218,7 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
             "unknown key (in .inertia-kit.toml the keys stand at the top level, "
             "without [tool.inertia-kit])",
         )
-    known = catalog()
+    known = catalog.names()
     select = None
     if "select" in table:
         select = where.selectors(table["select"], "select", known)
@@ -310,22 +251,14 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
 def _rule_tables(
     where: _Where, rules_table: Any, known: Mapping[str, str]
 ) -> tuple[dict[str, dict[str, Any]], dict[str, Severity]]:
-    from inertia_kit.lint import rules as registry
-
-    loaded = {rule.CODE: rule for rule in registry.load_rules()}
-    by_name = {rule.NAME: rule for rule in loaded.values()}
     options: dict[str, dict[str, Any]] = {}
     severities: dict[str, Severity] = {}
     seen: set[str] = set()
     for key, settings in where.table(rules_table, "rules").items():
-        rule = loaded.get(key.upper()) if _CODE.fullmatch(key) else by_name.get(key)
+        rule = catalog.find(key)
         section = f"rules.{_quote(key)}"
         if rule is None:
-            code = key.upper() if key.upper() in known else None
-            code = code or next((c for c, n in known.items() if n == key), None)
-            if code is not None:
-                where.fail(section, f"rule {code} ({known[code]}) is not available in this version")
-            where.fail(section, f"unknown rule: {selector_error(key, known)}")
+            where.fail(section, f"unknown rule: {catalog.selector_error(key, known)}")
         settings = where.table(settings, section)
         where.only(settings, ("severity", *rule.OPTIONS), section)
         if rule.CODE in seen:
@@ -441,9 +374,9 @@ class _Where:
         for item in value:
             if not isinstance(item, str):
                 self.fail(key, f"expected codes or names, got {_shown(item)}")
-            selector = normalize_selector(item, known)
+            selector = catalog.normalize_selector(item, known)
             if selector is None:
-                self.fail(key, selector_error(item, known))
+                self.fail(key, catalog.selector_error(item, known))
             selectors.append(selector)
         return tuple(selectors)
 

@@ -1,6 +1,5 @@
 """
-Findings out: the output formats of ``inertia-lint``, its statistics and summary, and the rule
-documents ``--explain`` prints.
+Findings out: the output formats of ``inertia-lint``, its statistics and summary.
 
 - ``full``: ``path:line:col: CODE [severity] message``, the source line with a caret under the
   element, the macro body line for an element a xacro macro produced, and ``help``;
@@ -26,6 +25,7 @@ from typing import Any
 from urllib.parse import quote
 
 from inertia_kit.errors import InputError
+from inertia_kit.lint import documents
 from inertia_kit.lint.findings import Finding, Severity
 
 FORMATS = ("full", "concise", "json", "github", "sarif")
@@ -234,7 +234,7 @@ def _sarif_rule(code: str, name: str, rule: ModuleType | None) -> dict[str, Any]
     }
     if rule is not None:
         entry["defaultConfiguration"] = {"level": _SARIF_LEVELS[rule.SEVERITY]}
-    document = rule_documents().get(code)
+    document = documents.rule_documents().get(code)
     if document is not None:
         text = document.read_text(encoding="utf-8")
         entry["help"] = {"text": text, "markdown": text}
@@ -243,10 +243,9 @@ def _sarif_rule(code: str, name: str, rule: ModuleType | None) -> dict[str, Any]
 
 def sarif(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[str, Any]:
     """A SARIF 2.1.0 log of one run; the rules listed are those with findings."""
-    from inertia_kit.lint import rules as registry
+    from inertia_kit.lint import catalog
     from inertia_kit.version import __version__
 
-    loaded = {rule.CODE: rule for rule in registry.load_rules()}
     names = dict(sorted({(f.code, f.name) for f in findings}))
     index = {code: i for i, code in enumerate(names)}
     results = []
@@ -297,7 +296,7 @@ def sarif(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dic
                         "name": "inertia-lint",
                         "version": __version__,
                         "rules": [
-                            _sarif_rule(code, name, loaded.get(code))
+                            _sarif_rule(code, name, catalog.find(code))
                             for code, name in names.items()
                         ],
                     }
@@ -370,48 +369,3 @@ def summary(findings: Sequence[Finding], checked: int, unreadable: int = 0) -> s
     if unreadable:
         text += f"; {_count(unreadable, 'file')} could not be read"
     return text + "."
-
-
-# --- rule documents -------------------------------------------------------------------------
-
-
-def documents_folder() -> Path:
-    """
-    Where the rule documents are: ``inertia_kit/rule_docs`` (package data in a wheel; in the
-    source tree a link to ``rules/``), else ``rules/`` beside the package.
-    """
-    package = Path(__file__).parent.parent
-    shipped = package / "rule_docs"
-    return shipped if shipped.is_dir() else package.parent / "rules"
-
-
-def rule_documents() -> dict[str, Path]:
-    """``code -> document`` for every ``<CODE>-<name>.md``."""
-    return {
-        path.name.split("-", 1)[0]: path
-        for path in sorted(documents_folder().glob("IN[0-9][0-9][0-9]-*.md"))
-    }
-
-
-def explain(selector: str) -> str:
-    """
-    The document of one rule, by code or name. Raises ``LookupError`` with a message for a
-    selector that names no single rule or a rule without a document. Imports no rule.
-    """
-    from inertia_kit.lint.config import planned_rules, suggestions
-
-    documents = rule_documents()
-    planned = planned_rules()
-    planned.update(
-        {path.stem.split("-", 1)[0]: path.stem.split("-", 1)[1] for path in documents.values()}
-    )
-    text = selector.strip()
-    code = text.upper() if text.upper() in planned else None
-    code = code or next((c for c, name in planned.items() if name == text), None)
-    if code is None:
-        close = suggestions(text, planned)
-        hint = f" (did you mean {', '.join(f'`{c}`' for c in close)}?)" if close else ""
-        raise LookupError(f"`{text}` is no rule code or name{hint}")
-    if code not in documents:
-        raise LookupError(f"{code} ({planned[code]}) has no document in this version")
-    return documents[code].read_text(encoding="utf-8")

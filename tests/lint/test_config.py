@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from inertia_kit.errors import ConfigError
+from inertia_kit.lint import catalog
 from inertia_kit.lint import config as config_module
-from inertia_kit.lint import rules as registry
 from inertia_kit.lint.config import (
     Config,
     ConfigFinder,
@@ -63,7 +63,7 @@ OTHER = _rule("IN099", "stub-other", {"limit": float}, {"limit": 100.0})
 
 @pytest.fixture(autouse=True)
 def stubs(monkeypatch):
-    monkeypatch.setattr(registry, "load_rules", lambda *names: (HEAVY, OTHER))
+    monkeypatch.setattr(catalog, "RULES", (HEAVY, OTHER))
 
 
 def write(path: Path, text: str) -> Path:
@@ -79,7 +79,7 @@ name = "x"
 [tool.inertia-kit]
 select = ["IN0", "in09"]
 extend-select = ["stub-other"]
-ignore = ["IN012"]
+ignore = ["IN099"]
 fail-on = "error"
 
 [tool.inertia-kit.per-file-ignores]
@@ -113,7 +113,7 @@ def test_every_key_of_pyproject(tmp_path):
         path=str(path),
         select=("IN0", "IN09"),
         extend_select=("stub-other",),
-        ignore=("IN012",),
+        ignore=("IN099",),
         per_file_ignores=(
             PerFileIgnore("urdf/legacy/*.xacro", base, ("IN098",)),
             PerFileIgnore("*.urdf", base, ("stub-other",)),
@@ -228,11 +228,6 @@ def test_no_config_gives_the_defaults(tmp_path):
         (
             "[tool.inertia-kit.rules.IN098]\nstrict = 1\n",
             "`tool.inertia-kit.rules.IN098.strict`: expected true or false, got 1",
-        ),
-        (
-            "[tool.inertia-kit.rules.IN012]\nseverity = 'error'\n",
-            "`tool.inertia-kit.rules.IN012`: rule IN012 (inertia-too-small) is not available in "
-            "this version",
         ),
         (
             "[tool.inertia-kit.rules.IN999]\nseverity = 'error'\n",
@@ -442,7 +437,7 @@ def test_lint_file_places_findings_without_a_source_in_the_linted_file(tmp_path,
     )
     rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = "", {}, {}
     rule.check = lambda robot, ctx: iter([ctx.finding("somewhere in the robot", None)])
-    monkeypatch.setattr(registry, "load_rules", lambda *names: (rule,))
+    monkeypatch.setattr(catalog, "RULES", (rule,))
     path = write(tmp_path / "r.urdf", ROBOT)
     from inertia_kit.lint.runner import lint_file
 

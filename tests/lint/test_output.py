@@ -20,7 +20,7 @@ from kit import REPO
 from inertia_kit import __version__
 from inertia_kit.cli import main
 from inertia_kit.description.edits import Edit
-from inertia_kit.lint import rules as registry
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.output import _escape_data, _escape_property, render, statistics, summary
 
@@ -131,7 +131,7 @@ def robots(tmp_path, monkeypatch):
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(text)
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(registry, "load_rules", lambda *names: STUBS)
+    monkeypatch.setattr(catalog, "RULES", STUBS)
     monkeypatch.delenv("FORCE_COLOR", raising=False)
     return tmp_path
 
