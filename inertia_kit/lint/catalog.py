@@ -1,8 +1,8 @@
 """
 The rule catalogue: every rule module, imported by name (a missing one is an import error), and
 all the linter asks of them: a rule by code or name, which rules a selector picks, and the
-optional parts of the rule contract (engine, supersession), read here and nowhere
-else. What a rule module holds is the contract in :mod:`inertia_kit.lint.rules`.
+optional parts of the rule contract (options, engine, supersession), read here and nowhere else.
+What a rule module holds is the contract in :mod:`inertia_kit.lint.rules`.
 
 Adding a rule: write its module in ``rules/`` (the contract), import it and add it to
 :data:`RULES` below, and write its document ``rules/<CODE>-<name>.md``. The rule documents are
@@ -19,7 +19,9 @@ import difflib
 import re
 from collections.abc import Iterable, Mapping
 from types import ModuleType
+from typing import Any
 
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import (
     in001_missing_inertial,
     in002_non_positive_mass,
@@ -113,6 +115,16 @@ def find(key: str) -> ModuleType | None:
 
 
 # --- the optional parts of the contract ------------------------------------------------------
+
+
+def options(rule: ModuleType) -> tuple[Option, ...]:
+    """The options a rule declares (``OPTIONS``; none when it declares none)."""
+    return tuple(getattr(rule, "OPTIONS", ()))
+
+
+def option_values(rule: ModuleType, configured: Mapping[str, Any]) -> dict[str, Any]:
+    """Every option of ``rule``: the configured value, else the declared default."""
+    return {option.name: configured.get(option.name, option.default) for option in options(rule)}
 
 
 def engine(rule: ModuleType) -> str | None:

@@ -24,7 +24,7 @@ and the key (the command exits 2).
     "urdf/legacy/*.xacro" = ["IN02"]  # globs relative to this file's folder; no "/": any folder
     [tool.inertia-kit.rules.IN012]    # a code or a rule name
     severity = "error"
-    floor = 1e-7                      # the rule's own options, checked against its OPTIONS
+    min_moment = 1e-7                 # the rule's own options, checked against its OPTIONS
     [tool.inertia-kit.links.gripper]  # for inertia-fill: a density or a mass per link
     density = 2700.0
 """
@@ -46,6 +46,7 @@ from typing import Any
 from inertia_kit.errors import ConfigError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.options import Option, convert, type_name
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -260,7 +261,8 @@ def _rule_tables(
         if rule is None:
             where.fail(section, f"unknown rule: {catalog.selector_error(key, known)}")
         settings = where.table(settings, section)
-        where.only(settings, ("severity", *rule.OPTIONS), section)
+        declared = {option.name: option for option in catalog.options(rule)}
+        where.only(settings, ("severity", *declared), section)
         if rule.CODE in seen:
             where.fail(section, f"{rule.CODE} ({rule.NAME}) is configured twice")
         seen.add(rule.CODE)
@@ -269,7 +271,7 @@ def _rule_tables(
             if name == "severity":
                 severities[rule.CODE] = where.severity(value, f"{section}.severity")
             else:
-                values[name] = where.option(value, rule.OPTIONS[name], f"{section}.{name}")
+                values[name] = where.option(value, declared[name], f"{section}.{name}")
         if values:
             options[rule.CODE] = values
     return options, severities
@@ -291,51 +293,6 @@ def _links(where: _Where, links_table: Any) -> dict[str, LinkSettings]:
 def _quote(key: str) -> str:
     """A key as TOML writes it in a dotted path."""
     return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else f'"{key}"'
-
-
-_TYPE_NAMES = {float: "a number", int: "an integer", bool: "true or false", str: "a string"}
-
-
-def _type_name(kind: Any) -> str:
-    origin = typing.get_origin(kind)
-    if origin in (list, tuple):
-        (item, *_) = typing.get_args(kind) or (Any,)
-        return f"a list of {_type_name(item).removeprefix('a ').removeprefix('an ')}s"
-    if isinstance(kind, tuple):
-        return " or ".join(_type_name(k) for k in kind)
-    return _TYPE_NAMES.get(kind, getattr(kind, "__name__", str(kind)))
-
-
-def _convert(value: Any, kind: Any) -> tuple[bool, Any]:
-    """``(ok, value)``: ``value`` as ``kind`` (an option type from a rule's ``OPTIONS``)."""
-    if isinstance(kind, tuple):
-        for option in kind:
-            ok, converted = _convert(value, option)
-            if ok:
-                return True, converted
-        return False, None
-    origin = typing.get_origin(kind)
-    if origin in (list, tuple):
-        if not isinstance(value, list):
-            return False, None
-        args = typing.get_args(kind)
-        item = args[0] if args else Any
-        items = [_convert(v, item) for v in value]
-        if not all(ok for ok, _ in items):
-            return False, None
-        converted = [v for _, v in items]
-        return True, tuple(converted) if origin is tuple else converted
-    if kind is Any:
-        return True, value
-    if kind is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            return False, None
-        return True, float(value)
-    if kind is int:
-        return (not isinstance(value, bool) and isinstance(value, int)), value
-    if kind in (list, tuple):
-        return isinstance(value, list), (tuple(value) if kind is tuple else value)
-    return isinstance(value, kind), value
 
 
 @dataclass(frozen=True)
@@ -402,14 +359,14 @@ class _Where:
         except ValueError:
             self.fail(key, f'expected "error", "warning" or "info", got {_shown(value)}')
 
-    def option(self, value: Any, kind: Any, key: str) -> Any:
-        ok, converted = _convert(value, kind)
+    def option(self, value: Any, option: Option, key: str) -> Any:
+        ok, converted = convert(value, option.type)
         if not ok:
-            self.fail(key, f"expected {_type_name(kind)}, got {_shown(value)}")
+            self.fail(key, f"expected {type_name(option.type)}, got {_shown(value)}")
         return converted
 
     def positive(self, value: Any, key: str) -> float:
-        ok, number = _convert(value, float)
+        ok, number = convert(value, float)
         if not ok or not math.isfinite(number) or number <= 0:
             self.fail(key, f"expected a positive number, got {_shown(value)}")
         return number

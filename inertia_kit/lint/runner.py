@@ -116,9 +116,8 @@ def run_rules(
     # code -> the codes whose findings on the same link it replaces (IN06x explains an IN020)
     supersedes = {rule.CODE: catalog.supersedes(rule) for rule in enabled}
     for rule in enabled:
-        ctx = RuleContext(
-            rule, selection.options.get(rule.CODE, {}), selection.severities.get(rule.CODE)
-        )
+        options = catalog.option_values(rule, selection.options.get(rule.CODE, {}))
+        ctx = RuleContext(rule, options, selection.severities.get(rule.CODE))
         targets: Iterable[Any] = analysis.links if rule.SCOPE == "link" else (analysis,)
         configured = selection.severities.get(rule.CODE)
         for target in targets:

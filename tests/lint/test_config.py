@@ -19,6 +19,7 @@ from inertia_kit.lint.config import (
     load_config,
 )
 from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.runner import Selection, lint_paths, selection_for
 
 ROBOT = """<robot name="r">
@@ -37,11 +38,11 @@ ROBOT = """<robot name="r">
 """
 
 
-def _rule(code: str, name: str, options: dict, defaults: dict) -> types.ModuleType:
+def _rule(code: str, name: str, *options: Option) -> types.ModuleType:
     """A stub rule: fires on every link whose mass exceeds its `limit` option."""
     rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_{name.replace('-', '_')}")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = code, name, Severity.WARNING, "link"
-    rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = name, options, defaults
+    rule.SUMMARY, rule.OPTIONS = name, options
 
     def check(link, ctx):
         mass = None if link.link.inertial is None else link.link.inertial.mass
@@ -55,10 +56,13 @@ def _rule(code: str, name: str, options: dict, defaults: dict) -> types.ModuleTy
 HEAVY = _rule(
     "IN098",
     "stub-heavy",
-    {"limit": float, "count": int, "strict": bool, "links": list[str], "mode": str},
-    {"limit": 1.0, "count": 3, "strict": False, "links": [], "mode": "a"},
+    Option("limit", float, 1.0, "the most a link may weigh, kg"),
+    Option("count", int, 3, "an integer"),
+    Option("strict", bool, False, "a flag"),
+    Option("links", list[str], [], "link names"),
+    Option("mode", str, "a", "a word"),
 )
-OTHER = _rule("IN099", "stub-other", {"limit": float}, {"limit": 100.0})
+OTHER = _rule("IN099", "stub-other", Option("limit", float, 100.0, "the most a link may weigh, kg"))
 
 
 @pytest.fixture(autouse=True)
@@ -406,7 +410,7 @@ def test_run_rules_keeps_two_messages_at_one_place_and_drops_repeats(tmp_path):
 
     rule = types.ModuleType("inertia_kit.lint.rules.in097_stub_twice")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = "IN097", "stub-twice", Severity.ERROR, "robot"
-    rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = "", {}, {}
+    rule.SUMMARY = ""
 
     def check(robot, ctx):
         for message in ("first", "second", "first"):
@@ -435,7 +439,7 @@ def test_lint_file_places_findings_without_a_source_in_the_linted_file(tmp_path,
         Severity.ERROR,
         "robot",
     )
-    rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = "", {}, {}
+    rule.SUMMARY = ""
     rule.check = lambda robot, ctx: iter([ctx.finding("somewhere in the robot", None)])
     monkeypatch.setattr(catalog, "RULES", (rule,))
     path = write(tmp_path / "r.urdf", ROBOT)

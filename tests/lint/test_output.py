@@ -86,7 +86,6 @@ def stub_rule(code, name, severity, test, message, *, help=None, expected=False)
     rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_{name.replace('-', '_')}")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = code, name, severity, "link"
     rule.SUMMARY = f"stub: {name}"
-    rule.OPTIONS, rule.DEFAULTS = {}, {}
 
     def check(link, ctx):
         inertial = link.link.inertial

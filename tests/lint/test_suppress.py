@@ -18,7 +18,7 @@ def _rule(code: str, name: str, where: str) -> types.ModuleType:
     """A stub rule firing on every link with an <inertial>, at its <mass> or its <link>."""
     rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_{name.replace('-', '_')}")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = code, name, Severity.WARNING, "link"
-    rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = name, {}, {}
+    rule.SUMMARY = name
 
     def check(link, ctx):
         inertial = link.link.inertial
