@@ -561,8 +561,9 @@ def lint(
 
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.findings import Severity
-    from inertia_kit.lint.output import render, summary
-    from inertia_kit.lint.output import statistics as rule_statistics
+    from inertia_kit.lint.output import render
+    from inertia_kit.lint.output.summary import statistics as rule_statistics
+    from inertia_kit.lint.output.summary import summary
     from inertia_kit.lint.runner import lint_paths
 
     try:
