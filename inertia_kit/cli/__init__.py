@@ -747,7 +747,7 @@ def fill(
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.plan import MATERIALS, apply, plan_fill, plan_fill_output, write_output
-    from inertia_kit.lint.config import ConfigFinder
+    from inertia_kit.lint.config_files import ConfigFinder
 
     try:
         if not paths:

@@ -255,7 +255,7 @@ def lint_paths(
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     """
     from inertia_kit.errors import ConfigError
-    from inertia_kit.lint.config import ConfigFinder
+    from inertia_kit.lint.config_files import ConfigFinder
 
     known = catalog.names()
 
