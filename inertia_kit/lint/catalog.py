@@ -4,8 +4,8 @@ all the linter asks of them: a rule by code or name, which rules a selector pick
 optional parts of the rule contract (options, engine, supersession), read here and nowhere else.
 What a rule module holds is the contract in :mod:`inertia_kit.lint.rules`.
 
-Adding a rule: write its module in ``rules/`` (the contract), import it and add it to
-:data:`RULES` below, and write its document ``rules/<CODE>-<name>.md``. The rule documents are
+Adding a rule: write its module in ``rules/`` (the contract), import it below (that import list
+is the registry), and write its document ``rules/<CODE>-<name>.md``. The rule documents are
 found by :mod:`inertia_kit.lint.documents`, which imports no rule, so that ``--explain`` stays
 fast.
 
@@ -22,7 +22,10 @@ from types import ModuleType
 from typing import Any
 
 from inertia_kit.lint.options import Option
-from inertia_kit.lint.rules import (
+
+# The registry: adding a rule is importing its module here. RULES below collects the modules this
+# import binds, so nothing else names them (hence the noqa).
+from inertia_kit.lint.rules import (  # noqa: F401
     in001_missing_inertial,
     in002_non_positive_mass,
     in003_incomplete_inertial,
@@ -60,43 +63,19 @@ from inertia_kit.lint.rules import (
     in074_kdl_verdict,
 )
 
-# The registry, in code order. Read it as ``catalog.RULES`` (tests put stub rules in its place).
-RULES: tuple[ModuleType, ...] = (
-    in001_missing_inertial,
-    in002_non_positive_mass,
-    in003_incomplete_inertial,
-    in004_invalid_number,
-    in010_inertia_not_positive_definite,
-    in011_inertia_triangle_inequality,
-    in012_inertia_too_small,
-    in013_placeholder_inertia,
-    in020_inertia_geometry_mismatch,
-    in021_com_geometry_mismatch,
-    in022_implausible_density,
-    in023_impossible_radius_of_gyration,
-    in024_visual_collision_mismatch,
-    in025_missing_collision,
-    in026_degenerate_geometry,
-    in030_mesh_not_found,
-    in031_mesh_units,
-    in032_mesh_not_watertight,
-    in033_mesh_inverted,
-    in034_mesh_unreadable,
-    in040_broken_tree,
-    in041_root_link_inertia,
-    in042_extreme_mass_ratio,
-    in050_joint_limits,
-    in051_joint_axis,
-    in060_inertia_about_other_point,
-    in061_product_signs_flipped,
-    in062_inertia_in_other_axes,
-    in063_inertia_unit_slip,
-    in064_inertia_attributes_transposed,
-    in070_mujoco_verdict,
-    in071_gazebo_verdict,
-    in072_drake_verdict,
-    in073_pybullet_verdict,
-    in074_kdl_verdict,
+_RULE_MODULES = "inertia_kit.lint.rules."
+
+# Every rule module imported above, in code order. Read it as ``catalog.RULES``: tests put stub
+# rules in its place.
+RULES: tuple[ModuleType, ...] = tuple(
+    sorted(
+        (
+            value
+            for value in dict(globals()).values()
+            if isinstance(value, ModuleType) and value.__name__.startswith(_RULE_MODULES)
+        ),
+        key=lambda rule: rule.CODE,
+    )
 )
 
 CODE = re.compile(r"IN[0-9]{0,3}", re.IGNORECASE)  # a code or a code prefix, any case

@@ -9,23 +9,17 @@ from __future__ import annotations
 import types
 from pathlib import Path
 
+from kit import moving
+
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.options import Option
 
-ROBOT = """<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <inertial>
-      <mass value="3"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-</robot>
-"""
+# a massless base and a 3 kg moving link `arm` with a tiny tensor
+ROBOT = moving(
+    '<inertial><mass value="3"/>'
+    '<inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>',
+    name="arm",
+)
 
 
 def stub_rule(code: str, name: str, *options: Option) -> types.ModuleType:

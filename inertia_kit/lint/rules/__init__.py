@@ -2,11 +2,11 @@
 The rule contract: what a rule module holds, and the context its ``check`` gets.
 
 A rule is one module ``inertia_kit/lint/rules/in<NNN>_<name>.py`` (its code in lower case, its
-name with ``_`` for ``-``), listed in :data:`inertia_kit.lint.catalog.RULES`, with a document
-``rules/<CODE>-<name>.md`` whose examples run as tests. A rule imports no other rule: logic two
-rules share lives in the layer it belongs to (analysis, engines). Its module attributes below
-are the whole contract: the catalogue reads these and nothing else, and
-``tests/lint/test_rule_contract.py`` checks every rule against this list.
+name with ``_`` for ``-``), imported by :mod:`inertia_kit.lint.catalog` (whose import list is
+the registry), with a document ``rules/<CODE>-<name>.md`` whose examples run as tests. A rule
+imports no other rule: logic two rules share lives in the layer it belongs to (analysis,
+engines). Its module attributes below are the whole contract: the catalogue reads these and
+nothing else, and ``tests/lint/test_rule_contract.py`` checks every rule against this list.
 
 Every rule has:
 

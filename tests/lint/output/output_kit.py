@@ -15,31 +15,29 @@ from click.testing import CliRunner
 from inertia_kit.cli import main
 from inertia_kit.lint.findings import Severity
 
-ARM = """<?xml version="1.0"?>
-<robot name="arm">
-  <link name="base"/>
-  <joint name="shoulder" type="revolute">
-    <parent link="base"/><child link="upper"/>
+
+def _moving_link(joint: str, parent: str, child: str, mass: str, moment: str) -> str:
+    """A revolute joint and its child link, whose tensor is ``moment`` about every axis."""
+    return f"""  <joint name="{joint}" type="revolute">
+    <parent link="{parent}"/><child link="{child}"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
   </joint>
-  <link name="upper">
+  <link name="{child}">
     <inertial>
-      <mass value="0"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+      <mass value="{mass}"/>
+      <inertia ixx="{moment}" ixy="0" ixz="0" iyy="{moment}" iyz="0" izz="{moment}"/>
     </inertial>
   </link>
-  <joint name="elbow" type="revolute">
-    <parent link="upper"/><child link="fore"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="fore">
-    <inertial>
-      <mass value="25"/>
-      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/>
-    </inertial>
-  </link>
-</robot>
 """
+
+
+# the <mass> of `upper` is on line 10, that of `fore` on line 20
+ARM = (
+    '<?xml version="1.0"?>\n<robot name="arm">\n  <link name="base"/>\n'
+    + _moving_link("shoulder", "base", "upper", "0", "0.001")
+    + _moving_link("elbow", "upper", "fore", "25", "0.1")
+    + "</robot>\n"
+)
 CART = """<?xml version="1.0"?>
 <robot name="cart" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="wheel.xacro"/>
