@@ -547,7 +547,7 @@ def lint(
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
     if explain is not None:
-        from inertia_kit.lint.output import explain as document
+        from inertia_kit.lint.documents import explain as document
 
         try:
             click.echo(document(explain), nl=False)
@@ -561,8 +561,9 @@ def lint(
 
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.findings import Severity
-    from inertia_kit.lint.output import render, summary
-    from inertia_kit.lint.output import statistics as rule_statistics
+    from inertia_kit.lint.output import render
+    from inertia_kit.lint.output.summary import statistics as rule_statistics
+    from inertia_kit.lint.output.summary import summary
     from inertia_kit.lint.runner import lint_paths
 
     try:
@@ -746,7 +747,7 @@ def fill(
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.plan import MATERIALS, apply, plan_fill, plan_fill_output, write_output
-    from inertia_kit.lint.config import ConfigFinder
+    from inertia_kit.lint.config_files import ConfigFinder
 
     try:
         if not paths:

@@ -22,8 +22,7 @@ from typing import TYPE_CHECKING, Any
 from inertia_kit.analysis.links import MeshLoader, RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.errors import InputError
-from inertia_kit.lint import rules as registry
-from inertia_kit.lint.config import selects
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -54,19 +53,15 @@ class Selection:
 
     @staticmethod
     def matches(rule: ModuleType, patterns: Iterable[str]) -> bool:
-        return selects(patterns, rule.CODE, rule.NAME)
+        return catalog.selects(patterns, rule.CODE, rule.NAME)
 
     def enabled(self, rules: Sequence[ModuleType]) -> list[ModuleType]:
-        return [
-            rule
-            for rule in rules
-            if (
-                rule.ENGINE in self.engines
-                if hasattr(rule, "ENGINE")
-                else self.matches(rule, self.select)
-            )
-            and not self.matches(rule, self.ignore)
-        ]
+        return [rule for rule in rules if self._runs(rule)]
+
+    def _runs(self, rule: ModuleType) -> bool:
+        engine = catalog.engine(rule)
+        chosen = engine in self.engines if engine is not None else self.matches(rule, self.select)
+        return chosen and not self.matches(rule, self.ignore)
 
     def ignored(self, finding: Finding, linted: str | Path) -> bool:
         """
@@ -77,7 +72,7 @@ class Selection:
             return False
         files = {os.fspath(linted), finding.path, finding.macro_path} - {None, ""}
         return any(
-            selects(entry.codes, finding.code, finding.name) and entry.matches(file)
+            catalog.selects(entry.codes, finding.code, finding.name) and entry.matches(file)
             for entry in self.per_file_ignores
             for file in files
         )
@@ -117,13 +112,12 @@ def run_rules(
 ) -> list[Finding]:
     """Every finding of the enabled rules on one analysed robot, sorted, duplicates once."""
     findings: dict[tuple, Finding] = {}
-    enabled = selection.enabled(registry.load_rules() if rules is None else rules)
+    enabled = selection.enabled(catalog.RULES if rules is None else rules)
     # code -> the codes whose findings on the same link it replaces (IN06x explains an IN020)
-    supersedes = {rule.CODE: getattr(rule, "SUPERSEDES", ()) for rule in enabled}
+    supersedes = {rule.CODE: catalog.supersedes(rule) for rule in enabled}
     for rule in enabled:
-        ctx = RuleContext(
-            rule, selection.options.get(rule.CODE, {}), selection.severities.get(rule.CODE)
-        )
+        options = catalog.option_values(rule, selection.options.get(rule.CODE, {}))
+        ctx = RuleContext(rule, options, selection.severities.get(rule.CODE))
         targets: Iterable[Any] = analysis.links if rule.SCOPE == "link" else (analysis,)
         configured = selection.severities.get(rule.CODE)
         for target in targets:
@@ -261,15 +255,15 @@ def lint_paths(
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     """
     from inertia_kit.errors import ConfigError
-    from inertia_kit.lint.config import ConfigFinder, catalog, normalize_selector, selector_error
+    from inertia_kit.lint.config_files import ConfigFinder
 
-    known = catalog()
+    known = catalog.names()
 
     def checked(option: str, values: Sequence[str]) -> tuple[str, ...]:
-        selectors = tuple(normalize_selector(value, known) for value in values)
+        selectors = tuple(catalog.normalize_selector(value, known) for value in values)
         for value, selector in zip(values, selectors, strict=True):
             if selector is None:
-                raise ConfigError(f"{option}: {selector_error(value, known)}")
+                raise ConfigError(f"{option}: {catalog.selector_error(value, known)}")
         return selectors  # type: ignore[return-value]
 
     select, ignore = checked("--select", select), checked("--ignore", ignore)

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from inertia_kit.errors import InputError
-from inertia_kit.lint.config import selects
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding
 
 _DIRECTIVE = re.compile(r"\s*inertia-lint\s*:\s*(.*?)\s*\Z", re.DOTALL)
@@ -39,7 +39,7 @@ class Ignore:
     line: int  # of the comment
 
     def covers(self, finding: Finding, line: int) -> bool:
-        return self.first <= line <= self.last and selects(
+        return self.first <= line <= self.last and catalog.selects(
             self.selectors, finding.code, finding.name
         )
 
@@ -95,9 +95,7 @@ def _directives(path: str, mtime_ns: int, size: int) -> Directives:
 def _scan(path: str, root) -> Directives:
     from lxml import etree
 
-    from inertia_kit.lint import config
-
-    known = config.catalog()
+    known = catalog.names()
     disabled = False
     ignores: list[Ignore] = []
     problems: list[tuple[int | None, str]] = []
@@ -128,9 +126,9 @@ def _scan(path: str, root) -> Directives:
         for text in ignore.group(1).split(","):
             if not text.strip():
                 continue
-            selector = config.normalize_selector(text, known)
+            selector = catalog.normalize_selector(text, known)
             if selector is None:
-                problems.append((line, config.selector_error(text.strip(), known)))
+                problems.append((line, catalog.selector_error(text.strip(), known)))
             else:
                 selectors.append(selector)
         if not ignore.group(1).strip():

@@ -19,7 +19,7 @@ from click.testing import CliRunner
 from kit import REPO
 
 from inertia_kit.cli import lint_main, main
-from inertia_kit.lint import rules as registry
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
 
 ROOT = REPO
@@ -67,7 +67,7 @@ FRAGMENT = (
 def here(tmp_path, monkeypatch):
     """An empty current folder, stub rules as the registry, no colour."""
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(registry, "load_rules", lambda *names: STUBS)
+    monkeypatch.setattr(catalog, "RULES", STUBS)
     monkeypatch.delenv("FORCE_COLOR", raising=False)
     return tmp_path
 
@@ -337,9 +337,9 @@ def test_explain_unknown_or_undocumented(monkeypatch, tmp_path):
         "error: --explain: `non-positive-mas` is no rule code or name (did you mean "
         "`non-positive-mass`?)\n",
     )
-    from inertia_kit.lint import output as report
+    from inertia_kit.lint import documents
 
-    monkeypatch.setattr(report, "documents_folder", lambda: tmp_path)  # no documents at all
+    monkeypatch.setattr(documents, "documents_folder", lambda: tmp_path)  # no documents at all
     assert run("--explain", "IN002") == (
         2,
         "",
@@ -350,7 +350,7 @@ def test_explain_unknown_or_undocumented(monkeypatch, tmp_path):
 def test_explain_reads_the_package_data_folder():
     """In the source tree `inertia_kit/rule_docs` is a link to `rules/`, the folder a wheel
     fills with the documents; --explain reads whatever that folder holds."""
-    from inertia_kit.lint.output import documents_folder, rule_documents
+    from inertia_kit.lint.documents import documents_folder, rule_documents
 
     folder = documents_folder()
     assert folder == ROOT / "inertia_kit" / "rule_docs"

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from kit import REPO
 
-from inertia_kit.lint.rules import RULE_MODULES, load_rules
+from inertia_kit.lint import catalog
 from inertia_kit.lint.runner import Selection, lint_file
 
 RULES_DIR = REPO / "rules"
@@ -46,8 +46,7 @@ def meshes(doc: Path) -> list[tuple[str, str]]:
 def engines_of(doc: Path) -> tuple[str, ...]:
     """An engine rule's document is linted with its engine chosen (`--engine`); others with none."""
     code = doc.stem.split("-", 1)[0]
-    rule = {r.CODE: r for r in load_rules()}.get(code)
-    engine = getattr(rule, "ENGINE", None)
+    engine = catalog.engine(catalog.find(code))
     return () if engine is None else (engine,)
 
 
@@ -101,23 +100,7 @@ def test_fixed_example_triggers_nothing(doc, tmp_path):
 
 def test_every_rule_has_a_document_and_an_index_entry():
     index = (RULES_DIR / "README.md").read_text()
-    for rule in load_rules():
+    for rule in catalog.RULES:
         doc = RULES_DIR / f"{rule.CODE}-{rule.NAME}.md"
         assert doc.is_file(), f"{rule.CODE} has no document {doc.name}"
         assert f"[{rule.CODE}]({doc.name})" in index, f"{rule.CODE} missing from rules/README.md"
-
-
-def test_registry_codes_and_names_are_unique_and_complete():
-    rules = load_rules()
-    assert len(rules) == len(RULE_MODULES), "every registered rule module exists"
-    codes = [r.CODE for r in rules]
-    names = [r.NAME for r in rules]
-    assert len(set(codes)) == len(codes) and len(set(names)) == len(names)
-    assert codes == sorted(codes)
-    for rule in rules:
-        assert re.fullmatch(r"IN\d{3}", rule.CODE)
-        assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", rule.NAME)
-        assert rule.SCOPE in ("link", "robot")
-        assert set(rule.OPTIONS) == set(rule.DEFAULTS)
-        module = rule.__name__.rsplit(".", 1)[1]
-        assert module.startswith(rule.CODE.lower() + "_")

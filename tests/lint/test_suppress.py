@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from inertia_kit.lint import rules as registry
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.lint.suppress import Ignore, directives
@@ -18,7 +18,7 @@ def _rule(code: str, name: str, where: str) -> types.ModuleType:
     """A stub rule firing on every link with an <inertial>, at its <mass> or its <link>."""
     rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_{name.replace('-', '_')}")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = code, name, Severity.WARNING, "link"
-    rule.SUMMARY, rule.OPTIONS, rule.DEFAULTS = name, {}, {}
+    rule.SUMMARY = name
 
     def check(link, ctx):
         inertial = link.link.inertial
@@ -36,7 +36,7 @@ AT_LINK = _rule("IN099", "stub-at-link", "link")
 
 @pytest.fixture(autouse=True)
 def stubs(monkeypatch):
-    monkeypatch.setattr(registry, "load_rules", lambda *names: (AT_MASS, AT_LINK))
+    monkeypatch.setattr(catalog, "RULES", (AT_MASS, AT_LINK))
 
 
 def link(name: str, before: str = "", indent: str = "  ") -> str:
@@ -203,7 +203,7 @@ def test_elements_of_an_included_file_read_its_comments(tmp_path):
 
 def test_comments_we_do_not_understand_become_notes(tmp_path):
     (tmp_path / "parts.xacro").write_text(
-        XACRO_MACROS.replace("MASS", '<!-- inertia-lint: ignore[IN12] --><mass value="1"/>')
+        XACRO_MACROS.replace("MASS", '<!-- inertia-lint: ignore[IN98] --><mass value="1"/>')
     )
     text = XACRO_TOP.replace("CALL_A", "<!-- inertia-lint: disable-line -->\n  ").replace(
         "</robot>",
@@ -219,8 +219,8 @@ def test_comments_we_do_not_understand_become_notes(tmp_path):
         f"{path}:7: inertia-lint comment ignored: `ignore[]` names no rule: give codes or names",
         f"{path}:8: inertia-lint comment ignored: `ignore[...]` is not followed by an element "
         "it could cover",
-        f"{tmp_path / 'parts.xacro'}:6: inertia-lint comment ignored: `IN12` is no rule code, "
-        "code prefix or rule name (did you mean `IN012`?)",
+        f"{tmp_path / 'parts.xacro'}:6: inertia-lint comment ignored: `IN98` is no rule code, "
+        "code prefix or rule name (did you mean `IN098`?)",
     ]
 
 

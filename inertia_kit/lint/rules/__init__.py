@@ -1,24 +1,55 @@
 """
-The rule catalog: an explicit registry of rule modules, and the context a rule checks with.
+The rule contract: what a rule module holds, and the context its ``check`` gets.
 
-A rule is a module ``inN_<name>.py`` with a one-line docstring and::
+A rule is one module ``inertia_kit/lint/rules/in<NNN>_<name>.py`` (its code in lower case, its
+name with ``_`` for ``-``), imported by :mod:`inertia_kit.lint.catalog` (whose import list is
+the registry), with a document ``rules/<CODE>-<name>.md`` whose examples run as tests. A rule
+imports no other rule: logic two rules share lives in the layer it belongs to (analysis,
+engines). Its module attributes below are the whole contract: the catalogue reads these and
+nothing else, and ``tests/lint/test_rule_contract.py`` checks every rule against this list.
 
-    CODE = "IN020"                      # stable, never reused
-    NAME = "inertia-geometry-mismatch"  # kebab-case, names the flagged pattern
-    SEVERITY = Severity.WARNING         # default; configuration may change it
-    SCOPE = "link"                      # "link": check(link: LinkAnalysis, ctx) per link;
-                                        # "robot": check(robot: RobotAnalysis, ctx) once
-    SUMMARY = "..."                     # one line for --statistics and the index
-    OPTIONS = {"factor": float}         # option types ...
-    DEFAULTS = {"factor": 2.0}          # ... and defaults
-    def check(target, ctx: RuleContext) -> Iterator[Finding]: ...
+Every rule has:
 
-Every rule has a document ``rules/<CODE>-<NAME>.md`` whose examples run as tests.
+``__doc__``
+    First line ``"<CODE> <name>: what it flags."``.
+``CODE: str``
+    ``"IN020"``: stable, never reused; the decade is the family (DESIGN.md, rule catalog).
+``NAME: str``
+    ``"inertia-geometry-mismatch"``: kebab-case, names the flagged pattern.
+``SEVERITY: Severity``
+    The default severity. A finding may escalate it (``ctx.finding(..., severity=...)``); a
+    configured ``severity`` always wins.
+``SCOPE: str``
+    ``"link"``: ``check`` runs once per link, on its ``LinkAnalysis``; ``"robot"``: once, on
+    the ``RobotAnalysis``.
+``SUMMARY: str``
+    One line: what the rule flags (SARIF's short description of the rule).
+``check(target, ctx: RuleContext) -> Iterator[Finding]``
+    The findings on ``target`` (see ``SCOPE``), each made by ``ctx.finding(...)``.
+
+A rule may have:
+
+``OPTIONS: tuple[Option, ...]``
+    What ``[tool.inertia-kit.rules.<CODE>]`` may set, each a
+    :class:`~inertia_kit.lint.options.Option` (name, type, default, help); ``check`` reads
+    them with ``ctx.option(name)``. The document lists each under ``## Options``. None when
+    absent.
+``ENGINE: str``
+    Makes it an engine rule (IN07x) speaking for one engine of
+    :data:`inertia_kit.engines.verdicts.ENGINES`: it runs only when that engine is chosen
+    (``--engine``, ``engines = [...]``), never by ``select``.
+``SUPERSEDES: tuple[str, ...]``
+    Codes of other rules whose findings on the same link a finding of this rule replaces: an
+    explanation (IN063, a unit slip) replaces the symptoms it explains (IN020, far from the
+    geometry). Applied only when both rules run.
+
+Any other public upper-case name is the rule's own constant and its code must read it, so that
+a misspelt or retired contract attribute (``SUPERSEDE``, ``DEFAULTS``) fails the contract test
+instead of being ignored.
 """
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import ModuleType
@@ -27,73 +58,18 @@ from typing import Any
 from inertia_kit.description.model import Source
 from inertia_kit.lint.findings import Finding, Fix, Severity
 
-# The registry, in code order. Adding a rule: write the module, add its name here, write its
-# document in rules/.
-RULE_MODULES: tuple[str, ...] = (
-    "in001_missing_inertial",
-    "in002_non_positive_mass",
-    "in003_incomplete_inertial",
-    "in004_invalid_number",
-    "in010_inertia_not_positive_definite",
-    "in011_inertia_triangle_inequality",
-    "in012_inertia_too_small",
-    "in013_placeholder_inertia",
-    "in020_inertia_geometry_mismatch",
-    "in021_com_geometry_mismatch",
-    "in022_implausible_density",
-    "in023_impossible_radius_of_gyration",
-    "in024_visual_collision_mismatch",
-    "in025_missing_collision",
-    "in026_degenerate_geometry",
-    "in030_mesh_not_found",
-    "in031_mesh_units",
-    "in032_mesh_not_watertight",
-    "in033_mesh_inverted",
-    "in034_mesh_unreadable",
-    "in040_broken_tree",
-    "in041_root_link_inertia",
-    "in042_extreme_mass_ratio",
-    "in050_joint_limits",
-    "in051_joint_axis",
-    "in060_inertia_about_other_point",
-    "in061_product_signs_flipped",
-    "in062_inertia_in_other_axes",
-    "in063_inertia_unit_slip",
-    "in064_inertia_attributes_transposed",
-    "in070_mujoco_verdict",
-    "in071_gazebo_verdict",
-    "in072_drake_verdict",
-    "in073_pybullet_verdict",
-    "in074_kdl_verdict",
-)
-
-
-def load_rules(names: tuple[str, ...] = RULE_MODULES) -> tuple[ModuleType, ...]:
-    """The rule modules, imported (rules whose module does not exist yet are skipped)."""
-    rules = []
-    for name in names:
-        try:
-            rules.append(importlib.import_module(f"inertia_kit.lint.rules.{name}"))
-        except ModuleNotFoundError as error:
-            if error.name != f"inertia_kit.lint.rules.{name}":
-                raise
-    return tuple(rules)
-
-
-def by_code() -> dict[str, ModuleType]:
-    return {rule.CODE: rule for rule in load_rules()}
-
 
 @dataclass
 class RuleContext:
     """What a rule's ``check`` gets besides its target: its options and a finding factory."""
 
     rule: ModuleType
+    # every option the rule declares: the configured value, else its default
     options: Mapping[str, Any] = field(default_factory=dict)
     severity: Severity | None = None  # configured override of the rule's default
 
     def option(self, name: str) -> Any:
-        return self.options.get(name, self.rule.DEFAULTS[name])
+        return self.options[name]
 
     def finding(
         self,

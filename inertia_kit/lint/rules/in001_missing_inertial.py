@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import Geometry, LinkAnalysis, RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -17,10 +18,17 @@ SUMMARY = (
     "a link that moves (child of a non-fixed joint) or has collision geometry has no mass in its "
     "fixed-joint group"
 )
-OPTIONS = {"floating_base": bool}
-# False: a massless root frame without collision geometry is taken as a fixed base (the shape
-# KDL asks for); True: the root floats, so its group needs mass whenever links move below it
-DEFAULTS = {"floating_base": False}
+OPTIONS = (
+    # False: a massless root frame without collision geometry is taken as a fixed base (the
+    # shape KDL asks for); True: the root floats, so its group needs mass whenever links move
+    # below it
+    Option(
+        "floating_base",
+        bool,
+        False,
+        "treat the root as free-floating: a massless root group above moving links is flagged",
+    ),
+)
 
 DENSITY = 1000.0  # kg/m³: water, MuJoCo's default geom density, inertia-fill's default
 

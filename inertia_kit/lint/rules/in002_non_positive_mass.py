@@ -14,8 +14,6 @@ NAME = "non-positive-mass"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "`<mass value>` is zero or negative"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:

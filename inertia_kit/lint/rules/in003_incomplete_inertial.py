@@ -20,12 +20,9 @@ NAME = "incomplete-inertial"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "`<inertial>` without `<mass>` or `<inertia>`, or an `<inertia>` attribute missing"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 DIAGONAL = ("ixx", "iyy", "izz")
 DENSITY = 1000.0  # kg/m³ for the expected values when the mass is missing too
-PRODUCTS = ("ixy", "ixz", "iyz")
 
 
 def _engines(missing_mass: bool, missing_inertia: bool, absent: list[str]) -> str:

@@ -18,8 +18,6 @@ NAME = "invalid-number"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = "a numeric attribute is not a finite number (`abc`, `nan`, `inf`, `1,5`, `2kg`)"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 # what C's strtod (which PyBullet's URDF reader uses) takes from the start of a text
 _STRTOD = re.compile(

@@ -21,8 +21,6 @@ NAME = "inertia-not-positive-definite"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = "a principal moment of the declared inertia tensor is zero or negative"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 # a principal moment within this fraction of the largest one (or below ZERO_ATOL) is zero:
 # eigenvalues of a singular tensor come out as ±1e-17·C, not as 0

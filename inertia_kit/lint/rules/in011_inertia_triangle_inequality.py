@@ -11,6 +11,7 @@ import numpy as np
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
     ZERO_ATOL,
@@ -28,10 +29,12 @@ NAME = "inertia-triangle-inequality"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = "the principal moments break the triangle inequality A + B ≥ C"
-OPTIONS = {"rtol": float, "digits_aware": bool}
-# 0.01: the worst violation that rounding a body on the bound (a disk, a plate) to 3
-# significant digits produces is 0.86 % of C; 4 digits: 0.086 %
-DEFAULTS = {"rtol": 0.01, "digits_aware": True}
+OPTIONS = (
+    # 0.01: the worst violation that rounding a body on the bound (a disk, a plate) to 3
+    # significant digits produces is 0.86 % of C; 4 digits: 0.086 %
+    Option("rtol", float, 0.01, "the largest violation, as a fraction of C, excused as rounding"),
+    Option("digits_aware", bool, True, "excuse no more than the written digits explain"),
+)
 
 # below this fraction of C a violation is floating-point noise, whatever the digits
 NOISE_RTOL = 1e-9

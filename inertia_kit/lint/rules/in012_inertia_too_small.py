@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
     lumped,
@@ -25,11 +26,13 @@ SUMMARY = (
     "a principal moment is below an absolute floor, or its radius of gyration below a length "
     "floor: too small to integrate stably"
 )
-OPTIONS = {"min_moment": float, "min_radius": float}
 # measured on the robots shipped by pybullet_data, rtb-data, example-robot-data, dexmate-urdf
 # and fourier-robot-descriptions (rules/IN012-inertia-too-small.md): the smallest moment of a
 # correct moving part is 3.7e-8 kg·m² (a 2.6 g finger link, radius of gyration 3.8 mm)
-DEFAULTS = {"min_moment": 1e-9, "min_radius": 0.001}
+OPTIONS = (
+    Option("min_moment", float, 1e-9, "the smallest principal moment, kg·m²"),
+    Option("min_radius", float, 0.001, "the smallest radius of gyration, m"),
+)
 
 
 def _too_small(body: MassProperties, min_moment: float, min_radius: float) -> bool:

@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
     geometry_tensor,
@@ -26,10 +27,23 @@ SUMMARY = (
     "a made-up tensor: the same six values on links of clearly different geometry, or an "
     "isotropic tensor on clearly anisotropic geometry"
 )
-OPTIONS = {"anisotropy": float, "copy_factor": float}
-# 2.0: a box of sides 1 : 1 : 1.7 already has principal moments 1 : 2, and an isotropic value
-# can then be no closer than a factor √2 to both; see rules/IN013-placeholder-inertia.md
-DEFAULTS = {"anisotropy": 2.0, "copy_factor": 2.0}
+OPTIONS = (
+    # 2.0: a box of sides 1 : 1 : 1.7 already has principal moments 1 : 2, and an isotropic
+    # value can then be no closer than a factor √2 to both; see rules/IN013-placeholder-inertia.md
+    Option(
+        "anisotropy",
+        float,
+        2.0,
+        "the geometry's largest to smallest principal moment above which an isotropic tensor "
+        "is flagged",
+    ),
+    Option(
+        "copy_factor",
+        float,
+        2.0,
+        "how far apart two links' geometries must be before identical values on them are flagged",
+    ),
+)
 
 ISOTROPIC_RTOL = 1e-6  # ixx = iyy = izz to this relative precision counts as equal
 NEGLIGIBLE = 0.01  # a welded link's tensor below this share of its body's moments cannot matter

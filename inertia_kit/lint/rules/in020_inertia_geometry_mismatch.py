@@ -16,6 +16,7 @@ from inertia_kit.analysis.links import (
     compare_tensors,
 )
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
@@ -28,8 +29,10 @@ SUMMARY = (
     "the declared tensor differs from the geometry's (declared mass, uniform density) by more "
     "than a factor about some axis"
 )
-OPTIONS = {"factor": float, "factor_below": float}
-DEFAULTS = {"factor": 2.5, "factor_below": 5.0}
+OPTIONS = (
+    Option("factor", float, 2.5, "flag a moment more than this many times the geometry's"),
+    Option("factor_below", float, 5.0, "flag a moment less than 1/factor_below of the geometry's"),
+)
 
 # A slip that forensics recognises (analysis.forensics: about another point, other axes, a
 # unit, flipped signs, transposed values) is reported from a smaller deviation than the factors:

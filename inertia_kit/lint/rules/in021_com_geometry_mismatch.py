@@ -8,6 +8,7 @@ import numpy as np
 
 from inertia_kit.analysis.links import Geometry, LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -16,8 +17,15 @@ NAME = "com-geometry-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "the centre of mass lies outside the link's geometry, or far from its centroid"
-OPTIONS = {"max_offset": float, "margin": float, "min_mass_share": float}
-DEFAULTS = {"max_offset": 0.6, "margin": 0.02, "min_mass_share": 0.01}
+OPTIONS = (
+    Option("max_offset", float, 0.6, "warn beyond this fraction of the way from centroid to edge"),
+    Option(
+        "margin", float, 0.02, "an error needs the COM this fraction of the size outside the hull"
+    ),
+    Option(
+        "min_mass_share", float, 0.01, "skip links lighter than this share of their fixed group"
+    ),
+)
 
 _AXES = np.concatenate((np.eye(3), -np.eye(3)))
 

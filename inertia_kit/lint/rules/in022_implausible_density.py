@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import Geometry, LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -14,8 +15,13 @@ NAME = "implausible-density"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "declared mass / geometry volume is outside a plausible range of densities"
-OPTIONS = {"min_density": float, "max_density": float, "min_mass_share": float}
-DEFAULTS = {"min_density": 50.0, "max_density": 25000.0, "min_mass_share": 0.01}
+OPTIONS = (
+    Option("min_density", float, 50.0, "the lowest plausible density, kg/m³"),
+    Option("max_density", float, 25000.0, "the highest plausible density, kg/m³"),
+    Option(
+        "min_mass_share", float, 0.01, "skip links lighter than this share of their fixed group"
+    ),
+)
 
 
 def _open(geometry: Geometry) -> bool:

@@ -8,6 +8,7 @@ import numpy as np
 
 from inertia_kit.analysis.links import BOUND_RTOL, LinkAnalysis, axis_name
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -16,8 +17,9 @@ NAME = "impossible-radius-of-gyration"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a moment exceeds the most any distribution of the mass inside the link's geometry has"
-OPTIONS = {"rtol": float}
-DEFAULTS = {"rtol": BOUND_RTOL}
+OPTIONS = (
+    Option("rtol", float, BOUND_RTOL, "relative excess over the bound allowed for rounding"),
+)
 
 
 def _envelope_text(link: LinkAnalysis) -> str:

@@ -8,6 +8,7 @@ import numpy as np
 
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -16,8 +17,11 @@ NAME = "visual-collision-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "visual and collision geometry differ in size or placement beyond simplification"
-OPTIONS = {"size_factor": float, "min_overlap": float, "max_offset": float}
-DEFAULTS = {"size_factor": 3.0, "min_overlap": 0.25, "max_offset": 0.5}
+OPTIONS = (
+    Option("size_factor", float, 3.0, "largest extents more than this factor apart"),
+    Option("min_overlap", float, 0.25, "smallest shared fraction of the smaller bounding box"),
+    Option("max_offset", float, 0.5, "largest centroid distance as a fraction of the size"),
+)
 
 # boxes are padded by this fraction of the larger geometry's size, so that a flat plate
 # (zero thickness) still overlaps the box around it

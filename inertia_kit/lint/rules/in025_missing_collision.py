@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import LinkAnalysis, declared_mass, geometry_summary
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -14,8 +15,11 @@ NAME = "missing-collision"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "a link with mass and visual geometry has no `<collision>`"
-OPTIONS = {"min_mass_share": float}
-DEFAULTS = {"min_mass_share": 0.01}
+OPTIONS = (
+    Option(
+        "min_mass_share", float, 0.01, "skip links lighter than this share of their fixed group"
+    ),
+)
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:

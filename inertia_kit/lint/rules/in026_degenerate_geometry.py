@@ -13,8 +13,6 @@ NAME = "degenerate-geometry"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a visual/collision shape has a zero or negative size, or a mesh encloses no volume"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 # Solid.problem kinds this rule reports; the others belong to IN004 (invalid-number), IN030
 # (mesh-not-found) and IN034 (mesh-unreadable)

@@ -17,8 +17,6 @@ NAME = "mesh-not-found"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a visual/collision mesh URI does not resolve to a file"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 PACKAGE = "package://"
 # folders above the robot file searched for a package named by a URI that did not resolve

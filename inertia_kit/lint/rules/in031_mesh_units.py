@@ -12,6 +12,7 @@ import numpy as np
 from inertia_kit.analysis.links import LinkAnalysis, Solid, declared_mass, shape_text
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt, xml_number
 
@@ -20,20 +21,13 @@ NAME = "mesh-units"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "a mesh's size says it was authored in mm, cm or inches: suggests the exact `scale`"
-OPTIONS = {
-    "min_size": float,
-    "max_size": float,
-    "min_density": float,
-    "max_density": float,
-    "min_evidence": int,
-}
-DEFAULTS = {
-    "min_size": 0.001,
-    "max_size": 5.0,
-    "min_density": 1.0,
-    "max_density": 1e7,
-    "min_evidence": 2,
-}
+OPTIONS = (
+    Option("min_size", float, 0.001, "the smallest size a robot part can have, m"),
+    Option("max_size", float, 5.0, "the largest size a robot part can have, m"),
+    Option("min_density", float, 1.0, "the lowest density a part can have, kg/m³"),
+    Option("max_density", float, 1e7, "the highest density a part can have, kg/m³"),
+    Option("min_evidence", int, 2, "how many observations must be out of line"),
+)
 
 # unit slips: the factor the mesh's size is wrong by, and how that happens. A factor below 1
 # shrinks the mesh (a file in mm read as m); above 1 grows it (a scale for mm applied to a file

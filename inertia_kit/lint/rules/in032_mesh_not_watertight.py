@@ -8,6 +8,7 @@ from pathlib import Path
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -16,8 +17,10 @@ NAME = "mesh-not-watertight"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "a collision mesh (or the visual mesh mass comes from) is open or wound inconsistently"
-OPTIONS = {"tolerance": float, "repaired": bool}
-DEFAULTS = {"tolerance": 0.05, "repaired": True}
+OPTIONS = (
+    Option("tolerance", float, 0.05, "open meshes with a volume_error up to this pass"),
+    Option("repaired", bool, True, "flag closed meshes with inconsistent triangle winding"),
+)
 
 
 def _kinds(link: LinkAnalysis) -> tuple[str, ...]:

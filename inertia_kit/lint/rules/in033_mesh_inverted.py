@@ -18,8 +18,6 @@ NAME = "mesh-inverted"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a closed mesh is wound inside-out: its signed volume is negative"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:

@@ -16,8 +16,6 @@ NAME = "mesh-unreadable"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a visual/collision mesh file is corrupt or in an unsupported format"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:

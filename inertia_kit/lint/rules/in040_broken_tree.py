@@ -9,6 +9,7 @@ from collections.abc import Iterator
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN040"
@@ -19,8 +20,7 @@ SUMMARY = (
     "duplicate names, joints naming unknown links, several roots, cycles, a link with two "
     "parents, a joint without parent/child or of an unknown type"
 )
-OPTIONS = {"extra_joint_types": tuple}
-DEFAULTS: dict[str, object] = {"extra_joint_types": ()}
+OPTIONS = (Option("extra_joint_types", tuple, (), "joint types to accept besides URDF's six"),)
 
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 # joint types one engine reads in URDF and urdfdom (so ROS, Gazebo) rejects

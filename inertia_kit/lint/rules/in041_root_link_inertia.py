@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -14,8 +15,7 @@ NAME = "root-link-inertia"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
 SUMMARY = "the root link carries an `<inertial>`: KDL (robot_state_publisher, MoveIt) ignores it"
-OPTIONS = {"single_link": bool}
-DEFAULTS = {"single_link": False}
+OPTIONS = (Option("single_link", bool, False, "also flag robots without joints"),)
 
 KDL = (
     "The root link {name} has an inertia specified in the URDF, but KDL does not support a "

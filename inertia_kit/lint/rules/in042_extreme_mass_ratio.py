@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -14,8 +15,11 @@ NAME = "extreme-mass-ratio"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
 SUMMARY = "the bodies on the two sides of a moving joint differ in mass by more than a ratio"
-OPTIONS = {"max_ratio": float}
-DEFAULTS = {"max_ratio": 1000.0}
+OPTIONS = (
+    Option(
+        "max_ratio", float, 1000.0, "the largest ratio of the masses on the two sides of a joint"
+    ),
+)
 
 
 def _body(robot: RobotAnalysis, name: str) -> str:

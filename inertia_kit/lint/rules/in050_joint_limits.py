@@ -7,6 +7,7 @@ from collections.abc import Iterator
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -18,8 +19,7 @@ SUMMARY = (
     "a revolute/prismatic joint without `<limit>`, a limit without effort or velocity, "
     "lower > upper, or effort/velocity ≤ 0"
 )
-OPTIONS = {"allow_zero": bool}
-DEFAULTS = {"allow_zero": False}
+OPTIONS = (Option("allow_zero", bool, False, "accept effort and velocity of 0"),)
 
 LIMITED = ("revolute", "prismatic")
 _URDFDOM = {

@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt, xml_number
 
@@ -15,8 +16,9 @@ NAME = "joint-axis"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = "a moving joint's `<axis>` is zero (error) or not of unit length (warning)"
-OPTIONS = {"tolerance": float}
-DEFAULTS = {"tolerance": 1e-3}
+OPTIONS = (
+    Option("tolerance", float, 1e-3, "the allowed difference between the axis length and 1"),
+)
 
 # joints whose motion is defined by the axis (a floating joint ignores it)
 AXIS_TYPES = ("revolute", "continuous", "prismatic", "planar")

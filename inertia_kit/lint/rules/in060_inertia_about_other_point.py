@@ -17,8 +17,6 @@ SUMMARY = (
     "the declared tensor is the geometry's about another point (the link origin, a joint, a mesh "
     "origin) instead of the centre of mass"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)
 SUPERSEDES = ("IN020", "IN023")

@@ -14,8 +14,6 @@ NAME = "product-signs-flipped"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "the products of inertia are written with the opposite sign convention (ixy = +∫xy dm)"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)
 SUPERSEDES = ("IN020", "IN023")

@@ -17,8 +17,6 @@ SUMMARY = (
     "the declared tensor is the geometry's written in the axes of another frame (a shape's own "
     "axes, swapped axes, principal axes)"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)
 SUPERSEDES = ("IN020", "IN023")

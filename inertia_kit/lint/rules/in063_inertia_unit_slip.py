@@ -17,8 +17,6 @@ SUMMARY = (
     "the declared tensor is the geometry's in another unit (g·m², kg·mm², kg·cm², lb·in², …) or "
     "the mass is in grams"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023), too small to integrate (IN012), a density 1000 times
 # too high (IN022, a mass in grams)

@@ -14,8 +14,6 @@ NAME = "inertia-attributes-transposed"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
 SUMMARY = "the six inertia values are the geometry's transcribed into the wrong attributes"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)
 SUPERSEDES = ("IN020", "IN023")

@@ -28,8 +28,6 @@ SUMMARY = (
     "MuJoCo refuses the model (with its own message) or silently changes a link: `--engine mujoco`"
 )
 ENGINE = "mujoco"
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 # MuJoCo's constants (include/mujoco/mjtnum.h): mjMINVAL bounds the mass and principal moments
 # of a moving body; mjEPS the smallest eigenvalue of a full inertia (user_util.cc)

@@ -25,8 +25,6 @@ SUMMARY = (
     "Gazebo (sdformat's URDF converter) drops a massless link with its joint and subtree, "
     "or rejects a lumped body's invalid inertia"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 _URL = "http://sdformat.org/tutorials?tut=sdformat_urdf_extensions"
 

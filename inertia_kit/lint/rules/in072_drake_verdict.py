@@ -24,8 +24,6 @@ SUMMARY = (
     "Drake replaces an invalid tensor by a water-density sphere, fails at run time on a "
     "massless moving link, and refuses collision meshes that are not .obj"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 WATER = 1000.0  # kg/m³: detail_common.cc kPlausibleDensity
 PROXIMITY_MESHES = (".obj", ".vtk")

@@ -12,6 +12,7 @@ from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tens
 from inertia_kit.description import model
 from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import inverse, rpy_matrix, transform
@@ -25,8 +26,10 @@ SUMMARY = (
     "PyBullet gives a link without <inertial> 1 kg, and recomputes every tensor from the "
     "collision shapes' bounding box unless URDF_USE_INERTIA_FROM_FILE"
 )
-OPTIONS = {"factor": float, "use_inertia_from_file": bool}
-DEFAULTS = {"factor": 2.0, "use_inertia_from_file": False}
+OPTIONS = (
+    Option("factor", float, 2.0, "how far the computed tensor may differ from the declared one"),
+    Option("use_inertia_from_file", bool, False, "predict a load with URDF_USE_INERTIA_FROM_FILE"),
+)
 
 MARGIN = 0.001  # m: URDF2Bullet gUrdfDefaultCollisionMargin
 NO_INERTIAL = (

@@ -17,8 +17,6 @@ SCOPE = "robot"
 SUMMARY = (
     "KDL ignores the root link's inertia, and turns floating and planar joints into fixed ones"
 )
-OPTIONS: dict[str, type] = {}
-DEFAULTS: dict[str, object] = {}
 
 KDL_JOINTS = ("fixed", "revolute", "continuous", "prismatic")
 

@@ -1,0 +1,54 @@
+"""
+Findings out: the output formats of ``inertia-lint``, one module each.
+
+- ``full``: ``path:line:col: CODE [severity] message``, the source line with a caret under the
+  element, the macro body line for an element a xacro macro produced, and ``help``;
+- ``concise``: ``path:line:col: CODE message``, one line each, for editors;
+- ``json``: one array of :meth:`Finding.to_json` objects;
+- ``github``: workflow commands that GitHub Actions shows as annotations;
+- ``sarif``: SARIF 2.1.0, for code scanning.
+
+:mod:`.summary` adds the statistics and the summary line. Paths are shown as the findings carry
+them (as given on the command line, or as xacro included them). Colour is added by ``style``,
+and removed by the caller when the output is no terminal. Adding a format: a module with its
+``render``, a branch in :func:`render`, and its name in :data:`FORMATS` and in the CLI's
+``--output-format`` choices.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from inertia_kit.errors import InputError
+from inertia_kit.lint.findings import Finding
+from inertia_kit.lint.output import concise, full, github, sarif
+from inertia_kit.lint.output import json as json_array
+from inertia_kit.lint.output.common import Style, plain
+
+FORMATS = ("full", "concise", "json", "github", "sarif")
+
+
+def render(
+    findings: Sequence[Finding],
+    output_format: str,
+    *,
+    errors: Sequence[InputError] = (),
+    style: Style | None = None,
+) -> str:
+    """
+    The findings in one format, ending in a newline (empty for no findings, except ``json``
+    and ``sarif``, which always give a document). ``errors`` (unreadable files) go into SARIF's
+    invocation; the other formats leave them to the caller's error stream.
+    """
+    style = style or plain
+    if output_format == "full":
+        return full.render(findings, style)
+    if output_format == "concise":
+        return concise.render(findings, style)
+    if output_format == "json":
+        return json_array.render(findings)
+    if output_format == "github":
+        return github.render(findings)
+    if output_format == "sarif":
+        return sarif.render(findings, errors)
+    raise ValueError(f"unknown output format {output_format!r}; known: {', '.join(FORMATS)}")

@@ -1,0 +1,43 @@
+"""
+What the output formats share: where a finding is (``path:line:col``), its colour, the style
+hook that colours text, and JSON that holds no non-finite number.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from typing import Any
+
+from inertia_kit.lint.findings import Severity
+
+COLOURS = {Severity.ERROR: "red", Severity.WARNING: "yellow", Severity.INFO: "blue"}
+
+# click.style's signature: (text, fg=..., bold=...) -> text with terminal escapes
+Style = Callable[..., str]
+
+
+def plain(text: str, **_: Any) -> str:
+    """The style that adds nothing."""
+    return text
+
+
+def location(path: str, line: int | None, column: int | None) -> str:
+    """``path:line:col``, with what is known."""
+    return ":".join(str(part) for part in (path, line, column) if part is not None)
+
+
+def dumps(value: Any) -> str:
+    return json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False)
+
+
+def finite(value: Any) -> Any:
+    """JSON-ready: non-finite numbers (which JSON cannot hold) become ``null``."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {key: finite(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite(item) for item in value]
+    return value

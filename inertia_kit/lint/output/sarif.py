@@ -1,0 +1,150 @@
+"""
+``sarif``: SARIF 2.1.0, for code scanning. The rules listed are those with findings, each with
+its document as help; unreadable files are the invocation's notifications.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+from urllib.parse import quote
+
+from inertia_kit.errors import InputError
+from inertia_kit.lint import catalog, documents
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.output.common import dumps, finite
+from inertia_kit.version import __version__
+
+SCHEMA = (
+    "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
+)
+_LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+
+
+def render(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> str:
+    return dumps(log(findings, errors)) + "\n"
+
+
+def _uri(path: str) -> str:
+    """A SARIF artifact URI: relative paths stay relative (GitHub reads them from the root)."""
+    if Path(path).is_absolute():
+        return Path(path).as_uri()
+    return quote(Path(path).as_posix(), safe="/")
+
+
+def _physical(path: str, line: int | None, column: int | None) -> dict[str, Any]:
+    physical: dict[str, Any] = {"artifactLocation": {"uri": _uri(path)}}
+    if line is not None and line >= 1:
+        region: dict[str, Any] = {"startLine": line}
+        if column is not None and column >= 1:
+            region["startColumn"] = column
+        physical["region"] = region
+    return {"physicalLocation": physical}
+
+
+def _rule(code: str, name: str, rule: ModuleType | None) -> dict[str, Any]:
+    summary = (rule.SUMMARY if rule is not None else "") or name
+    entry: dict[str, Any] = {
+        "id": code,
+        "name": name,
+        "shortDescription": {"text": summary},
+    }
+    if rule is not None:
+        entry["defaultConfiguration"] = {"level": _LEVELS[rule.SEVERITY]}
+    document = documents.rule_documents().get(code)
+    if document is not None:
+        text = document.read_text(encoding="utf-8")
+        entry["help"] = {"text": text, "markdown": text}
+    return entry
+
+
+def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[str, Any]:
+    """A SARIF 2.1.0 log of one run; the rules listed are those with findings."""
+    names = dict(sorted({(f.code, f.name) for f in findings}))
+    index = {code: i for i, code in enumerate(names)}
+    results = []
+    for finding in findings:
+        result: dict[str, Any] = {
+            "ruleId": finding.code,
+            "ruleIndex": index[finding.code],
+            "level": _LEVELS[finding.severity],
+            "message": {"text": finding.message},
+            "locations": [_physical(finding.path, finding.line, finding.column)],
+        }
+        if finding.macro_path is not None:
+            related = _physical(finding.macro_path, finding.macro_line, None)
+            related.update(id=0, message={"text": "the element in the macro body"})
+            result["relatedLocations"] = [related]
+        properties = {
+            key: value
+            for key, value in (
+                ("severity", str(finding.severity)),
+                ("link", finding.link),
+                ("joint", finding.joint),
+                ("expected", finite(finding.expected)),
+                ("help", finding.help),
+            )
+            if value is not None
+        }
+        result["properties"] = properties
+        if finding.fix is not None:
+            result["fixes"] = [_fix(finding)]
+        results.append(result)
+    notifications = [
+        {
+            "level": "error",
+            "message": {"text": error.message},
+            "locations": [_physical(error.path, error.line, error.column)],
+        }
+        if error.path
+        else {"level": "error", "message": {"text": str(error)}}
+        for error in errors
+    ]
+    return {
+        "$schema": SCHEMA,
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "inertia-lint",
+                        "version": __version__,
+                        "rules": [
+                            _rule(code, name, catalog.find(code)) for code, name in names.items()
+                        ],
+                    }
+                },
+                "invocations": [
+                    {
+                        "executionSuccessful": not errors,
+                        "toolExecutionNotifications": notifications,
+                    }
+                ],
+                "columnKind": "unicodeCodePoints",
+                "results": results,
+            }
+        ],
+    }
+
+
+def _fix(finding: Finding) -> dict[str, Any]:
+    fix = finding.fix
+    assert fix is not None
+    by_path: dict[str, list[dict[str, Any]]] = {}
+    for edit in fix.edits:
+        by_path.setdefault(edit.path, []).append(
+            {
+                "deletedRegion": {"charOffset": edit.start, "charLength": edit.end - edit.start},
+                "insertedContent": {"text": edit.content},
+            }
+        )
+    return {
+        "description": {"text": fix.title},
+        "artifactChanges": [
+            {"artifactLocation": {"uri": _uri(path)}, "replacements": replacements}
+            for path, replacements in by_path.items()
+        ],
+        "properties": {"safety": str(fix.safety)},
+    }

@@ -1,0 +1,42 @@
+"""What a run adds up to: how often each rule fired (``--statistics``), and the summary line."""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable, Sequence
+
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.output.common import dumps
+
+
+def statistics(findings: Iterable[Finding], as_json: bool = False) -> str:
+    """``count  CODE  name`` per rule, most frequent first (or a JSON array)."""
+    counts = Counter((f.code, f.name) for f in findings)
+    rows = sorted(counts.items(), key=lambda item: (-item[1], item[0][0]))
+    if as_json:
+        return dumps([{"code": code, "name": name, "count": n} for (code, name), n in rows]) + "\n"
+    width = max((len(str(n)) for n in counts.values()), default=1)
+    return "".join(f"{n:>{width}}  {code}  {name}\n" for (code, name), n in rows)
+
+
+def _count(n: int, word: str, plural: str | None = None) -> str:
+    return f"{n} {word if n == 1 else plural or word + 's'}"
+
+
+def summary(findings: Sequence[Finding], checked: int, unreadable: int = 0) -> str:
+    """``Found 3 errors, 1 warning in 2 files.`` or ``No findings in 4 files.``"""
+    if findings:
+        by_severity = Counter(f.severity for f in findings)
+        words = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "info"}
+        parts = [
+            _count(by_severity[level], word, "info" if level is Severity.INFO else None)
+            for level, word in words.items()
+            if by_severity[level]
+        ]
+        files = len({f.path for f in findings})
+        text = f"Found {', '.join(parts)} in {_count(files, 'file')}"
+    else:
+        text = f"No findings in {_count(checked, 'file')}"
+    if unreadable:
+        text += f"; {_count(unreadable, 'file')} could not be read"
+    return text + "."
