@@ -32,11 +32,11 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
+from inertia_kit.description.model import WORLD
+from inertia_kit.engines.vocabulary import ENGINES
 from inertia_kit.physics.frames import inverse, transform
 from inertia_kit.physics.mass import MassProperties
 
-ENGINES = ("mujoco", "gazebo", "drake", "pybullet", "kdl")
-WORLD = "world"
 LUMP_PREFIX = "_fixed_joint_lump__"  # sdformat parser_urdf.cc kLumpPrefix
 # libsdformat before gazebosim/sdformat#1238 (9.10.1, 14.1.0) compared the mass with 0 through
 # gz::math::equal, whose default tolerance is 1e-6: a lighter link was dropped as massless

@@ -12,14 +12,14 @@ import pytest
 from click.testing import CliRunner
 
 from inertia_kit.cli import lint_main
-from inertia_kit.engines.verdicts import (
+from inertia_kit.engines.vocabulary import (
     ENGINES,
     Verdict,
     parse_engines,
     verdict_expected,
     verdict_message,
 )
-from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.findings import Severity, severity_of
 from inertia_kit.lint.runner import Selection
 
 # the root link carries 5 kg: MuJoCo fixes it to the world and drops them (IN070, a warning);
@@ -78,9 +78,9 @@ def test_selection_runs_engine_rules_only_by_engine():
 
 
 def test_verdict_vocabulary():
-    assert Verdict.REFUSES.severity is Severity.ERROR
-    assert Verdict.CHANGES.severity is Severity.WARNING
-    assert Verdict.LOADS.severity is None
+    assert severity_of(Verdict.REFUSES) is Severity.ERROR
+    assert severity_of(Verdict.CHANGES) is Severity.WARNING
+    assert severity_of(Verdict.LOADS) is None
     assert (
         verdict_message("mujoco", Verdict.REFUSES, "inertia must satisfy A + B >= C")
         == "MuJoCo refuses the model: inertia must satisfy A + B >= C"

@@ -9,12 +9,12 @@ from kit import REPO
 from inertia_kit.analysis.links import analyse
 from inertia_kit.description.loader import load
 from inertia_kit.engines.lumping import (
-    ENGINES,
     gz_mass_matrix_valid,
     preserved_joints,
     sdf_collision_names,
     simulated_bodies,
 )
+from inertia_kit.engines.vocabulary import ENGINES
 
 LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
 

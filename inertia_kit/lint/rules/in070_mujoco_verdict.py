@@ -13,8 +13,8 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
-from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.engines.vocabulary import Verdict, verdict_expected, verdict_message
+from inertia_kit.lint.findings import Finding, Severity, severity_of
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import transform
@@ -693,7 +693,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 **event.more,
             ),
             help=help_text,
-            severity=event.verdict.severity,
+            severity=severity_of(event.verdict),
         )
 
 

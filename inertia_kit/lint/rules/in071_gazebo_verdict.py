@@ -11,8 +11,8 @@ from inertia_kit.engines.lumping import (
     preserved_joints,
     simulated_bodies,
 )
-from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.engines.vocabulary import Verdict, verdict_expected, verdict_message
+from inertia_kit.lint.findings import Finding, Severity, severity_of
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -104,7 +104,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             expected=verdict_expected(
                 ENGINE, Verdict.CHANGES, message, dropped_links=[dropped.link], cause=dropped.cause
             ),
-            severity=Verdict.CHANGES.severity,
+            severity=severity_of(Verdict.CHANGES),
             help="give the link its real <inertial> (inertia-fill computes one from the geometry),"
             " or attach a massless frame with a fixed joint so that it is lumped",
         )
@@ -127,7 +127,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 expected=verdict_expected(
                     ENGINE, Verdict.CHANGES, message, mass=body.declared_mass
                 ),
-                severity=Verdict.CHANGES.severity,
+                severity=severity_of(Verdict.CHANGES),
                 help="use a realistic mass (≥ 1e-6 kg), or no <inertial> on a fixed-joint frame",
             )
         properties = body.mass_properties
@@ -158,7 +158,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 mass=properties.mass,
                 principal_moments=properties.principal_moments.tolist(),
             ),
-            severity=Verdict.REFUSES.severity,
+            severity=severity_of(Verdict.REFUSES),
             help="every principal moment must be ≥ 0 and each at most the sum of the other two "
             "(gz-math MassMatrix3::IsValid); recompute the tensor about the centre of mass",
         )

@@ -10,8 +10,8 @@ import numpy as np
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
-from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.engines.vocabulary import Verdict, verdict_expected, verdict_message
+from inertia_kit.lint.findings import Finding, Severity, severity_of
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -133,7 +133,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                         iyy=moment,
                         izz=moment,
                     ),
-                    severity=Verdict.CHANGES.severity,
+                    severity=severity_of(Verdict.CHANGES),
                     help="write a physically valid tensor about the centre of mass (every "
                     "principal moment ≥ 0, A + B ≥ C) and a mass > 0",
                 )
@@ -150,7 +150,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 link=link.name,
                 joint=link.parent.name,
                 expected=verdict_expected(ENGINE, Verdict.REFUSES, SINGULAR),
-                severity=Verdict.REFUSES.severity,
+                severity=severity_of(Verdict.REFUSES),
                 help="give the link (or a link welded to it) a mass and inertia; a massless "
                 "frame belongs on a fixed joint",
             )
@@ -177,7 +177,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 geometry.source,
                 link=link.name,
                 expected=verdict_expected(ENGINE, Verdict.REFUSES, message, mesh=shown),
-                severity=Verdict.REFUSES.severity,
+                severity=severity_of(Verdict.REFUSES),
                 help="convert the collision mesh to .obj (e.g. with trimesh or meshlab) and "
                 "reference that file; visual meshes may stay as they are",
             )

@@ -10,8 +10,8 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
 from inertia_kit.description import model
-from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.engines.vocabulary import Verdict, verdict_expected, verdict_message
+from inertia_kit.lint.findings import Finding, Severity, severity_of
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import inverse, rpy_matrix, transform
@@ -173,7 +173,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                     mass=1.0,
                     inertia_diagonal=None if diagonal is None else diagonal.tolist(),
                 ),
-                severity=Verdict.CHANGES.severity,
+                severity=severity_of(Verdict.CHANGES),
                 help="give the link an <inertial>, or merge it into its parent "
                 "(URDF_MERGE_FIXED_LINKS) if it is a fixed frame",
             )
@@ -199,7 +199,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                     expected=verdict_expected(
                         ENGINE, Verdict.CHANGES, zeroed, inertia_diagonal=[0.0, 0.0, 0.0]
                     ),
-                    severity=Verdict.CHANGES.severity,
+                    severity=severity_of(Verdict.CHANGES),
                     help="write a tensor whose principal moments are ≥ 0 and satisfy A + B ≥ C",
                 )
             continue
@@ -245,7 +245,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 if isinstance(inertial.origin.rpy, tuple)
                 else None,
             ),
-            severity=Verdict.CHANGES.severity,
+            severity=severity_of(Verdict.CHANGES),
             help="load with flags=p.URDF_USE_INERTIA_FROM_FILE to use the declared tensor "
             "(pybullet_quickstartguide: loadURDF flags)",
         )

@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
-from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.engines.vocabulary import Verdict, verdict_expected, verdict_message
+from inertia_kit.lint.findings import Finding, Severity, severity_of
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN074"
@@ -40,7 +40,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             inertial.source,
             link=root.name,
             expected=verdict_expected(ENGINE, Verdict.CHANGES, message),
-            severity=Verdict.CHANGES.severity,
+            severity=severity_of(Verdict.CHANGES),
             help="add a massless root link (e.g. `base_footprint`) joined to this one by a fixed "
             "joint",
         )
@@ -59,6 +59,6 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             link=joint.child,
             joint=joint.name,
             expected=verdict_expected(ENGINE, Verdict.CHANGES, message, joint_type=joint.type),
-            severity=Verdict.CHANGES.severity,
+            severity=severity_of(Verdict.CHANGES),
             help="KDL models only revolute, continuous, prismatic and fixed joints",
         )
