@@ -191,10 +191,6 @@ class EngineBodies:
     bodies: tuple[Body, ...]
     dropped: tuple[Dropped, ...] = ()
 
-    def body_of(self, link: str) -> Body | None:
-        """The body ``link`` is part of (``None`` when dropped or unknown)."""
-        return next((body for body in self.bodies if link in body.links), None)
-
     def dropped_link(self, link: str) -> Dropped | None:
         return next((d for d in self.dropped if d.link == link), None)
 
