@@ -38,9 +38,6 @@ from inertia_kit.physics.frames import inverse, transform
 from inertia_kit.physics.mass import MassProperties
 
 LUMP_PREFIX = "_fixed_joint_lump__"  # sdformat parser_urdf.cc kLumpPrefix
-# libsdformat before gazebosim/sdformat#1238 (9.10.1, 14.1.0) compared the mass with 0 through
-# gz::math::equal, whose default tolerance is 1e-6: a lighter link was dropped as massless
-OLD_SDFORMAT_MASS_TOLERANCE = 1e-6
 
 
 # --- declared values of one link and of a group -----------------------------------------------
@@ -382,34 +379,3 @@ def _parent_name(robot: RobotAnalysis, name: str) -> str | None:
 def _subtree(robot: RobotAnalysis, head: LinkAnalysis) -> list[str]:
     """Every link below ``head`` (not ``head``), depth first."""
     return [m.name for m in _members(robot, head, lambda j: True)][1:]
-
-
-# --- engine checks on mass properties -----------------------------------------------------------
-
-
-def gz_mass_matrix_valid(
-    mass: float, inertia: NDArray[np.float64], tolerance: float = 10.0
-) -> bool:
-    """
-    gz-math ``MassMatrix3::IsValid()``: mass ≥ 0, the tensor near positive semi-definite (leading
-    minors ≥ -ε) and its principal moments ≥ -ε and satisfying the triangle inequality within
-    ε = tolerance · DBL_EPSILON · ½|trace| (``MassMatrix3.hh``).
-    """
-    i = 0.5 * (np.asarray(inertia, dtype=np.float64) + np.asarray(inertia, dtype=np.float64).T)
-    if not (math.isfinite(mass) and np.isfinite(i).all()):
-        return False
-    eps = tolerance * np.finfo(np.float64).eps * 0.5 * abs(float(np.trace(i)))
-    near_positive = (
-        mass >= 0
-        and i[0, 0] + eps >= 0
-        and i[0, 0] * i[1, 1] - i[0, 1] ** 2 + eps >= 0
-        and float(np.linalg.det(i)) + eps >= 0
-    )
-    a, b, c = np.linalg.eigvalsh(i)
-    return bool(
-        near_positive
-        and a + eps >= 0
-        and a + b + eps >= c
-        and b + c + eps >= a
-        and c + a + eps >= b
-    )

@@ -11,7 +11,6 @@ from inertia_kit.description.loader import load
 from inertia_kit.engines.lumping import (
     Body,
     EngineBodies,
-    gz_mass_matrix_valid,
     preserved_joints,
     sdf_collision_names,
     simulated_bodies,
@@ -205,20 +204,6 @@ def test_gazebo_collision_names_follow_sdformat(tmp_path):
 def test_unknown_engine_is_an_error(tmp_path):
     with pytest.raises(ValueError, match="unknown engine"):
         simulated_bodies(robot(tmp_path, WELDED), "isaac")
-
-
-@pytest.mark.parametrize(
-    ("moments", "valid"),
-    [
-        ((1.0, 1.0, 1.0), True),
-        ((0.0, 0.0, 0.0), True),
-        ((1.0, 1.0, 2.0), True),
-        ((1.0, 1.0, 2.1), False),
-        ((-0.1, 1.0, 1.0), False),
-    ],
-)
-def test_gz_mass_matrix_valid(moments, valid):
-    assert gz_mass_matrix_valid(1.0, np.diag(moments)) is valid
 
 
 @pytest.mark.parametrize("engine", ENGINES)
