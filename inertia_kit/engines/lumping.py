@@ -24,7 +24,7 @@ Everything here is pure: it reads the analysis (declared values only) and return
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,6 +51,15 @@ def positive_mass(link: LinkAnalysis) -> MassProperties | None:
     if not np.isfinite(declared.inertia).all():
         return None
     return declared
+
+
+def written_tensor(values: Iterable[float]) -> NDArray[np.float64]:
+    """
+    The (3, 3) tensor of the six ``<inertia>`` values as written (in URDF order: ixx ixy ixz
+    iyy iyz izz), in the axes of the ``<inertial><origin>``.
+    """
+    ixx, ixy, ixz, iyy, iyz, izz = values
+    return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
 
 
 def joint_pose(joint: model.Joint) -> NDArray[np.float64] | None:
