@@ -407,7 +407,7 @@ def report_command(
     geometry and the source line to edit; and the robot's total mass. With --lumped, the
     bodies each engine simulates."""
     from inertia_kit.description.loader import load
-    from inertia_kit.engines.verdicts import ENGINES, parse_engines
+    from inertia_kit.engines.vocabulary import ENGINES, parse_engines
     from inertia_kit.errors import InputError
     from inertia_kit.report.robot import render, render_lumped
 

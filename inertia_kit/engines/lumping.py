@@ -24,7 +24,7 @@ Everything here is pure: it reads the analysis (declared values only) and return
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,15 +32,12 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
+from inertia_kit.description.model import WORLD
+from inertia_kit.engines.vocabulary import ENGINES
 from inertia_kit.physics.frames import inverse, transform
 from inertia_kit.physics.mass import MassProperties
 
-ENGINES = ("mujoco", "gazebo", "drake", "pybullet", "kdl")
-WORLD = "world"
 LUMP_PREFIX = "_fixed_joint_lump__"  # sdformat parser_urdf.cc kLumpPrefix
-# libsdformat before gazebosim/sdformat#1238 (9.10.1, 14.1.0) compared the mass with 0 through
-# gz::math::equal, whose default tolerance is 1e-6: a lighter link was dropped as massless
-OLD_SDFORMAT_MASS_TOLERANCE = 1e-6
 
 
 # --- declared values of one link and of a group -----------------------------------------------
@@ -54,6 +51,15 @@ def positive_mass(link: LinkAnalysis) -> MassProperties | None:
     if not np.isfinite(declared.inertia).all():
         return None
     return declared
+
+
+def written_tensor(values: Iterable[float]) -> NDArray[np.float64]:
+    """
+    The (3, 3) tensor of the six ``<inertia>`` values as written (in URDF order: ixx ixy ixz
+    iyy iyz izz), in the axes of the ``<inertial><origin>``.
+    """
+    ixx, ixy, ixz, iyy, iyz, izz = values
+    return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
 
 
 def joint_pose(joint: model.Joint) -> NDArray[np.float64] | None:
@@ -190,10 +196,6 @@ class EngineBodies:
     engine: str
     bodies: tuple[Body, ...]
     dropped: tuple[Dropped, ...] = ()
-
-    def body_of(self, link: str) -> Body | None:
-        """The body ``link`` is part of (``None`` when dropped or unknown)."""
-        return next((body for body in self.bodies if link in body.links), None)
 
     def dropped_link(self, link: str) -> Dropped | None:
         return next((d for d in self.dropped if d.link == link), None)
@@ -386,34 +388,3 @@ def _parent_name(robot: RobotAnalysis, name: str) -> str | None:
 def _subtree(robot: RobotAnalysis, head: LinkAnalysis) -> list[str]:
     """Every link below ``head`` (not ``head``), depth first."""
     return [m.name for m in _members(robot, head, lambda j: True)][1:]
-
-
-# --- engine checks on mass properties -----------------------------------------------------------
-
-
-def gz_mass_matrix_valid(
-    mass: float, inertia: NDArray[np.float64], tolerance: float = 10.0
-) -> bool:
-    """
-    gz-math ``MassMatrix3::IsValid()``: mass ≥ 0, the tensor near positive semi-definite (leading
-    minors ≥ -ε) and its principal moments ≥ -ε and satisfying the triangle inequality within
-    ε = tolerance · DBL_EPSILON · ½|trace| (``MassMatrix3.hh``).
-    """
-    i = 0.5 * (np.asarray(inertia, dtype=np.float64) + np.asarray(inertia, dtype=np.float64).T)
-    if not (math.isfinite(mass) and np.isfinite(i).all()):
-        return False
-    eps = tolerance * np.finfo(np.float64).eps * 0.5 * abs(float(np.trace(i)))
-    near_positive = (
-        mass >= 0
-        and i[0, 0] + eps >= 0
-        and i[0, 0] * i[1, 1] - i[0, 1] ** 2 + eps >= 0
-        and float(np.linalg.det(i)) + eps >= 0
-    )
-    a, b, c = np.linalg.eigvalsh(i)
-    return bool(
-        near_positive
-        and a + eps >= 0
-        and a + b + eps >= c
-        and b + c + eps >= a
-        and c + a + eps >= b
-    )

@@ -244,7 +244,7 @@ class _Where:
         return tuple(selectors)
 
     def engines(self, value: Any, key: str) -> tuple[str, ...]:
-        from inertia_kit.engines.verdicts import ALL, ENGINES, parse_engines
+        from inertia_kit.engines.vocabulary import ALL, ENGINES, parse_engines
 
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             self.fail(

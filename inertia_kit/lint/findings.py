@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from inertia_kit.description.edits import Edit
+from inertia_kit.engines.vocabulary import Verdict
 
 
 class Severity(enum.IntEnum):
@@ -101,3 +102,12 @@ class Finding:
             if self.macro_path is None
             else {"file": self.macro_path, "line": self.macro_line},
         }
+
+
+def severity_of(verdict: Verdict) -> Severity | None:
+    """An engine event's severity: refusal → error, silent change → warning, loads → none."""
+    return {
+        Verdict.LOADS: None,
+        Verdict.CHANGES: Severity.WARNING,
+        Verdict.REFUSES: Severity.ERROR,
+    }[verdict]

@@ -268,7 +268,7 @@ def lint_paths(
 
     select, ignore = checked("--select", select), checked("--ignore", ignore)
     if engines is not None:
-        from inertia_kit.engines.verdicts import parse_engines
+        from inertia_kit.engines.vocabulary import parse_engines
 
         try:
             engines = parse_engines(engines)

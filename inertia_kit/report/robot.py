@@ -160,7 +160,7 @@ _REASONS = {
 
 def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: str = "text") -> str:
     """``report --lumped``: per engine, a table of its bodies, then the dropped links."""
-    from inertia_kit.engines.verdicts import TITLES
+    from inertia_kit.engines.vocabulary import TITLES
 
     records = lumped_records(robot, engines)
     if output_format == "json":

@@ -19,7 +19,7 @@ from typing import Any
 
 import pytest
 
-from inertia_kit.engines.verdicts import ENGINES
+from inertia_kit.engines.vocabulary import ENGINES
 from inertia_kit.lint import catalog, rules
 from inertia_kit.lint.documents import rule_documents
 from inertia_kit.lint.findings import Severity

@@ -36,7 +36,7 @@ A rule may have:
     absent.
 ``ENGINE: str``
     Makes it an engine rule (IN07x) speaking for one engine of
-    :data:`inertia_kit.engines.verdicts.ENGINES`: it runs only when that engine is chosen
+    :data:`inertia_kit.engines.vocabulary.ENGINES`: it runs only when that engine is chosen
     (``--engine``, ``engines = [...]``), never by ``select``.
 ``SUPERSEDES: tuple[str, ...]``
     Codes of other rules whose findings on the same link a finding of this rule replaces: an

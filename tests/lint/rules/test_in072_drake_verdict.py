@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import math
-
 import pytest
 
-from inertia_kit.lint.rules.in072_drake_verdict import plausible_sphere
+from inertia_kit.engines.drake import plausible_sphere
 
 LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
 BOX = (
@@ -25,14 +23,6 @@ def test_loads_unchanged_gives_nothing(lint):
       <link name="b">{BOX}<collision><geometry><mesh filename="b.obj"/></geometry></collision>
       </link>"""
     assert run(lint, body) == []
-
-
-def test_plausible_sphere_is_water_density():
-    mass, radius, moment = plausible_sphere(2.0)
-    assert mass == 2.0
-    assert 1000 * 4 / 3 * math.pi * radius**3 == pytest.approx(2.0)
-    assert moment == pytest.approx(0.4 * 2.0 * radius**2)
-    assert plausible_sphere(-1.0)[0] == 1.0
 
 
 def test_invalid_tensor_replaced_by_sphere(lint):

@@ -12,14 +12,8 @@ import pytest
 from click.testing import CliRunner
 
 from inertia_kit.cli import lint_main
-from inertia_kit.engines.verdicts import (
-    ENGINES,
-    Verdict,
-    parse_engines,
-    verdict_expected,
-    verdict_message,
-)
-from inertia_kit.lint.findings import Severity
+from inertia_kit.engines.vocabulary import ENGINES, Verdict
+from inertia_kit.lint.findings import Severity, severity_of
 from inertia_kit.lint.runner import Selection
 
 # the root link carries 5 kg: MuJoCo fixes it to the world and drops them (IN070, a warning);
@@ -58,15 +52,6 @@ def _stub(code: str, engine: str | None) -> types.ModuleType:
     return rule
 
 
-def test_parse_engines():
-    assert parse_engines(["mujoco"]) == ("mujoco",)
-    assert parse_engines(["kdl,MuJoCo", " gazebo "]) == ("mujoco", "gazebo", "kdl")
-    assert parse_engines(["all"]) == ENGINES
-    assert parse_engines(["mujoco,", ""]) == ("mujoco",)
-    with pytest.raises(ValueError, match="unknown engine `bullet`; known: mujoco, gazebo, drake"):
-        parse_engines(["mujoco,bullet"])
-
-
 def test_selection_runs_engine_rules_only_by_engine():
     plain, mujoco, gazebo = _stub("IN010", None), _stub("IN070", "mujoco"), _stub("IN071", "gazebo")
     rules = [plain, mujoco, gazebo]
@@ -77,23 +62,10 @@ def test_selection_runs_engine_rules_only_by_engine():
     assert Selection(engines=ENGINES, ignore=("IN070",)).enabled(rules) == [plain, gazebo]
 
 
-def test_verdict_vocabulary():
-    assert Verdict.REFUSES.severity is Severity.ERROR
-    assert Verdict.CHANGES.severity is Severity.WARNING
-    assert Verdict.LOADS.severity is None
-    assert (
-        verdict_message("mujoco", Verdict.REFUSES, "inertia must satisfy A + B >= C")
-        == "MuJoCo refuses the model: inertia must satisfy A + B >= C"
-    )
-    assert verdict_message("kdl", Verdict.CHANGES, None, "ignores the root's inertia") == (
-        "KDL ignores the root's inertia"
-    )
-    assert verdict_expected("gazebo", Verdict.CHANGES, None, link_mass=1.0) == {
-        "engine": "gazebo",
-        "verdict": "changes",
-        "engine_message": None,
-        "link_mass": 1.0,
-    }
+def test_verdict_severity():
+    assert severity_of(Verdict.REFUSES) is Severity.ERROR
+    assert severity_of(Verdict.CHANGES) is Severity.WARNING
+    assert severity_of(Verdict.LOADS) is None
 
 
 def test_default_runs_no_engine_rule(tmp_path):

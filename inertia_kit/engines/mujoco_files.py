@@ -1,0 +1,213 @@
+"""
+What MuJoCo refuses while it reads the files, before it compiles anything: the URDF parser's
+``<inertial>`` errors and the collision meshes its decoders cannot read.
+
+Also the form every MuJoCo check reports in, :class:`Prediction`, which :func:`.mujoco.events`
+words as findings once it knows which refusal MuJoCo meets first.
+"""
+
+from __future__ import annotations
+
+import os
+import posixpath
+from dataclasses import dataclass, field
+from typing import Any
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.description import model
+from inertia_kit.engines.vocabulary import Verdict
+
+# the mesh decoders MuJoCo ships (stl_decoder, obj_decoder, the .msh reader)
+DECODERS = (".stl", ".obj", ".msh")
+STL_MAX_FACES = 200_000
+TENSOR_ORDER = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")  # the order MuJoCo reads them
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """
+    One thing MuJoCo does to the model: a refusal (its error, in the order it would raise it)
+    or a silent change.
+
+    ``stage`` is the check that finds it (``parse``, ``mesh``, ``body``, ``fuse``, ``minval``;
+    ``root``, ``clamp``, ``inertiafromgeom`` for changes); ``message`` is MuJoCo's own text
+    without its ``Error:``/``XML Error:`` prefix; ``detail`` says why, in our words;
+    ``element`` is what MuJoCo names after its message (``{"name": "arm"}`` for a compiled
+    element, ``{"tag": "mass", "line": 7}`` for an XML element), ``None`` when it names none;
+    ``more`` holds the numbers for the finding's ``expected``.
+    """
+
+    verdict: Verdict
+    stage: str
+    link: str | None
+    message: str | None
+    detail: str
+    source: model.Source | None
+    element: dict[str, Any] | None = None
+    more: dict[str, Any] = field(default_factory=dict)
+
+
+def refusal(
+    stage: str,
+    link: str,
+    message: str,
+    detail: str,
+    source: model.Source | None,
+    element: dict[str, Any] | None = None,
+    **more: Any,
+) -> Prediction:
+    """MuJoCo refuses the model with ``message`` (at ``stage``, about ``link``)."""
+    return Prediction(Verdict.REFUSES, stage, link, message, detail, source, element, more)
+
+
+def change(stage: str, link: str, detail: str, source: model.Source, **more: Any) -> Prediction:
+    """MuJoCo silently changes ``link`` (it says nothing)."""
+    return Prediction(Verdict.CHANGES, stage, link, None, detail, source, None, more)
+
+
+def parseable(value: model.Number) -> bool:
+    """Whether MuJoCo reads the text as a number (it takes nan and inf, with a warning)."""
+    if not isinstance(value, model.Invalid):
+        return True
+    try:
+        float(value.text)
+    except ValueError:
+        return False
+    return True
+
+
+# --- the XML parser -----------------------------------------------------------------------------
+
+
+def parse_refusals(robot: RobotAnalysis) -> list[Prediction]:
+    """``<inertial>`` errors of mjXURDF::Body, link by link in document order."""
+    found = []
+    for link in robot.links:
+        inertial = link.link.inertial
+        problem = None if inertial is None else _unreadable(inertial)
+        if problem is None:
+            continue
+        message, tag, source = problem
+        found.append(
+            refusal(
+                "parse",
+                link.name,
+                message,
+                f"link `{link.name}`: its `<{tag}>` cannot be read",
+                source,
+                {"tag": tag, "line": None if source is None else source.line},
+            )
+        )
+    return found
+
+
+def _unreadable(inertial: model.Inertial) -> tuple[str, str, model.Source | None] | None:
+    """MuJoCo's message, the tag it names and where, for the first value it cannot read."""
+    if inertial.mass_source is None:
+        return "missing element: 'mass'", "inertial", inertial.source
+    if inertial.mass is None:
+        return "required attribute missing: 'value'", "mass", inertial.mass_source
+    if not parseable(inertial.mass):
+        return "bad format in attribute 'value'", "mass", inertial.mass_source
+    if inertial.inertia_source is None:
+        return "missing element: 'inertia'", "inertial", inertial.source
+    for name in TENSOR_ORDER:
+        value = getattr(inertial, name)
+        if value is None:
+            return f"required attribute missing: '{name}'", "inertia", inertial.inertia_source
+        if not parseable(value):
+            return f"bad format in attribute '{name}'", "inertia", inertial.inertia_source
+    return None
+
+
+# --- meshes -------------------------------------------------------------------------------------
+
+
+def mesh_path(robot: model.Robot, filename: str) -> str:
+    """
+    The file MuJoCo opens for a mesh: the filename joined to the URDF's folder, ``.``/``..``/
+    ``//`` reduced; a URI (``package://``, ``file://``) is taken as an absolute path, which no
+    file matches.
+    """
+    if "://" in filename or os.path.isabs(filename):
+        return posixpath.normpath(filename)
+    folder = os.path.dirname(robot.source.path)
+    return (
+        posixpath.normpath(posixpath.join(folder, filename))
+        if folder
+        else (posixpath.normpath(filename))
+    )
+
+
+def _stl_problem(path: str, shown: str) -> str | None:
+    """MuJoCo's stl_decoder error for a file, or ``None`` when it reads it."""
+    size = os.path.getsize(path)
+    if size == 0:
+        return f"stl_decoder: STL file '{shown}' is empty"
+    if size < 84:
+        return f"stl_decoder: invalid header in STL file '{shown}'"
+    with open(path, "rb") as stream:
+        stream.seek(80)
+        faces = int.from_bytes(stream.read(4), "little", signed=True)
+    if not 1 <= faces <= STL_MAX_FACES:
+        return (
+            f"stl_decoder: number of faces should be between 1 and {STL_MAX_FACES} in STL file "
+            f"'{shown}'; perhaps this is an ASCII file?"
+        )
+    if faces * 50 != size - 84:
+        return f"stl_decoder: STL file '{shown}' has wrong size; perhaps this is an ASCII file?"
+    return None
+
+
+def mesh_refusals(robot: RobotAnalysis) -> list[Prediction]:
+    """
+    Collision meshes, in the order MuJoCo makes them assets (links in document order; visual
+    meshes are discarded unread: ``discardvisual`` is on for URDF). One asset per file name and
+    scale.
+    """
+    found = []
+    seen: set[tuple[str, Any]] = set()
+    for link in robot.links:
+        for shape in link.link.collisions:
+            geometry = shape.geometry
+            if not isinstance(geometry, model.Mesh):
+                continue
+            stem = posixpath.splitext(posixpath.basename(geometry.filename.replace("\\", "/")))[0]
+            key = (stem, geometry.scale)
+            if key in seen:
+                continue
+            seen.add(key)
+            path = mesh_path(robot.robot, geometry.filename)
+            where = f"link `{link.name}`: collision mesh `{geometry.filename}`"
+            if not os.path.isfile(path):
+                why = (
+                    "MuJoCo resolves no package:// or file:// URI"
+                    if "://" in geometry.filename
+                    else "no such file beside the URDF"
+                )
+                # this message names the file as written (reduced), not joined to the folder
+                shown = posixpath.normpath(geometry.filename)
+                message, element, detail = f"Error opening file '{shown}'", None, why
+            else:
+                ext = posixpath.splitext(path)[1].lower()
+                element = {"name": stem}
+                if ext not in DECODERS:
+                    message = f"no decoder found for mesh file '{path}'"
+                    detail = "MuJoCo reads STL (binary), OBJ and MSH meshes only"
+                elif ext == ".stl" and (stl := _stl_problem(path, path)) is not None:
+                    message = stl
+                    detail = "MuJoCo reads binary STL only"
+                else:
+                    continue
+            found.append(
+                refusal(
+                    "mesh",
+                    link.name,
+                    message,
+                    f"{where}: {detail}",
+                    geometry.source,
+                    element,
+                    mesh=geometry.filename,
+                )
+            )
+    return found
