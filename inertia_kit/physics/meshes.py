@@ -34,8 +34,9 @@ from numpy.typing import ArrayLike, NDArray
 from inertia_kit.errors import MeshError
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.physics.polyhedra import SurfaceIntegrator, VolumeMoments, integrate
+from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.stl import read_stl
+from inertia_kit.physics.volume_moments import VolumeMoments
 
 if TYPE_CHECKING:
     import trimesh

@@ -27,9 +27,10 @@ from numpy.typing import ArrayLike, NDArray
 from inertia_kit.physics import primitives
 from inertia_kit.physics.frames import as_transform
 from inertia_kit.physics.mass import MassProperties, second_moment_from_inertia
-from inertia_kit.physics.polyhedra import VolumeMoments, integrate
+from inertia_kit.physics.polyhedra import integrate
 from inertia_kit.physics.primitives import body_mass
 from inertia_kit.physics.tessellate import half_extents, primitive_mesh
+from inertia_kit.physics.volume_moments import VolumeMoments
 
 if TYPE_CHECKING:
     import manifold3d

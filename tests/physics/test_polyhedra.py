@@ -12,11 +12,8 @@ import pytest
 import trimesh
 
 from inertia_kit.physics import polyhedra
-from inertia_kit.physics.polyhedra import (
-    SurfaceIntegrator,
-    VolumeMoments,
-    integrate,
-)
+from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
+from inertia_kit.physics.volume_moments import VolumeMoments
 
 RNG = np.random.default_rng(20261121)
 DENSITY = 1000.0
