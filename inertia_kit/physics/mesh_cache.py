@@ -64,7 +64,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit.physics.meshes import FORMATS, MeshSolid, mesh_solid, scaled_solid
+from inertia_kit.physics.mesh_formats import FORMATS
+from inertia_kit.physics.meshes import MeshSolid, mesh_solid, scaled_solid
 from inertia_kit.physics.volume_moments import VolumeMoments
 from inertia_kit.version import __version__
 
@@ -81,7 +82,15 @@ ENV_DIR = "INERTIA_KIT_CACHE_DIR"
 ENV_DISABLE = "INERTIA_KIT_NO_CACHE"
 
 # the modules whose code decides the numbers, and the libraries they may call
-_SOURCES = ("meshes.py", "volume_moments.py", "polyhedra.py", "stl.py", "mesh_cache.py")
+_SOURCES = (
+    "meshes.py",
+    "mesh_formats.py",
+    "mesh_closure.py",
+    "volume_moments.py",
+    "polyhedra.py",
+    "stl.py",
+    "mesh_cache.py",
+)
 _LIBRARIES = ("trimesh", "manifold3d", "collada", "networkx")
 # MeshSolid fields rebuilt from the scale; every other field is stored as it is
 _SCALED = frozenset({"path", "scale", "moments", "bounds"})
