@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import struct
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
@@ -30,3 +31,21 @@ def from_second_moment(mass: float, com, second_moment):
     from inertia_kit.physics.mass import MassProperties, inertia_from_second_moment
 
     return MassProperties(mass, com, inertia_from_second_moment(second_moment))
+
+
+def assert_same(x, y, name: str) -> None:
+    """``x`` and ``y`` alike to the bit: type, and for arrays dtype, shape and writeability."""
+    import numpy as np
+
+    assert type(x) is type(y), name
+    if isinstance(x, np.ndarray):
+        assert (x.dtype, x.shape, x.flags.writeable) == (y.dtype, y.shape, y.flags.writeable), name
+        assert x.tobytes() == y.tobytes(), name
+    elif isinstance(x, tuple):
+        assert len(x) == len(y), name
+        for u, v in zip(x, y, strict=True):
+            assert_same(u, v, name)
+    elif isinstance(x, float):
+        assert struct.pack("<d", x) == struct.pack("<d", y), (name, x, y)
+    else:
+        assert x == y, name
