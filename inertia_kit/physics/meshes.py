@@ -242,17 +242,17 @@ def mesh_solid(path: str | Path, scale: ArrayLike = (1.0, 1.0, 1.0)) -> MeshSoli
         )
     integrator, triangles, unit_scale = read_surface(path)
     file = Path(path)
-    fields = classify(file, integrator, triangles)
+    classified = classify(file, integrator, triangles)
     return scaled_solid(
         file,
-        fields.moments,
+        classified.moments,
         integrator.bounds,
         tuple(float(s) for s in factors),
         unit_scale=unit_scale,
-        method=fields.method,
-        inverted=fields.inverted,
-        closed=fields.closed,
-        volume_error=fields.volume_error,
+        method=classified.method,
+        inverted=classified.inverted,
+        closed=classified.closed,
+        volume_error=classified.volume_error,
         triangle_count=integrator.count,
     )
 
