@@ -3,7 +3,8 @@ Xacro expansion through the real ``xacro`` package, without ROS, with a source m
 
 :func:`expand` runs xacro in-process on files parsed by our own expat builder, which stamps every
 element with its file, line and column (DOM user data, which minidom copies onto clones, so the
-stamps survive macro expansion). Three xacro internals are replaced for the duration of the call:
+stamps survive macro expansion; see :mod:`.xacro_source_map`). Three xacro internals are
+replaced for the duration of the call:
 
 - ``xacro.parse``: files (the input and every include) are size-checked and refused if they
   declare entities, then parsed with the stamping builder;
@@ -15,27 +16,32 @@ stamps survive macro expansion). Three xacro internals are replaced for the dura
 xacro keeps its state in module globals, so expansions are serialised by a lock; everything is
 restored afterwards, also on error. What xacro prints to stderr from the expanding thread is
 collected as :attr:`Expanded.warnings`. Errors become :class:`~inertia_kit.errors.InputError`
-naming the file and line at fault.
+naming the file and line at fault (:mod:`.xacro_errors`).
 """
 
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import io
 import os
 import re
 import sys
 import threading
-import traceback
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
-from xml.dom import Node, UserDataHandler
+from xml.dom import Node
 
 from inertia_kit.description import safexml
 from inertia_kit.description.model import Source
+from inertia_kit.description.xacro_errors import PackageNotFound, input_error
+from inertia_kit.description.xacro_source_map import (
+    add_call_site,
+    parse_stamped,
+    stamp_of,
+    to_lxml,
+)
 from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
@@ -46,10 +52,8 @@ if TYPE_CHECKING:
 #: Top-level tags of a file meant to be included rather than expanded on its own.
 FRAGMENT_TAGS = frozenset({"xacro:macro", "xacro:property", "xacro:arg", "xacro:include"})
 
-_STAMP = "inertia_kit.source"
 _IS_XACRO = re.compile(rb"xmlns:xacro\s*=|<\s*xacro:[A-Za-z_]")
 _LOCK = threading.Lock()
-_PACKAGE_HINT = "pass --package-path DIR with the package folder or a folder that holds it"
 
 
 def is_xacro(data: bytes) -> bool:
@@ -159,7 +163,7 @@ def expand(
         except InputError:
             raise
         except Exception as error:  # xacro raises anything from NameError to RuntimeError
-            raise session.input_error(error) from None
+            raise input_error(error, session.path, session.display) from None
         expanded = session.result(doc.documentElement, fragment=False)
         if top <= FRAGMENT_TAGS and not any(
             child.tag in ("link", "joint") for child in expanded.root
@@ -169,29 +173,6 @@ def expand(
 
 
 # --- one expansion --------------------------------------------------------------------------
-
-
-class _PackageNotFound(LookupError):
-    def __init__(self, package: str, near: str):
-        self.package = package
-        super().__init__(
-            f"package `{package}` not found for $(find {package}) (searched --package-path, "
-            f"ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the folders above {near}): {_PACKAGE_HINT}"
-        )
-
-
-class _CopyStampOnClone:
-    """A DOM ``UserDataHandler``: a clone of a stamped node (a macro body) keeps its stamp."""
-
-    def handle(self, operation, key, data, src, dst) -> None:
-        if dst is not None and operation in (
-            UserDataHandler.NODE_CLONED,
-            UserDataHandler.NODE_IMPORTED,
-        ):
-            dst.setUserData(key, data, self)
-
-
-_COPY_STAMP = _CopyStampOnClone()
 
 
 class _Session:
@@ -214,7 +195,7 @@ class _Session:
         data = _read_checked(os.path.join(xacro.root_dir, filename), shown)
         if shown not in self.files:
             self.files.append(shown)
-        return _parse_stamped(data, shown)
+        return parse_stamped(data, shown)
 
     def display(self, filename: str) -> str:
         """How to show an included file: relative to the working folder if the input is."""
@@ -244,7 +225,7 @@ class _Session:
             inp = inp.encode("utf-8")
         if isinstance(inp, bytes):
             _check_bytes(inp, shown)
-            return _parse_stamped(inp, shown)
+            return parse_stamped(inp, shown)
         return inp
 
     def handle_macro_call(self, original):
@@ -252,7 +233,7 @@ class _Session:
             # xacro:call renames itself and re-enters this hook: stamp only once.
             if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
                 return original(node, macros, symbols)
-            call = node.getUserData(_STAMP)
+            call = stamp_of(node)
             parent = node.parentNode
             before = set(parent.childNodes)
             handled = original(node, macros, symbols)
@@ -260,12 +241,7 @@ class _Session:
                 site = Source(call.path, call.line, call.column)
                 for child in parent.childNodes:
                     if child.nodeType == Node.ELEMENT_NODE and child not in before:
-                        for element in _elements(child):
-                            source = element.getUserData(_STAMP)
-                            if source is not None:
-                                calls = (site, *source.calls)
-                                stamp = dataclasses.replace(source, calls=calls)
-                                element.setUserData(_STAMP, stamp, _COPY_STAMP)
+                        add_call_site(child, site)
             return handled
 
         return hook
@@ -279,7 +255,7 @@ class _Session:
         if folder is None and near != self.path:
             folder = self.resolver.find(package, self.path)
         if folder is None:
-            raise _PackageNotFound(package, str(Path(near).parent))
+            raise PackageNotFound(package, str(Path(near).parent))
         # absolute, as ROS gives it: xacro joins a relative include to the including file's folder
         return str(folder.absolute())
 
@@ -317,26 +293,8 @@ class _Session:
             return Expanded(
                 self.path, etree.Element("robot"), tuple(files), fragment, self.warnings()
             )
-        lxml_root, sources = _to_lxml(root, Source(self.path))
+        lxml_root, sources = to_lxml(root, Source(self.path))
         return Expanded(self.path, lxml_root, tuple(files), fragment, self.warnings(), sources)
-
-    def input_error(self, error: BaseException) -> InputError:
-        """An :class:`InputError` for what xacro raised, at the innermost element it was on."""
-        import xacro
-
-        not_found = _cause(error, _PackageNotFound)
-        node, macro_calls = _fault_site(error, xacro.__file__)
-        source = _source_near(node)
-        if source is None:
-            stack = [f for f in (xacro.filestack or []) if f]
-            source = Source(self.display(stack[-1]) if len(stack) > 1 else self.path)
-        message = str(not_found) if not_found is not None else _message(error)
-        if node is not None and any(call is node for call, _, _ in macro_calls):
-            message = f"{message} (calling macro `{node.tagName.removeprefix('xacro:')}`)"
-        chain = _chain([(name, site) for call, name, site in macro_calls if call is not node])
-        if chain:
-            message = f"{message} (in macro {chain})"
-        return InputError(f"xacro: {message}", source.path, source.line, source.column)
 
 
 @contextlib.contextmanager
@@ -419,181 +377,3 @@ def _read_checked(filename: str, shown: str) -> bytes:
 def _check_bytes(data: bytes, shown: str) -> None:
     safexml.check_size(data, shown)
     safexml.refuse_entities(data, shown)
-
-
-def _parse_stamped(data: bytes, shown: str):
-    """Parse with expat into minidom, every element stamped with ``Source(shown, line, col)``."""
-    from xml.dom import expatbuilder
-    from xml.parsers import expat
-
-    class Builder(expatbuilder.ExpatBuilderNS):
-        def install(self, parser) -> None:
-            super().install(parser)
-            parser.EntityDeclHandler = self.refuse_entity
-            parser.ExternalEntityRefHandler = self.refuse_entity
-
-        def refuse_entity(self, *_args) -> None:
-            raise InputError(safexml.NO_ENTITIES, shown, self._parser.CurrentLineNumber)
-
-        def start_element_handler(self, name, attributes) -> None:
-            super().start_element_handler(name, attributes)
-            parser = self._parser
-            source = Source(shown, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
-            self.curNode.setUserData(_STAMP, source, _COPY_STAMP)
-
-    try:
-        return Builder().parseString(data)
-    except expat.ExpatError as error:
-        raise InputError(
-            f"not well-formed XML: {expat.ErrorString(error.code)}",
-            shown,
-            error.lineno,
-            error.offset + 1,
-        ) from None
-
-
-def _elements(node) -> Iterator[Any]:
-    """``node`` and its element descendants, document order."""
-    stack = [node]
-    while stack:
-        current = stack.pop()
-        if current.nodeType == Node.ELEMENT_NODE:
-            yield current
-            stack.extend(reversed(current.childNodes))
-
-
-# --- minidom to lxml ------------------------------------------------------------------------
-
-
-def _to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]:
-    """
-    Serialise the expanded minidom tree (attributes in document order, not xacro's sorted
-    order) and parse it with lxml; pair elements in document order to carry the stamps over.
-    """
-    from lxml import etree
-
-    out: list[str] = []
-    sources: list[Source] = []
-    _write(root, out, sources, fallback)
-    try:
-        lxml_root = etree.fromstring("".join(out).encode("utf-8"), safexml.parser(huge_tree=True))
-    except etree.XMLSyntaxError as error:
-        raise InputError(f"xacro produced XML lxml cannot read: {error}", fallback.path) from None
-    elements = list(lxml_root.iter(etree.Element))
-    if len(elements) != len(sources):  # pragma: no cover - serialisation is one-to-one
-        raise InputError("internal error: expanded tree does not round-trip", fallback.path)
-    return lxml_root, dict(zip(elements, sources, strict=True))
-
-
-def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
-    # saxutils pulls in urllib, http and email (~20 ms): import it only to write xacro output
-    from xml.sax.saxutils import escape, quoteattr
-
-    kind = node.nodeType
-    if kind == Node.ELEMENT_NODE:
-        source = node.getUserData(_STAMP) or inherited
-        sources.append(source)
-        out.append("<" + node.tagName)
-        for name, value in node.attributes.items():
-            out.append(f" {name}={quoteattr(value)}")
-        if not node.childNodes:
-            out.append("/>")
-            return
-        out.append(">")
-        for child in node.childNodes:
-            _write(child, out, sources, source)
-        out.append(f"</{node.tagName}>")
-    elif kind in (Node.TEXT_NODE, Node.CDATA_SECTION_NODE):
-        out.append(escape(node.data))
-    elif kind == Node.COMMENT_NODE:
-        text = node.data.replace("--", "- -")
-        out.append(f"<!--{text}{' ' if text.endswith('-') else ''}-->")
-
-
-# --- errors ---------------------------------------------------------------------------------
-
-
-def _cause(error: BaseException, kind: type) -> Any:
-    """The first exception of ``kind`` among ``error``, what it wraps and what caused it."""
-    seen: set[int] = set()
-    todo = [error]
-    while todo:
-        current = todo.pop(0)
-        if current is None or id(current) in seen:
-            continue
-        seen.add(id(current))
-        if isinstance(current, kind):
-            return current
-        todo += [getattr(current, "exc", None), current.__cause__, current.__context__]
-    return None
-
-
-def _fault_site(error: BaseException, xacro_file: str) -> tuple[Any, list[tuple[Any, str, Any]]]:
-    """
-    The innermost DOM node xacro was working on when ``error`` was raised (a local ``node`` or
-    ``elt`` of xacro's functions), and the macro calls being expanded, outermost first.
-    """
-    innermost = None
-    calls: list[tuple[str, Any]] = []
-    xacro_dir = os.path.dirname(xacro_file)
-    for frame, _ in traceback.walk_tb(error.__traceback__):
-        if os.path.dirname(frame.f_code.co_filename) != xacro_dir:
-            continue
-        local = frame.f_locals
-        node = local.get("node", local.get("elt"))
-        if node is None or not hasattr(node, "nodeType"):
-            continue
-        innermost = node
-        if frame.f_code.co_name == "handle_macro_call" and node.nodeType == Node.ELEMENT_NODE:
-            calls.append((node, node.tagName.removeprefix("xacro:"), node.getUserData(_STAMP)))
-    return innermost, calls
-
-
-def _chain(calls: list[tuple[str, Any]], keep: int = 4) -> str:
-    """``calls`` outermost first, repeats (a recursive macro) folded, at most ``keep`` shown."""
-    folded: list[list[Any]] = []
-    for name, site in calls:
-        if site is None:
-            continue
-        if folded and folded[-1][:2] == [name, site]:
-            folded[-1][2] += 1
-        else:
-            folded.append([name, site, 1])
-    parts = [
-        f"`{name}` called at {site}" + (f" ({count} times)" if count > 1 else "")
-        for name, site, count in folded
-    ]
-    if len(parts) > keep:
-        parts = [*parts[: keep - 1], f"{len(parts) - keep} more", parts[-1]]
-    return ", ".join(parts)
-
-
-def _source_near(node) -> Source | None:
-    while node is not None:
-        if node.nodeType == Node.ELEMENT_NODE:
-            source = node.getUserData(_STAMP)
-            if source is not None:
-                return Source(source.path, source.line, source.column)
-        node = node.parentNode
-    return None
-
-
-def _message(error: BaseException) -> str:
-    import xacro
-    from xacro.substitution_args import ArgException
-
-    argument = _cause(error, ArgException)
-    if argument is not None:
-        name = str(argument)
-        return (
-            f"undefined substitution argument `{name}`: pass --xacro-arg {name}:=VALUE or "
-            f'declare <xacro:arg name="{name}" default="..."/>'
-        )
-    missing = _cause(error, OSError)
-    if isinstance(error, xacro.XacroException) and missing is not None:
-        reason = missing.strerror or str(missing)
-        return f"cannot read include {missing.filename or ''}: {reason}".replace(" :", ":")
-    text = " ".join(str(error).split()) or type(error).__name__
-    if text.startswith("unknown macro name"):
-        text += ": is the file that defines it included, and the name spelled alike?"
-    return text

@@ -486,9 +486,10 @@ def _expanded(
     from lxml import etree
 
     from inertia_kit.description import model
-    from inertia_kit.description.loader import Builder, parse_xml, start_tag_positions
+    from inertia_kit.description.builder import Builder
     from inertia_kit.description.packages import PackageResolver
     from inertia_kit.description.xacro_expand import expand
+    from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
 
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
     expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver)

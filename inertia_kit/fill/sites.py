@@ -129,7 +129,7 @@ class Files:
 
     def element(self, where: Source) -> etree._Element | None:
         """The parsed element written at ``where`` (for reading a macro's attributes)."""
-        from inertia_kit.description.loader import parse_xml, start_tag_positions
+        from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
 
         resolved = str(Path(where.path).resolve())
         if resolved not in self._elements:

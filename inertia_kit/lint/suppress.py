@@ -79,8 +79,8 @@ def suppressed(finding: Finding) -> bool:
 
 @functools.lru_cache(maxsize=512)
 def _directives(path: str, mtime_ns: int, size: int) -> Directives:
-    from inertia_kit.description.loader import parse_xml
     from inertia_kit.description.safexml import read_bounded
+    from inertia_kit.description.xmlparse import parse_xml
 
     try:
         data = read_bounded(path)

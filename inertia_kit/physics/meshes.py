@@ -2,71 +2,26 @@
 Mass properties of mesh files as a URDF ``<mesh filename scale>`` means them, with a record of
 how they were obtained.
 
-Every format ends in the same kernel, :mod:`inertia_kit.physics.polyhedra`: STL is read by
-:func:`.stl.read_stl` without trimesh (the fast path); OBJ, DAE, PLY, GLB and glTF go
-through trimesh, whose scene graph is flattened into one triangle soup. The file's own unit
-(COLLADA ``<unit meter>``) and the URDF ``scale`` are applied analytically to the integrals.
-
-How the volume integrals were obtained (``method``):
-
-``exact``
-  The surface is closed and consistently wound (directly, or once vertices that differ only by
-  float noise are merged). A surface wound inside-out has a negative volume: it is reported as
-  ``inverted`` and integrated flipped.
-``repaired``
-  Closed, but some triangles were wound against their neighbours; trimesh's winding repair
-  made it consistent.
-``convex-hull``
-  An open surface bounds no solid; the mass properties are those of its convex hull, and
-  ``volume_error`` bounds how far that is from the open surface's own volume.
+Every format ends in the same kernel, :mod:`inertia_kit.physics.polyhedra`: the file is read
+into a surface in its own unit (:mod:`.mesh_formats`), the surface's solid is found, exactly or
+not (``method``, :mod:`.mesh_closure`), and the file's unit and the URDF ``scale`` are applied
+analytically to the integrals (:func:`scaled_solid`).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit.errors import MeshError
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.physics.polyhedra import SurfaceIntegrator, VolumeMoments, integrate
-from inertia_kit.physics.stl import read_stl
-
-if TYPE_CHECKING:
-    import trimesh
-
-Method = Literal["exact", "repaired", "convex-hull"]
-
-# file suffix -> (trimesh file type, name for messages); STL is read without trimesh
-FORMATS = {
-    ".stl": ("stl", "STL"),
-    ".obj": ("obj", "Wavefront OBJ"),
-    ".dae": ("dae", "COLLADA"),
-    ".ply": ("ply", "PLY"),
-    ".glb": ("glb", "binary glTF"),
-    ".gltf": ("gltf", "glTF"),
-}
-
-# what to do about a MeshError of each kind, for messages that do not say it yet
-ADVICE = {
-    "not-found": "check the path and the package it names",
-    "unreadable": "re-export it from the CAD tool as a binary STL",
-    "empty": "export the part's solid body",
-}
-
-# |volume| below this fraction of the bounding box's largest extent cubed is no solid at all:
-# far above the rounding of the volume sum, far below any real part (a 1 m plate 1 µm thick
-# is 1e-6)
-EMPTY_VOLUME_RTOL = 1e-12
-
-# vertices closer than this fraction of the mesh's extent are merged before the trimesh checks:
-# float noise, not geometry
-MERGE_RTOL = 1e-8
+from inertia_kit.physics.mesh_closure import Method, classify
+from inertia_kit.physics.mesh_formats import read_surface
+from inertia_kit.physics.volume_moments import VolumeMoments
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,7 +38,7 @@ class MeshSolid:
     moments : VolumeMoments
       Volume integrals of the solid, positive ``volume`` (m³, m⁴, m⁵).
     method : {"exact", "repaired", "convex-hull"}
-      How the integrals were obtained (see the module docstring).
+      How the integrals were obtained (see :mod:`.mesh_closure`).
     inverted : bool
       The closed surface was wound inside-out (negative volume); ``moments`` are those of the
       flipped surface. A mirroring ``scale`` is not an inversion.
@@ -285,143 +240,21 @@ def mesh_solid(path: str | Path, scale: ArrayLike = (1.0, 1.0, 1.0)) -> MeshSoli
             f"scale must be three finite non-zero factors, got {scale!r}; "
             "use a negative factor to mirror"
         )
+    integrator, triangles, unit_scale = read_surface(path)
     file = Path(path)
-    if not file.is_file():
-        what = "is a directory, not a mesh file" if file.is_dir() else "does not exist"
-        raise MeshError(
-            path, "not-found", f"the mesh file {what}; check the path and the package it names"
-        )
-    suffix = file.suffix.lower()
-    if suffix not in FORMATS:
-        raise MeshError(
-            path,
-            "unreadable",
-            f"unsupported mesh format `{file.suffix or '(no suffix)'}`, expected one of "
-            f"{', '.join(FORMATS)}; convert the mesh to STL",
-        )
-
-    unit_scale = 1.0
-    if suffix == ".stl":
-        try:
-            integrator = read_stl(file)
-        except OSError as error:
-            raise MeshError(
-                path, "unreadable", f"cannot read the file ({error}); check its permissions"
-            ) from None
-        except MeshError as error:
-            raise MeshError(
-                error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}"
-            ) from None
-        triangles = None if integrator.closed else _read_scene(file, suffix)[0]
-    else:
-        triangles, unit_scale = _read_scene(file, suffix)
-        integrator = integrate(triangles)
-    fields = _classify(file, integrator, triangles)
+    classified = classify(file, integrator, triangles)
     return scaled_solid(
         file,
-        fields.moments,
+        classified.moments,
         integrator.bounds,
         tuple(float(s) for s in factors),
         unit_scale=unit_scale,
-        method=fields.method,
-        inverted=fields.inverted,
-        closed=fields.closed,
-        volume_error=fields.volume_error,
+        method=classified.method,
+        inverted=classified.inverted,
+        closed=classified.closed,
+        volume_error=classified.volume_error,
         triangle_count=integrator.count,
     )
-
-
-@dataclass(frozen=True)
-class _Fields:
-    moments: VolumeMoments
-    method: Method
-    inverted: bool = False
-    closed: bool = True
-    volume_error: float = 0.0
-
-
-def _classify(path: Path, integrator: SurfaceIntegrator, triangles: NDArray | None) -> _Fields:
-    """Pick the method: ``triangles`` (n, 3, 3) are needed only when the surface is not closed."""
-    if integrator.closed:
-        return _oriented(path, integrator, "exact")
-    assert triangles is not None
-    import trimesh
-
-    merged = trimesh.Trimesh(
-        vertices=triangles.reshape(-1, 3),
-        faces=np.arange(3 * len(triangles)).reshape(-1, 3),
-        process=False,
-    )
-    merged.merge_vertices(digits_vertex=_merge_digits(integrator.bounds))
-    faces = merged.faces
-    # merging collapses slivers narrower than the noise: they hold no volume
-    merged.update_faces(
-        (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
-    )
-    if merged.is_watertight and len(merged.faces):
-        method: Method = "exact" if merged.is_winding_consistent else "repaired"
-        if method == "repaired":
-            try:
-                trimesh.repair.fix_winding(merged)
-            except ImportError as error:
-                # trimesh walks the face graph with networkx, an optional dependency of its own
-                raise ImportError(
-                    f"repairing the triangle winding of {path} needs networkx "
-                    f"(`pip install networkx`): {error}"
-                ) from error
-        closed = integrate(merged.triangles)
-        if closed.closed:
-            return _oriented(path, closed, method)
-    return _convex_hull(path, triangles, integrator)
-
-
-def _oriented(path: Path, integrator: SurfaceIntegrator, method: Method) -> _Fields:
-    """A closed surface's integrals with positive volume; a negative one is flipped."""
-    moments = integrator.moments
-    _check_volume(path, moments.volume, integrator.bounds, "the mesh's closed surface")
-    if moments.volume > 0:
-        return _Fields(moments, method)
-    # a repaired winding is oriented by whichever triangle the repair started from: flipping
-    # it is part of the repair, not a fault of the file
-    return _Fields(moments.negated(), method, inverted=method == "exact")
-
-
-def _convex_hull(path: Path, triangles: NDArray, integrator: SurfaceIntegrator) -> _Fields:
-    import manifold3d
-
-    hull = manifold3d.Manifold.hull_points(triangles.reshape(-1, 3))
-    # to_mesh64 (manifold3d ≥ 3) keeps the input's float64 vertices; to_mesh rounds to float32
-    shell = getattr(hull, "to_mesh64", hull.to_mesh)()
-    vertices = np.asarray(shell.vert_properties, dtype=np.float64)[:, :3]
-    hull_triangles = vertices[np.asarray(shell.tri_verts, dtype=np.intp)]
-    moments = integrate(hull_triangles).moments if len(hull_triangles) else None
-    volume = 0.0 if moments is None else moments.volume
-    _check_volume(path, volume, integrator.bounds, "the mesh is open and its convex hull")
-    assert moments is not None
-    if volume < 0:
-        moments = moments.negated()
-    open_volume = integrate(triangles, origin=moments.centroid).moments.volume
-    error = abs(moments.volume - abs(open_volume)) / moments.volume
-    return _Fields(moments, "convex-hull", closed=False, volume_error=error)
-
-
-def _check_volume(path: Path, volume: float, bounds: NDArray, what: str) -> None:
-    extent = float(np.max(bounds[1] - bounds[0]))
-    if not abs(volume) > EMPTY_VOLUME_RTOL * extent**3:
-        raise MeshError(
-            path,
-            "empty",
-            f"{what} bounds no volume ({fmt(volume)} file units³ in a "
-            f"bounding box {fmt(extent)} wide); export the solid body, not a flat sheet",
-        )
-
-
-def _merge_digits(bounds: NDArray) -> int:
-    """Decimal digits that round away noise of about ``MERGE_RTOL`` times the mesh's extent."""
-    extent = float(np.max(bounds[1] - bounds[0]))
-    if not extent > 0:
-        return 8
-    return max(0, -math.floor(math.log10(MERGE_RTOL * extent)))
 
 
 def scaled_solid(
@@ -450,103 +283,3 @@ def scaled_solid(
         unit_scale=unit_scale,
         **fields,
     )
-
-
-def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
-    """
-    Every triangle of a file trimesh reads, placed by its scene graph.
-
-    Returns
-    -------
-    triangles : (n, 3, 3) float
-      In the file's unit, wound as the file winds them (a mirroring node transform is undone).
-    unit_scale : float
-      Metres per file unit.
-    """
-    file_type, name = FORMATS[suffix]
-    try:
-        import trimesh
-    except ImportError as error:  # pragma: no cover - trimesh is a dependency
-        raise MeshError(path, "unreadable", f"reading {name} needs trimesh: {error}") from None
-    try:
-        scene = trimesh.load_scene(str(path), file_type=file_type, process=False)
-        parts, units = _scene_parts(scene, trimesh.Trimesh)
-    except MeshError:
-        raise
-    except Exception as error:
-        # trimesh and its parsers raise anything from ValueError to XML and struct errors
-        text = str(error).strip().splitlines()[0][:200] if str(error).strip() else ""
-        kind = type(error).__name__
-        detail = text if text.startswith(kind) else f"{kind}: {text}".rstrip(": ")
-        raise MeshError(
-            path,
-            "unreadable",
-            f"cannot read the file as {name} ({detail}); re-export it, or convert it to STL",
-        ) from None
-    if not parts:
-        raise MeshError(
-            path, "empty", f"the {name} file holds no triangles; export the part's solid body"
-        )
-    factors = {_unit_factor(path, unit) for unit in units}
-    if len(factors) > 1:
-        raise MeshError(
-            path,
-            "unreadable",
-            f"the file's meshes are in different units ({', '.join(sorted(set(units)))}); "
-            "re-export it in one unit",
-        )
-    triangles = np.concatenate(parts)
-    if not np.isfinite(triangles).all():
-        raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
-    return triangles, factors.pop()
-
-
-def _scene_parts(
-    scene: trimesh.Scene, mesh_type: type
-) -> tuple[list[NDArray[np.float64]], list[str]]:
-    """The triangles (n, 3, 3) of each mesh instance in the scene graph, and its unit."""
-    parts, units = [], []
-    for node in scene.graph.nodes_geometry:
-        matrix, geometry_name = scene.graph[node]
-        geometry = scene.geometry[geometry_name]
-        if not isinstance(geometry, mesh_type) or len(geometry.faces) == 0:
-            continue
-        vertices = _transformed(np.asarray(geometry.vertices, dtype=np.float64), matrix)
-        faces = np.asarray(geometry.faces)
-        if np.linalg.det(matrix[:3, :3]) < 0:
-            # a mirroring node turns the winding inside-out: undo it, as a renderer does
-            faces = faces[:, ::-1]
-        parts.append(vertices[faces])
-        units.append(geometry.units or "meters")
-    return parts, units
-
-
-def _transformed(vertices: NDArray[np.float64], matrix: NDArray) -> NDArray[np.float64]:
-    """(n, 3) vertices under a (4, 4) transform, element by element."""
-    matrix = np.asarray(matrix, dtype=np.float64)
-    if np.array_equal(matrix, np.eye(4)):
-        return vertices
-    # elementwise, not a matrix product: BLAS may round the same vertex differently at
-    # different rows, and the closure check compares vertices by their exact bits
-    out = vertices[:, 0:1] * matrix[:3, 0]
-    out += vertices[:, 1:2] * matrix[:3, 1]
-    out += vertices[:, 2:3] * matrix[:3, 2]
-    out += matrix[:3, 3]
-    return out
-
-
-def _unit_factor(path: Path, unit: str) -> float:
-    """Metres per ``unit``, as trimesh spells units (``meters``, ``0.001 * meters``)."""
-    from trimesh.units import unit_conversion
-
-    try:
-        factor = float(unit_conversion(unit, "meters"))
-    except Exception:
-        raise MeshError(
-            path, "unreadable", f"unknown unit `{unit}` in the file; re-export it in metres"
-        ) from None
-    if not (math.isfinite(factor) and factor > 0):
-        raise MeshError(
-            path, "unreadable", f"unit `{unit}` is {factor} m; re-export the file in metres"
-        )
-    return factor

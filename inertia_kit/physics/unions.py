@@ -10,7 +10,8 @@ The bracket is the volume integral of the overlaps, computed on tessellations wi
 Each tessellation is built volume-preserving, so its error averages out over every facet, and
 outside the overlaps the tessellated terms cancel exactly: the result is exact wherever parts
 do not overlap and carries only the (second-order) tessellation error of the overlap regions.
-Parts whose bounding boxes touch no other part's never reach manifold3d.
+Parts whose bounding boxes touch no other part's never reach manifold3d; the meshes that do
+pass through :mod:`.manifolds`.
 
 manifold3d is imported inside the functions that use it, so importing this module stays cheap.
 """
@@ -26,10 +27,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit.physics import primitives
 from inertia_kit.physics.frames import as_transform
+from inertia_kit.physics.manifolds import as_manifold, closed_mesh, manifold_moments
 from inertia_kit.physics.mass import MassProperties, second_moment_from_inertia
-from inertia_kit.physics.polyhedra import VolumeMoments, integrate
+from inertia_kit.physics.polyhedra import integrate
 from inertia_kit.physics.primitives import body_mass
 from inertia_kit.physics.tessellate import half_extents, primitive_mesh
+from inertia_kit.physics.volume_moments import VolumeMoments
 
 if TYPE_CHECKING:
     import manifold3d
@@ -139,9 +142,7 @@ class Part:
           On bad shapes, non-finite coordinates, a surface that is not closed even after
           manifold3d merges its open edges, or one that bounds no positive volume.
         """
-        points, triangles = _indexed(vertices, faces)
-        if not _closed(triangles, len(points)):
-            points, triangles = _merged(points, triangles)
+        points, triangles = closed_mesh(vertices, faces)
         moments = integrate(points[triangles]).moments
         if not moments.volume > 0:
             raise ValueError(
@@ -211,7 +212,7 @@ class Part:
 
     def to_manifold(self, segments: int = DEFAULT_SEGMENTS) -> manifold3d.Manifold:
         """:meth:`tessellation` as a ``manifold3d.Manifold``."""
-        return _manifold(*self.tessellation(segments))
+        return as_manifold(*self.tessellation(segments))
 
 
 @dataclass(frozen=True)
@@ -325,11 +326,11 @@ def _overlap_corrected(
     corners = np.array([part.bounds for part in group])
     origin = 0.5 * (corners[:, 0].min(axis=0) + corners[:, 1].max(axis=0))
     solids = [part.to_manifold(segments) for part in group]
-    pieces = [_moments(solid, origin) for solid in solids]
+    pieces = [manifold_moments(solid, origin) for solid in solids]
     combined = manifold3d.Manifold.batch_boolean(solids, manifold3d.OpType.Add)
     if combined.status() != manifold3d.Error.NoError:
         raise ValueError(f"manifold3d failed to unite the parts: {combined.status().name}")
-    merged = _moments(combined, origin)
+    merged = manifold_moments(combined, origin)
     tessellated = sum(piece.volume for piece in pieces)
     overlap = tessellated - merged.volume
     if overlap <= OVERLAP_NOISE * tessellated:
@@ -347,31 +348,6 @@ def _as_moments(unit: MassProperties, origin: NDArray[np.float64]) -> VolumeMome
     return VolumeMoments(unit.mass, unit.mass * offset, second, origin)
 
 
-def _moments(solid: manifold3d.Manifold, origin: NDArray[np.float64]) -> VolumeMoments:
-    mesh = solid.to_mesh64()
-    points = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    faces = np.asarray(mesh.tri_verts, dtype=np.int64)
-    if len(faces) == 0:
-        return VolumeMoments(0.0, np.zeros(3), np.zeros((3, 3)), origin)
-    return integrate(points[faces], origin).moments
-
-
-def _manifold(points: NDArray[np.float64], faces: NDArray[np.int64]) -> manifold3d.Manifold:
-    import manifold3d
-
-    mesh = manifold3d.Mesh64(
-        np.ascontiguousarray(points, dtype=np.float64),
-        np.ascontiguousarray(faces, dtype=np.uint64),
-    )
-    solid = manifold3d.Manifold(mesh)
-    if solid.status() != manifold3d.Error.NoError:
-        raise ValueError(
-            f"manifold3d rejects a part's mesh ({solid.status().name}): a solid union needs "
-            "a closed, consistently wound 2-manifold surface"
-        )
-    return solid
-
-
 # --- input checks -----------------------------------------------------------------------
 
 
@@ -387,69 +363,3 @@ def _segments(segments: int) -> int:
     if isinstance(segments, bool) or int(segments) != segments or segments < 8:
         raise ValueError(f"segments must be an integer of at least 8, got {segments!r}")
     return int(segments)
-
-
-def _indexed(
-    vertices: ArrayLike, faces: ArrayLike | None
-) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """
-    Coerce a mesh to float64 vertices (m, 3) and int64 faces (n, 3), checking both.
-
-    Vertices with equal coordinates become one, as manifold3d needs shared vertices to see
-    a closed surface (meshes read from STL repeat each corner once per triangle).
-    """
-    points = np.asarray(vertices, dtype=np.float64)
-    if faces is None:
-        if points.ndim != 3 or points.shape[1:] != (3, 3):
-            raise ValueError(f"triangles must be (n, 3, 3), got shape {points.shape}")
-        corners = points.reshape(-1, 3)
-    else:
-        if points.ndim != 2 or points.shape[1] != 3:
-            raise ValueError(f"vertices must be (m, 3), got shape {points.shape}")
-        raw = np.asarray(faces)
-        if raw.ndim != 2 or raw.shape[1] != 3 or (raw.size and raw.dtype.kind not in "iu"):
-            raise ValueError(f"faces must be (n, 3) integers, got {raw.dtype} {raw.shape}")
-        index = raw.astype(np.int64)
-        if index.size and (index.min() < 0 or index.max() >= len(points)):
-            raise ValueError(f"faces index vertices 0..{len(points) - 1} out of range")
-        corners = points[index].reshape(-1, 3)
-    if len(corners) == 0:
-        raise ValueError("mesh has no triangles")
-    if not np.isfinite(corners).all():
-        raise ValueError("mesh vertices must be finite")
-    unique, inverse = np.unique(corners, axis=0, return_inverse=True)
-    return unique, inverse.reshape(-1, 3).astype(np.int64)
-
-
-def _closed(faces: NDArray[np.int64], count: int) -> bool:
-    """
-    Whether each directed edge of ``faces`` (n, 3), over ``count`` vertices, occurs once and
-    its reverse once: a closed, consistently wound surface with two faces at every edge.
-    """
-    edges = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    forward = np.sort(edges[:, 0] * count + edges[:, 1])
-    backward = np.sort(edges[:, 1] * count + edges[:, 0])
-    return bool(np.all(forward[1:] != forward[:-1]) and np.array_equal(forward, backward))
-
-
-def _merged(
-    points: NDArray[np.float64], faces: NDArray[np.int64]
-) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """Let manifold3d merge near-coincident vertices of an open mesh, or raise ``ValueError``."""
-    import manifold3d
-
-    mesh = manifold3d.Mesh64(
-        np.ascontiguousarray(points), np.ascontiguousarray(faces, dtype=np.uint64)
-    )
-    mesh.merge()
-    solid = manifold3d.Manifold(mesh)
-    if solid.status() != manifold3d.Error.NoError or solid.is_empty():
-        raise ValueError(
-            "mesh is not a closed, consistently wound surface (manifold3d: "
-            f"{solid.status().name}); a solid union needs a watertight mesh"
-        )
-    out = solid.to_mesh64()
-    return (
-        np.asarray(out.vert_properties, dtype=np.float64)[:, :3].copy(),
-        np.asarray(out.tri_verts, dtype=np.int64),
-    )

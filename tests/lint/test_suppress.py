@@ -225,13 +225,13 @@ def test_comments_we_do_not_understand_become_notes(tmp_path):
 
 
 def test_directives_are_read_once_per_content(tmp_path, monkeypatch):
-    from inertia_kit.description import loader
+    from inertia_kit.description import xmlparse
 
     path = tmp_path / "robot.urdf"
     path.write_text(robot(link("a", before="<!-- inertia-lint: ignore[IN098] -->")))
     parsed = []
-    real = loader.parse_xml
-    monkeypatch.setattr(loader, "parse_xml", lambda data, p: parsed.append(p) or real(data, p))
+    real = xmlparse.parse_xml
+    monkeypatch.setattr(xmlparse, "parse_xml", lambda data, p: parsed.append(p) or real(data, p))
     first = directives(path)
     assert directives(path) is first
     assert parsed == [str(path)]

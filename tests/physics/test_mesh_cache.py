@@ -9,7 +9,6 @@ import dataclasses
 import json
 import multiprocessing
 import os
-import struct
 import subprocess
 import sys
 import time
@@ -18,10 +17,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from kit import REPO
+from kit import REPO, assert_same
 
 from inertia_kit.errors import MeshError
-from inertia_kit.physics import mesh_cache
+from inertia_kit.physics import mesh_cache, mesh_cache_entries
 from inertia_kit.physics.mesh_cache import cache_location, cached_mesh_solid
 from inertia_kit.physics.meshes import MeshSolid, mesh_solid
 
@@ -60,7 +59,7 @@ def forbid_reading(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def entries(folder: Path) -> list[Path]:
-    return sorted((folder / f"meshes-v{mesh_cache.FORMAT}").glob("*.json"))
+    return sorted((folder / f"meshes-v{mesh_cache_entries.FORMAT}").glob("*.json"))
 
 
 # --- meshes ------------------------------------------------------------------------------------
@@ -140,21 +139,6 @@ def assert_identical(a: MeshSolid, b: MeshSolid) -> None:
             assert_same(x, y, field.name)
 
 
-def assert_same(x, y, name: str) -> None:
-    assert type(x) is type(y), name
-    if isinstance(x, np.ndarray):
-        assert (x.dtype, x.shape, x.flags.writeable) == (y.dtype, y.shape, y.flags.writeable), name
-        assert x.tobytes() == y.tobytes(), name
-    elif isinstance(x, tuple):
-        assert len(x) == len(y), name
-        for u, v in zip(x, y, strict=True):
-            assert_same(u, v, name)
-    elif isinstance(x, float):
-        assert struct.pack("<d", x) == struct.pack("<d", y), (name, x, y)
-    else:
-        assert x == y, name
-
-
 # --- the same numbers ----------------------------------------------------------------------------
 
 
@@ -195,34 +179,6 @@ def test_solids_from_one_entry_share_no_arrays(tmp_path: Path, cache: Path) -> N
         assert not np.shares_memory(x, y)
     with pytest.raises(ValueError):
         a.bounds[0, 0] = 1.0
-
-
-def test_special_floats_survive_an_entry() -> None:
-    special = [-0.0, 5e-324, 1.7976931348623157e308, 0.1, 1 / 3, -2.5e-300]
-    moments = mesh_cache.VolumeMoments(
-        np.float64(-0.0),
-        np.array(special[:3]),
-        np.array(special * 2)[:9].reshape(3, 3),
-        np.zeros(3),
-    )
-    other = {
-        "method": "exact",
-        "inverted": False,
-        "closed": True,
-        "volume_error": np.float64(float("inf")),
-        "triangle_count": 7,
-        "unit_scale": 0.0254,
-    }
-    raw = mesh_cache._Raw(moments, np.array(special).reshape(2, 3), other)
-    key = {"path": "/x.stl", "suffix": ".stl", "size": 1, "mtime_ns": 2, "ctime_ns": 3, "inode": 4}
-    data = mesh_cache._encode(key, "code", raw)
-    assert data is not None
-    back = mesh_cache._decode(data, key, "code")
-    for name in ("volume", "first", "second", "origin"):
-        assert_same(getattr(back.moments, name), getattr(moments, name), name)
-    assert_same(back.bounds, raw.bounds, "bounds")
-    for name, value in other.items():
-        assert_same(back.other[name], value, name)
 
 
 # --- invalidation ----------------------------------------------------------------------------
@@ -342,7 +298,7 @@ DAMAGES = {
     "garbage": lambda data: os.urandom(len(data)),
     "not-utf8": lambda data: data[:9] + b"\xff\xfe" + data[11:],
     "digit-flipped": lambda data: data.replace(b"0.", b"1.", 1),
-    "oversized": lambda data: data + b" " * mesh_cache.MAX_ENTRY_BYTES,
+    "oversized": lambda data: data + b" " * mesh_cache_entries.MAX_ENTRY_BYTES,
     "other-format": reencode(_set(("format",), 99)),
     "other-code": reencode(_set(("code",), "format 1; inertia-kit 0.0.1")),
     "other-file": reencode(_set(("key", "path"), "/elsewhere/box.stl")),
@@ -413,14 +369,14 @@ def test_read_only_location_only_means_no_caching(
 ) -> None:
     monkeypatch.setattr(mesh_cache, "RACY_SECONDS", 0.0)
     folder = tmp_path / "cache"
-    (folder / f"meshes-v{mesh_cache.FORMAT}").mkdir(parents=True)
+    (folder / f"meshes-v{mesh_cache_entries.FORMAT}").mkdir(parents=True)
     path = MESHES["binary-stl"](tmp_path)
     for mode in (0o500, 0o000):
-        (folder / f"meshes-v{mesh_cache.FORMAT}").chmod(mode)
+        (folder / f"meshes-v{mesh_cache_entries.FORMAT}").chmod(mode)
         try:
             assert_identical(cached_mesh_solid(path, cache_dir=folder), mesh_solid(path))
         finally:
-            (folder / f"meshes-v{mesh_cache.FORMAT}").chmod(0o700)
+            (folder / f"meshes-v{mesh_cache_entries.FORMAT}").chmod(0o700)
     assert len(calls) == 2
 
 
@@ -431,8 +387,8 @@ def test_failing_writes_only_mean_no_caching(
     def refuse(*args, **kwargs):
         raise error(13, "refused")
 
-    monkeypatch.setattr(mesh_cache, "_create", refuse)  # what root cannot be made to see
-    monkeypatch.setattr(mesh_cache.os, "makedirs", refuse)
+    monkeypatch.setattr(mesh_cache_entries, "_create", refuse)  # what root cannot be made to see
+    monkeypatch.setattr(mesh_cache_entries.os, "makedirs", refuse)
     path = MESHES["binary-stl"](tmp_path)
     for _ in range(2):
         assert_identical(cached_mesh_solid(path), mesh_solid(path))
@@ -580,8 +536,8 @@ def _rewrite_and_read(arguments) -> int:
     entry, payload, key, code, rounds = arguments
     bad = 0
     for _ in range(rounds):
-        mesh_cache._write(os.path.dirname(os.path.dirname(entry)), entry, payload)
-        bad += mesh_cache._read(entry, key, code) is None
+        mesh_cache_entries.write_entry(os.path.dirname(os.path.dirname(entry)), entry, payload)
+        bad += mesh_cache_entries.read_entry(entry, key, code) is None
     return bad
 
 
@@ -604,7 +560,7 @@ def test_concurrent_writers_of_one_entry(tmp_path: Path, cache: Path) -> None:
         for v in (solid.moments.volume, solid.moments.first, solid.moments.second, solid.bounds)
     )
     assert results == [expected] * workers
-    folder = cache / f"meshes-v{mesh_cache.FORMAT}"
+    folder = cache / f"meshes-v{mesh_cache_entries.FORMAT}"
     assert len(entries(cache)) == 1
     assert not list(folder.glob(".*.tmp"))
 
@@ -651,37 +607,12 @@ def test_hit_imports_no_trimesh_and_reads_no_mesh(tmp_path: Path, cache: Path) -
 # --- size ---------------------------------------------------------------------------------------
 
 
-def test_prune_keeps_the_most_recently_used(tmp_path: Path) -> None:
-    folder = tmp_path / "entries"
-    folder.mkdir()
-    now = time.time()
-    for age in range(10):
-        entry = folder / f"m{age}.json"
-        entry.write_text("{}")
-        os.utime(entry, (now - 60 * age, now - 60 * age))
-    old, fresh = folder / ".a.json.1.tmp", folder / ".b.json.2.tmp"
-    for temporary, age in [(old, 7200), (fresh, 10)]:
-        temporary.write_text("")
-        os.utime(temporary, (now - age, now - age))
-
-    assert mesh_cache.prune(folder, max_entries=5) == 7  # down to 90 %: 4 left, and one .tmp
-
-    assert sorted(p.name for p in folder.iterdir()) == [
-        ".b.json.2.tmp",
-        "m0.json",
-        "m1.json",
-        "m2.json",
-        "m3.json",
-    ]
-    assert mesh_cache.prune(folder, max_entries=5) == 0
-
-
 def test_a_writing_process_prunes_once(
     tmp_path: Path, cache: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(mesh_cache, "MAX_ENTRIES", 2)
-    monkeypatch.setattr(mesh_cache, "_pruned", set())
-    old = cache / f"meshes-v{mesh_cache.FORMAT}"
+    monkeypatch.setattr(mesh_cache_entries, "MAX_ENTRIES", 2)
+    monkeypatch.setattr(mesh_cache_entries, "_pruned", set())
+    old = cache / f"meshes-v{mesh_cache_entries.FORMAT}"
     old.mkdir(parents=True)
     for name in ("a", "b", "c"):
         (old / f"{name}.json").write_text("{}")

@@ -9,7 +9,7 @@ from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.physics.meshes import FORMATS
+from inertia_kit.physics.mesh_formats import FORMATS
 
 CODE = "IN034"
 NAME = "mesh-unreadable"

@@ -1,0 +1,264 @@
+"""
+The model from a parsed ``<robot>`` element tree, URDF or expanded xacro: each element to its
+model type with its source location, numbers read as urdfdom reads them, and every value that
+is not a finite number recorded (``Robot.invalid``, in document order) instead of raised.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from pathlib import Path
+
+from lxml import etree
+
+from inertia_kit.description import model
+from inertia_kit.errors import InputError
+
+# What urdfdom, Gazebo and Drake read as a number: ASCII digits only, no "1_000", no hex
+_NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\s*")
+
+
+class Builder:
+    """Turns a parsed ``<robot>`` element tree into the model, recording every invalid number."""
+
+    def __init__(
+        self,
+        path: Path,
+        source_of: Callable[[etree._Element], model.Source],
+        resolver,
+        files: tuple[str, ...],
+    ):
+        self.path = path
+        self.source_of = source_of
+        self.resolver = resolver
+        self.files = files
+        self.invalid: list[model.Invalid] = []
+        # to list invalid values in document order, whatever order they were read in
+        self.order: dict[etree._Element, int] = {}
+        self.located: dict[int, tuple[etree._Element, str]] = {}
+        self.namespace: str | None = None  # the root's default namespace, if it declares one
+
+    # --- children -------------------------------------------------------------------------
+
+    def tag(self, element: etree._Element) -> str | None:
+        """
+        The URDF tag of ``element``: its name when it is in no namespace or in the root's
+        default one (TinyXML, which urdfdom uses, ignores namespaces), else ``None``.
+        """
+        tag = element.tag
+        if not isinstance(tag, str):
+            return None
+        if tag[:1] != "{":
+            return tag
+        namespace, _, local = tag[1:].partition("}")
+        return local if namespace == self.namespace else None
+
+    def children(self, element: etree._Element, tag: str) -> list[etree._Element]:
+        return [child for child in element if self.tag(child) == tag]
+
+    def child(self, element: etree._Element, tag: str) -> etree._Element | None:
+        return next((child for child in element if self.tag(child) == tag), None)
+
+    # --- numbers ------------------------------------------------------------------------
+
+    def number(self, element: etree._Element | None, attribute: str) -> model.Number:
+        if element is None:
+            return None
+        text = element.get(attribute)
+        if text is None:
+            return None
+        value = float(text) if _NUMBER.fullmatch(text) else math.nan
+        if not math.isfinite(value):
+            return self.invalid_value(text, attribute, element)
+        return value
+
+    def vector(self, element: etree._Element | None, attribute: str, default=None) -> model.Vector:
+        if element is None:
+            return default
+        text = element.get(attribute)
+        if text is None:
+            return default
+        parts = text.split()
+        values = tuple(float(p) if _NUMBER.fullmatch(p) else math.nan for p in parts)
+        if len(values) != 3 or not all(math.isfinite(v) for v in values):
+            return self.invalid_value(text, attribute, element)
+        return values  # type: ignore[return-value]
+
+    def invalid_value(self, text: str, attribute: str, element: etree._Element) -> model.Invalid:
+        invalid = model.Invalid(text, attribute, self.source_of(element))
+        self.invalid.append(invalid)
+        self.located[id(invalid)] = (element, attribute)
+        return invalid
+
+    def origin(self, element: etree._Element | None) -> model.Origin:
+        if element is None:
+            return model.Origin()
+        return model.Origin(
+            self.vector(element, "xyz", (0.0, 0.0, 0.0)),
+            self.vector(element, "rpy", (0.0, 0.0, 0.0)),
+            self.source_of(element),
+        )
+
+    # --- elements -----------------------------------------------------------------------
+
+    def robot(self, root: etree._Element) -> model.Robot:
+        if isinstance(root.tag, str):
+            self.namespace = etree.QName(root).namespace
+        if self.tag(root) != "robot":
+            source = self.source_of(root)
+            tag = etree.QName(root).localname if isinstance(root.tag, str) else "?"
+            raise InputError(
+                f"the root element is <{tag}>, not <robot>: not a URDF robot description",
+                source.path,
+                source.line,
+                source.column,
+            )
+        self.order = {element: index for index, element in enumerate(root.iter())}
+        links, joints, materials = [], [], []
+        extensions: list[model.Extension] = []
+        for child in root:
+            tag = self.tag(child)
+            if tag == "link":
+                links.append(self.link(child))
+            elif tag == "joint":
+                joints.append(self.joint(child))
+            elif tag == "material":
+                materials.append(model.Material(child.get("name", ""), self.source_of(child)))
+            elif tag == "gazebo":
+                extensions.append(self.extension(child))
+        return model.Robot(
+            root.get("name"),
+            tuple(links),
+            tuple(joints),
+            tuple(materials),
+            self.source_of(root),
+            self.files,
+            tuple(sorted(self.invalid, key=self.document_order)),
+            extensions=tuple(extensions),
+        )
+
+    def extension(self, element: etree._Element) -> model.Extension:
+        tags = tuple(
+            (etree.QName(child).localname, (child.text or "").strip())
+            for child in element
+            if isinstance(child.tag, str)
+        )
+        return model.Extension(element.get("reference"), tags, self.source_of(element))
+
+    def document_order(self, invalid: model.Invalid) -> tuple[int, int]:
+        element, attribute = self.located[id(invalid)]
+        attributes = list(element.attrib)
+        return (
+            self.order.get(element, len(self.order)),
+            attributes.index(attribute) if attribute in attributes else 0,
+        )
+
+    def link(self, element: etree._Element) -> model.Link:
+        inertial = self.child(element, "inertial")
+        return model.Link(
+            element.get("name", ""),
+            None if inertial is None else self.inertial(inertial),
+            tuple(self.shape(e, "visual") for e in self.children(element, "visual")),
+            tuple(self.shape(e, "collision") for e in self.children(element, "collision")),
+            self.source_of(element),
+        )
+
+    def inertial(self, element: etree._Element) -> model.Inertial:
+        mass = self.child(element, "mass")
+        inertia = self.child(element, "inertia")
+        values = {name: self.number(inertia, name) for name in model.Inertial.TENSOR}
+        return model.Inertial(
+            self.origin(self.child(element, "origin")),
+            self.number(mass, "value"),
+            source=self.source_of(element),
+            mass_source=None if mass is None else self.source_of(mass),
+            inertia_source=None if inertia is None else self.source_of(inertia),
+            **values,
+        )
+
+    def shape(self, element: etree._Element, kind: str) -> model.Shape:
+        return model.Shape(
+            kind,
+            element.get("name"),
+            self.origin(self.child(element, "origin")),
+            self.geometry(self.child(element, "geometry"), element),
+            self.source_of(element),
+        )
+
+    def geometry(self, element: etree._Element | None, owner: etree._Element) -> model.Geometry:
+        if element is None:
+            return model.Unknown(None, self.source_of(owner))
+        shape = next((child for child in element if isinstance(child.tag, str)), None)
+        if shape is None:
+            return model.Unknown(None, self.source_of(element))
+        source = self.source_of(shape)
+        tag = self.tag(shape)
+        if tag is None:  # an element of another namespace (<drake:...>)
+            local = etree.QName(shape).localname
+            return model.Unknown(f"{shape.prefix}:{local}" if shape.prefix else shape.tag, source)
+        if tag == "box":
+            return model.Box(self.vector(shape, "size"), source)
+        if tag == "cylinder":
+            return model.Cylinder(
+                self.number(shape, "radius"), self.number(shape, "length"), source
+            )
+        if tag == "sphere":
+            return model.Sphere(self.number(shape, "radius"), source)
+        if tag == "capsule":
+            return model.Capsule(self.number(shape, "radius"), self.number(shape, "length"), source)
+        if tag == "mesh":
+            filename = shape.get("filename", "")
+            resolved, problem = self.resolver.resolve_uri(filename, Path(source.path).parent)
+            return model.Mesh(
+                filename,
+                # only an existing file: a path that names nothing is in ``problem``
+                None if resolved is None or problem is not None else str(resolved),
+                self.vector(shape, "scale", (1.0, 1.0, 1.0)),
+                source,
+                problem,
+            )
+        return model.Unknown(tag, source)
+
+    def joint(self, element: etree._Element) -> model.Joint:
+        parent, child = self.child(element, "parent"), self.child(element, "child")
+        limit, dynamics, mimic = (
+            self.child(element, "limit"),
+            self.child(element, "dynamics"),
+            self.child(element, "mimic"),
+        )
+        axis = self.child(element, "axis")
+        return model.Joint(
+            element.get("name", ""),
+            element.get("type", ""),
+            None if parent is None else parent.get("link"),
+            None if child is None else child.get("link"),
+            self.origin(self.child(element, "origin")),
+            None if axis is None else self.vector(axis, "xyz", (1.0, 0.0, 0.0)),
+            None
+            if limit is None
+            else model.Limit(
+                self.number(limit, "lower"),
+                self.number(limit, "upper"),
+                self.number(limit, "effort"),
+                self.number(limit, "velocity"),
+                self.source_of(limit),
+            ),
+            None
+            if dynamics is None
+            else model.Dynamics(
+                self.number(dynamics, "damping"),
+                self.number(dynamics, "friction"),
+                self.source_of(dynamics),
+            ),
+            None
+            if mimic is None
+            else model.Mimic(
+                mimic.get("joint", ""),
+                self.number(mimic, "multiplier"),
+                self.number(mimic, "offset"),
+                self.source_of(mimic),
+            ),
+            self.source_of(element),
+        )

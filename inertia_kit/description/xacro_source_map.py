@@ -1,0 +1,141 @@
+"""
+The source map of a xacro expansion: every element stamped with the file, line and column it
+was written at, and the stamps carried through macro expansion onto the URDF tree.
+
+:func:`parse_stamped` parses a file with expat into minidom and stamps each element (DOM user
+data under :data:`STAMP`, which minidom copies onto clones, so a macro body's stamps survive
+its expansion); :func:`add_call_site` records a macro call on the elements it produced; and
+:func:`to_lxml` turns the expanded minidom tree into the lxml tree the loader reads, with a map
+from each lxml element to its :class:`~inertia_kit.description.model.Source`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
+from xml.dom import Node, UserDataHandler
+
+from inertia_kit.description import safexml
+from inertia_kit.description.model import Source
+from inertia_kit.errors import InputError
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+#: The DOM user-data key of an element's stamp, a :class:`Source`.
+STAMP = "inertia_kit.source"
+
+
+class _CopyStampOnClone:
+    """A DOM ``UserDataHandler``: a clone of a stamped node (a macro body) keeps its stamp."""
+
+    def handle(self, operation, key, data, src, dst) -> None:
+        if dst is not None and operation in (
+            UserDataHandler.NODE_CLONED,
+            UserDataHandler.NODE_IMPORTED,
+        ):
+            dst.setUserData(key, data, self)
+
+
+_COPY_STAMP = _CopyStampOnClone()
+
+
+def stamp_of(node) -> Source | None:
+    """Where the minidom element ``node`` was written, as stamped; ``None`` if unstamped."""
+    return node.getUserData(STAMP)
+
+
+def add_call_site(node, site: Source) -> None:
+    """Prepend the macro call ``site`` to the ``calls`` of every stamped element under ``node``."""
+    for element in _elements(node):
+        source = element.getUserData(STAMP)
+        if source is not None:
+            stamp = dataclasses.replace(source, calls=(site, *source.calls))
+            element.setUserData(STAMP, stamp, _COPY_STAMP)
+
+
+def parse_stamped(data: bytes, shown: str):
+    """Parse with expat into minidom, every element stamped with ``Source(shown, line, col)``."""
+    from xml.dom import expatbuilder
+    from xml.parsers import expat
+
+    class Builder(expatbuilder.ExpatBuilderNS):
+        def install(self, parser) -> None:
+            super().install(parser)
+            parser.EntityDeclHandler = self.refuse_entity
+            parser.ExternalEntityRefHandler = self.refuse_entity
+
+        def refuse_entity(self, *_args) -> None:
+            raise InputError(safexml.NO_ENTITIES, shown, self._parser.CurrentLineNumber)
+
+        def start_element_handler(self, name, attributes) -> None:
+            super().start_element_handler(name, attributes)
+            parser = self._parser
+            source = Source(shown, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
+            self.curNode.setUserData(STAMP, source, _COPY_STAMP)
+
+    try:
+        return Builder().parseString(data)
+    except expat.ExpatError as error:
+        raise InputError(
+            f"not well-formed XML: {expat.ErrorString(error.code)}",
+            shown,
+            error.lineno,
+            error.offset + 1,
+        ) from None
+
+
+def to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]:
+    """
+    Serialise the expanded minidom tree (attributes in document order, not xacro's sorted
+    order) and parse it with lxml; pair elements in document order to carry the stamps over.
+    """
+    from lxml import etree
+
+    out: list[str] = []
+    sources: list[Source] = []
+    _write(root, out, sources, fallback)
+    try:
+        lxml_root = etree.fromstring("".join(out).encode("utf-8"), safexml.parser(huge_tree=True))
+    except etree.XMLSyntaxError as error:
+        raise InputError(f"xacro produced XML lxml cannot read: {error}", fallback.path) from None
+    elements = list(lxml_root.iter(etree.Element))
+    if len(elements) != len(sources):  # pragma: no cover - serialisation is one-to-one
+        raise InputError("internal error: expanded tree does not round-trip", fallback.path)
+    return lxml_root, dict(zip(elements, sources, strict=True))
+
+
+def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
+    # saxutils pulls in urllib, http and email (~20 ms): import it only to write xacro output
+    from xml.sax.saxutils import escape, quoteattr
+
+    kind = node.nodeType
+    if kind == Node.ELEMENT_NODE:
+        source = node.getUserData(STAMP) or inherited
+        sources.append(source)
+        out.append("<" + node.tagName)
+        for name, value in node.attributes.items():
+            out.append(f" {name}={quoteattr(value)}")
+        if not node.childNodes:
+            out.append("/>")
+            return
+        out.append(">")
+        for child in node.childNodes:
+            _write(child, out, sources, source)
+        out.append(f"</{node.tagName}>")
+    elif kind in (Node.TEXT_NODE, Node.CDATA_SECTION_NODE):
+        out.append(escape(node.data))
+    elif kind == Node.COMMENT_NODE:
+        text = node.data.replace("--", "- -")
+        out.append(f"<!--{text}{' ' if text.endswith('-') else ''}-->")
+
+
+def _elements(node) -> Iterator[Any]:
+    """``node`` and its element descendants, document order."""
+    stack = [node]
+    while stack:
+        current = stack.pop()
+        if current.nodeType == Node.ELEMENT_NODE:
+            yield current
+            stack.extend(reversed(current.childNodes))

@@ -1,0 +1,189 @@
+"""
+Robot description text as XML, the way the URDF parsers read it: refused when empty or binary,
+parsed safely (:mod:`.safexml`) with the slips TinyXML2 reads tolerated, and every element's
+start tag located by line and column, which lxml does not give.
+"""
+
+from __future__ import annotations
+
+import bisect
+import re
+from collections.abc import Callable
+from pathlib import Path
+
+from lxml import etree
+
+from inertia_kit.description.safexml import NO_ENTITIES, parser, refuse_entities
+from inertia_kit.errors import InputError
+
+_BOM = b"\xef\xbb\xbf"
+# UTF-16/32 by byte-order mark or by the NUL bytes around a leading "<" (XML 1.0, appendix F)
+_WIDE_STARTS = (b"\xff\xfe", b"\xfe\xff", b"\x00\x00\xfe\xff", b"<\x00", b"\x00<", b"\x00\x00\x00<")
+_SPACE = re.compile(rb"[ \t\r\n]*")
+_VERSION_1 = re.compile(rb"""\bversion\s*=\s*["']1\.[0-9]+["']""")
+_ENCODING = re.compile(rb"""\bencoding\s*=\s*["']([A-Za-z][A-Za-z0-9._-]*)["']""")
+# Everything that starts with "<": comments, CDATA, processing instructions and the DOCTYPE are
+# skipped whole, so the remaining lone "<" are the start tags, in document order ("<" cannot
+# appear in attribute values or text).
+_MARKUP = re.compile(
+    rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]*\[.*?\])?[^>]*>|</|<", re.DOTALL
+)
+
+
+def parse_xml(data: bytes, path: str | Path) -> etree._Element:
+    """
+    Parse XML safely: no network, no DTD loading, no entity expansion, no huge trees.
+
+    Two slips that libxml2 refuses and TinyXML2 (urdfdom, so ROS, Gazebo and PyBullet) reads
+    are tolerated, without moving any line or column: an XML declaration after blank lines or
+    comments, or with a version other than 1.x (``<?xml version="0.0"?>``, common in
+    pybullet_data), and NUL bytes after the end of the document.
+
+    Raises ``InputError`` with the file, line and column of a syntax error, for an empty or
+    binary file, and for any entity declaration.
+    """
+    check_text(data, path)
+    refuse_entities(data, path)
+    encoding = None
+    if not _is_wide(data):
+        data, encoding = _tolerate_declaration(data)
+        end = len(data.rstrip(b"\x00\t\n\r "))
+        if b"\x00" in data[end:]:
+            data = data[:end]
+    try:
+        safe = parser(remove_pis=True, encoding=encoding)
+    except LookupError:
+        raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
+    try:
+        root = etree.fromstring(data, safe, base_url=None)
+    except etree.XMLSyntaxError as error:
+        line, column = error.position if error.position else (None, None)
+        message = re.sub(r",? line \d+, column \d+$", "", str(error.msg or error))
+        raise InputError(f"not well-formed XML: {message}", path, line, column) from None
+    except (ValueError, etree.LxmlError) as error:
+        raise InputError(f"not XML: {error}", path) from None
+    dtd = root.getroottree().docinfo.internalDTD
+    if dtd is not None and next(iter(dtd.iterentities()), None) is not None:
+        # only reachable for encodings the byte-level check cannot read (UTF-16, UTF-32)
+        raise InputError(NO_ENTITIES, path, 1)
+    return root
+
+
+def check_text(data: bytes, path: str | Path) -> None:
+    """Refuse an empty file and a binary one (a NUL byte before the end) with a plain message."""
+    if _is_wide(data):
+        return
+    if not data.removeprefix(_BOM).strip(b"\x00\t\n\r "):
+        raise InputError("empty file: not a robot description", path)
+    nul = data.rstrip(b"\x00\t\n\r ").find(b"\x00")
+    if nul >= 0:
+        line = data.count(b"\n", 0, nul) + 1
+        raise InputError("binary file (it holds NUL bytes): not a robot description", path, line)
+
+
+def start_tag_positions(
+    data: bytes, root: etree._Element
+) -> dict[etree._Element, tuple[int, int]] | None:
+    """
+    ``element -> (line, column)`` of the ``<`` of every element's start tag, both 1-based, the
+    column in characters; ``None`` when the bytes cannot be matched to the tree (UTF-16).
+
+    lxml's ``sourceline`` is the line where the start tag *ends*, wrong for a tag spread over
+    several lines (and off by one past line 65535, libxml2 2.14), and it has no column at all.
+    """
+    if _is_wide(data):
+        return None
+    starts = [match.start() for match in _MARKUP.finditer(data) if match.end() - match.start() == 1]
+    elements = [element for element in root.iter() if isinstance(element.tag, str)]
+    if len(starts) != len(elements):
+        return None
+    newlines = [match.start() for match in re.finditer(b"\n", data)]
+    positions: dict[etree._Element, tuple[int, int]] = {}
+    for offset, element in zip(starts, elements, strict=True):
+        name = _qualified_name(element)
+        if not data.startswith(b"<" + name, offset):
+            return None
+        index = bisect.bisect_left(newlines, offset)
+        line_start = newlines[index - 1] + 1 if index else len(_BOM) * data.startswith(_BOM)
+        column = len(data[line_start:offset].decode("utf-8", "replace")) + 1
+        positions[element] = (index + 1, column)
+    return positions
+
+
+def element_locator(
+    data: bytes, root: etree._Element
+) -> Callable[[etree._Element], tuple[int | None, int | None]]:
+    """
+    ``element -> (line, column)`` for the tree ``root`` parsed from ``data``: the start tag's
+    ``<`` (:func:`start_tag_positions`); where the bytes cannot be matched to the tree, lxml's
+    ``sourceline`` and the first ``<tag`` on that line.
+    """
+    positions = start_tag_positions(data, root)
+    lines = data.split(b"\n")
+
+    def position(element: etree._Element) -> tuple[int | None, int | None]:
+        found = positions.get(element) if positions is not None else None
+        if found is None:
+            found = element.sourceline, _column(lines, element)
+        return found
+
+    return position
+
+
+def _is_wide(data: bytes) -> bool:
+    return data.startswith(_WIDE_STARTS)
+
+
+def _tolerate_declaration(data: bytes) -> tuple[bytes, str | None]:
+    """
+    ``data`` with a misplaced or non-1.x XML declaration blanked to spaces (newlines kept, so
+    positions hold), and the encoding it named; ``data`` unchanged when the declaration is fine.
+    """
+    start = len(_BOM) if data.startswith(_BOM) else 0
+    position = _SPACE.match(data, start).end()
+    while data.startswith(b"<!--", position):
+        end = data.find(b"-->", position + 4)
+        if end < 0:
+            return data, None
+        position = _SPACE.match(data, end + 3).end()
+    if not data.startswith(b"<?xml", position) or data[position + 5 : position + 6] not in (
+        b" ",
+        b"\t",
+        b"\r",
+        b"\n",
+        b"?",
+    ):
+        return data, None
+    end = data.find(b"?>", position)
+    if end < 0:
+        return data, None
+    declaration = data[position : end + 2]
+    if position == start and _VERSION_1.search(declaration):
+        return data, None
+    encoding = _ENCODING.search(declaration)
+    blank = bytes(b if b in b"\r\n" else 32 for b in declaration)
+    return (
+        data[:position] + blank + data[end + 2 :],
+        None if encoding is None else encoding.group(1).decode("ascii"),
+    )
+
+
+def _qualified_name(element: etree._Element) -> bytes:
+    """The element's name as written: ``prefix:local`` or ``local``."""
+    name = element.tag.rpartition("}")[2]
+    return (f"{element.prefix}:{name}" if element.prefix else name).encode("utf-8")
+
+
+def _column(lines: list[bytes], element: etree._Element) -> int | None:
+    """1-based column of ``<tag`` on the element's line, when the tags cannot be matched."""
+    line = element.sourceline
+    if line is None or not 0 < line <= len(lines) or not isinstance(element.tag, str):
+        return None
+    text = lines[line - 1]
+    match = re.search(b"<" + re.escape(_qualified_name(element)) + rb"(?=[\s/>])", text)
+    if match is None:
+        return None
+    prefix = text[: match.start()]
+    if line == 1:
+        prefix = prefix.removeprefix(_BOM)
+    return len(prefix.decode("utf-8", "replace")) + 1

@@ -1,0 +1,146 @@
+"""
+How the solid a mesh's surface bounds is found, and so how its volume integrals are obtained
+(``method``):
+
+``exact``
+  The surface is closed and consistently wound (directly, or once vertices that differ only by
+  float noise are merged). A surface wound inside-out has a negative volume: it is reported as
+  ``inverted`` and integrated flipped.
+``repaired``
+  Closed, but some triangles were wound against their neighbours; trimesh's winding repair
+  made it consistent.
+``convex-hull``
+  An open surface bounds no solid; the mass properties are those of its convex hull, and
+  ``volume_error`` bounds how far that is from the open surface's own volume.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from inertia_kit.errors import MeshError
+from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
+from inertia_kit.physics.volume_moments import VolumeMoments
+
+Method = Literal["exact", "repaired", "convex-hull"]
+
+# |volume| below this fraction of the bounding box's largest extent cubed is no solid at all:
+# far above the rounding of the volume sum, far below any real part (a 1 m plate 1 µm thick
+# is 1e-6)
+EMPTY_VOLUME_RTOL = 1e-12
+
+# vertices closer than this fraction of the mesh's extent are merged before the trimesh checks:
+# float noise, not geometry
+MERGE_RTOL = 1e-8
+
+
+@dataclass(frozen=True)
+class Classification:
+    """What a surface was found to bound: the integrals and how they were obtained."""
+
+    moments: VolumeMoments
+    method: Method
+    inverted: bool = False
+    closed: bool = True
+    volume_error: float = 0.0
+
+
+def classify(
+    path: Path, integrator: SurfaceIntegrator, triangles: NDArray | None
+) -> Classification:
+    """
+    Pick the method for a surface integrated in ``integrator``, in the file's unit:
+    ``triangles`` (n, 3, 3) are needed only when the surface is not closed.
+
+    Raises
+    ------
+    MeshError
+      ``empty`` when the surface, or its convex hull, bounds no volume.
+    """
+    if integrator.closed:
+        return _oriented(path, integrator, "exact")
+    assert triangles is not None
+    import trimesh
+
+    merged = trimesh.Trimesh(
+        vertices=triangles.reshape(-1, 3),
+        faces=np.arange(3 * len(triangles)).reshape(-1, 3),
+        process=False,
+    )
+    merged.merge_vertices(digits_vertex=_merge_digits(integrator.bounds))
+    faces = merged.faces
+    # merging collapses slivers narrower than the noise: they hold no volume
+    merged.update_faces(
+        (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
+    )
+    if merged.is_watertight and len(merged.faces):
+        method: Method = "exact" if merged.is_winding_consistent else "repaired"
+        if method == "repaired":
+            try:
+                trimesh.repair.fix_winding(merged)
+            except ImportError as error:
+                # trimesh walks the face graph with networkx, an optional dependency of its own
+                raise ImportError(
+                    f"repairing the triangle winding of {path} needs networkx "
+                    f"(`pip install networkx`): {error}"
+                ) from error
+        closed = integrate(merged.triangles)
+        if closed.closed:
+            return _oriented(path, closed, method)
+    return _convex_hull(path, triangles, integrator)
+
+
+def _oriented(path: Path, integrator: SurfaceIntegrator, method: Method) -> Classification:
+    """A closed surface's integrals with positive volume; a negative one is flipped."""
+    moments = integrator.moments
+    _check_volume(path, moments.volume, integrator.bounds, "the mesh's closed surface")
+    if moments.volume > 0:
+        return Classification(moments, method)
+    # a repaired winding is oriented by whichever triangle the repair started from: flipping
+    # it is part of the repair, not a fault of the file
+    return Classification(moments.negated(), method, inverted=method == "exact")
+
+
+def _convex_hull(path: Path, triangles: NDArray, integrator: SurfaceIntegrator) -> Classification:
+    import manifold3d
+
+    hull = manifold3d.Manifold.hull_points(triangles.reshape(-1, 3))
+    # to_mesh64 (manifold3d ≥ 3) keeps the input's float64 vertices; to_mesh rounds to float32
+    shell = getattr(hull, "to_mesh64", hull.to_mesh)()
+    vertices = np.asarray(shell.vert_properties, dtype=np.float64)[:, :3]
+    hull_triangles = vertices[np.asarray(shell.tri_verts, dtype=np.intp)]
+    moments = integrate(hull_triangles).moments if len(hull_triangles) else None
+    volume = 0.0 if moments is None else moments.volume
+    _check_volume(path, volume, integrator.bounds, "the mesh is open and its convex hull")
+    assert moments is not None
+    if volume < 0:
+        moments = moments.negated()
+    open_volume = integrate(triangles, origin=moments.centroid).moments.volume
+    error = abs(moments.volume - abs(open_volume)) / moments.volume
+    return Classification(moments, "convex-hull", closed=False, volume_error=error)
+
+
+def _check_volume(path: Path, volume: float, bounds: NDArray, what: str) -> None:
+    extent = float(np.max(bounds[1] - bounds[0]))
+    if not abs(volume) > EMPTY_VOLUME_RTOL * extent**3:
+        raise MeshError(
+            path,
+            "empty",
+            f"{what} bounds no volume ({fmt(volume)} file units³ in a "
+            f"bounding box {fmt(extent)} wide); export the solid body, not a flat sheet",
+        )
+
+
+def _merge_digits(bounds: NDArray) -> int:
+    """Decimal digits that round away noise of about ``MERGE_RTOL`` times the mesh's extent."""
+    extent = float(np.max(bounds[1] - bounds[0]))
+    if not extent > 0:
+        return 8
+    return max(0, -math.floor(math.log10(MERGE_RTOL * extent)))

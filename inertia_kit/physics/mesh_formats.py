@@ -1,0 +1,199 @@
+"""
+Mesh files read into a triangle surface, in the file's own unit: which formats, and how.
+
+STL is read and integrated in one pass by :func:`.stl.read_stl`, without trimesh (the fast
+path); its triangles are read again, through trimesh, only when the surface is not closed. OBJ,
+DAE, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into one triangle
+soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the caller scales
+the integrals analytically. trimesh is imported only for a file that needs it.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from inertia_kit.errors import MeshError
+from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
+from inertia_kit.physics.stl import read_stl
+
+if TYPE_CHECKING:
+    import trimesh
+
+# file suffix -> (trimesh file type, name for messages); STL is read without trimesh
+FORMATS = {
+    ".stl": ("stl", "STL"),
+    ".obj": ("obj", "Wavefront OBJ"),
+    ".dae": ("dae", "COLLADA"),
+    ".ply": ("ply", "PLY"),
+    ".glb": ("glb", "binary glTF"),
+    ".gltf": ("gltf", "glTF"),
+}
+
+# what to do about a MeshError of each kind, for messages that do not say it yet
+ADVICE = {
+    "not-found": "check the path and the package it names",
+    "unreadable": "re-export it from the CAD tool as a binary STL",
+    "empty": "export the part's solid body",
+}
+
+
+def read_surface(
+    path: str | Path,
+) -> tuple[SurfaceIntegrator, NDArray[np.float64] | None, float]:
+    """
+    The surface a mesh file holds, integrated in the file's own unit.
+
+    Parameters
+    ----------
+    path : str or Path
+      STL (binary or ASCII), OBJ, DAE, PLY, GLB or glTF file.
+
+    Returns
+    -------
+    integrator : SurfaceIntegrator
+      Volume integrals, closure and bounds of every triangle, in the file's unit.
+    triangles : (n, 3, 3) float or None
+      The triangles, in the file's unit; ``None`` for a closed STL, which is not read twice
+      (they are needed only to repair or replace a surface that is not closed).
+    unit_scale : float
+      Metres per file unit.
+
+    Raises
+    ------
+    MeshError
+      ``not-found`` for a missing file; ``unreadable`` for a corrupt file or an unsupported
+      format; ``empty`` for a file with no triangles.
+    """
+    file = Path(path)
+    if not file.is_file():
+        what = "is a directory, not a mesh file" if file.is_dir() else "does not exist"
+        raise MeshError(
+            path, "not-found", f"the mesh file {what}; check the path and the package it names"
+        )
+    suffix = file.suffix.lower()
+    if suffix not in FORMATS:
+        raise MeshError(
+            path,
+            "unreadable",
+            f"unsupported mesh format `{file.suffix or '(no suffix)'}`, expected one of "
+            f"{', '.join(FORMATS)}; convert the mesh to STL",
+        )
+
+    if suffix != ".stl":
+        triangles, unit_scale = _read_scene(file, suffix)
+        return integrate(triangles), triangles, unit_scale
+    try:
+        integrator = read_stl(file)
+    except OSError as error:
+        raise MeshError(
+            path, "unreadable", f"cannot read the file ({error}); check its permissions"
+        ) from None
+    except MeshError as error:
+        raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
+    triangles = None if integrator.closed else _read_scene(file, suffix)[0]
+    return integrator, triangles, 1.0
+
+
+def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
+    """
+    Every triangle of a file trimesh reads, placed by its scene graph.
+
+    Returns
+    -------
+    triangles : (n, 3, 3) float
+      In the file's unit, wound as the file winds them (a mirroring node transform is undone).
+    unit_scale : float
+      Metres per file unit.
+    """
+    file_type, name = FORMATS[suffix]
+    try:
+        import trimesh
+    except ImportError as error:  # pragma: no cover - trimesh is a dependency
+        raise MeshError(path, "unreadable", f"reading {name} needs trimesh: {error}") from None
+    try:
+        scene = trimesh.load_scene(str(path), file_type=file_type, process=False)
+        parts, units = _scene_parts(scene, trimesh.Trimesh)
+    except MeshError:
+        raise
+    except Exception as error:
+        # trimesh and its parsers raise anything from ValueError to XML and struct errors
+        text = str(error).strip().splitlines()[0][:200] if str(error).strip() else ""
+        kind = type(error).__name__
+        detail = text if text.startswith(kind) else f"{kind}: {text}".rstrip(": ")
+        raise MeshError(
+            path,
+            "unreadable",
+            f"cannot read the file as {name} ({detail}); re-export it, or convert it to STL",
+        ) from None
+    if not parts:
+        raise MeshError(
+            path, "empty", f"the {name} file holds no triangles; export the part's solid body"
+        )
+    factors = {_unit_factor(path, unit) for unit in units}
+    if len(factors) > 1:
+        raise MeshError(
+            path,
+            "unreadable",
+            f"the file's meshes are in different units ({', '.join(sorted(set(units)))}); "
+            "re-export it in one unit",
+        )
+    triangles = np.concatenate(parts)
+    if not np.isfinite(triangles).all():
+        raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
+    return triangles, factors.pop()
+
+
+def _scene_parts(
+    scene: trimesh.Scene, mesh_type: type
+) -> tuple[list[NDArray[np.float64]], list[str]]:
+    """The triangles (n, 3, 3) of each mesh instance in the scene graph, and its unit."""
+    parts, units = [], []
+    for node in scene.graph.nodes_geometry:
+        matrix, geometry_name = scene.graph[node]
+        geometry = scene.geometry[geometry_name]
+        if not isinstance(geometry, mesh_type) or len(geometry.faces) == 0:
+            continue
+        vertices = _transformed(np.asarray(geometry.vertices, dtype=np.float64), matrix)
+        faces = np.asarray(geometry.faces)
+        if np.linalg.det(matrix[:3, :3]) < 0:
+            # a mirroring node turns the winding inside-out: undo it, as a renderer does
+            faces = faces[:, ::-1]
+        parts.append(vertices[faces])
+        units.append(geometry.units or "meters")
+    return parts, units
+
+
+def _transformed(vertices: NDArray[np.float64], matrix: NDArray) -> NDArray[np.float64]:
+    """(n, 3) vertices under a (4, 4) transform, element by element."""
+    matrix = np.asarray(matrix, dtype=np.float64)
+    if np.array_equal(matrix, np.eye(4)):
+        return vertices
+    # elementwise, not a matrix product: BLAS may round the same vertex differently at
+    # different rows, and the closure check compares vertices by their exact bits
+    out = vertices[:, 0:1] * matrix[:3, 0]
+    out += vertices[:, 1:2] * matrix[:3, 1]
+    out += vertices[:, 2:3] * matrix[:3, 2]
+    out += matrix[:3, 3]
+    return out
+
+
+def _unit_factor(path: Path, unit: str) -> float:
+    """Metres per ``unit``, as trimesh spells units (``meters``, ``0.001 * meters``)."""
+    from trimesh.units import unit_conversion
+
+    try:
+        factor = float(unit_conversion(unit, "meters"))
+    except Exception:
+        raise MeshError(
+            path, "unreadable", f"unknown unit `{unit}` in the file; re-export it in metres"
+        ) from None
+    if not (math.isfinite(factor) and factor > 0):
+        raise MeshError(
+            path, "unreadable", f"unit `{unit}` is {factor} m; re-export the file in metres"
+        )
+    return factor
