@@ -56,7 +56,8 @@ from types import ModuleType
 from typing import Any
 
 from inertia_kit.description.model import Source
-from inertia_kit.lint.findings import Finding, Fix, Severity
+from inertia_kit.engines.vocabulary import Event
+from inertia_kit.lint.findings import Finding, Fix, Severity, severity_of
 
 
 @dataclass
@@ -116,4 +117,16 @@ class RuleContext:
             fix=fix,
             macro_path=macro_path,
             macro_line=macro_line,
+        )
+
+    def engine_finding(self, event: Event, help: str) -> Finding:
+        """An engine rule's finding for one engine event, at the severity of its verdict."""
+        return self.finding(
+            event.message,
+            event.source,
+            link=event.link,
+            joint=event.joint,
+            expected=event.expected,
+            help=help,
+            severity=severity_of(event.verdict),
         )

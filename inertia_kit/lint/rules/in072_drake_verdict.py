@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines import drake
-from inertia_kit.lint.findings import Finding, Severity, severity_of
+from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN072"
@@ -31,12 +31,4 @@ HELP = {
 
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     for event in drake.events(robot):
-        yield ctx.finding(
-            event.message,
-            event.source,
-            link=event.link,
-            joint=event.joint,
-            expected=event.expected,
-            help=HELP[event.kind],
-            severity=severity_of(event.verdict),
-        )
+        yield ctx.engine_finding(event, HELP[event.kind])

@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines import pybullet
-from inertia_kit.lint.findings import Finding, Severity, severity_of
+from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 
@@ -37,11 +37,4 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     factor = float(ctx.option("factor"))
     from_file = bool(ctx.option("use_inertia_from_file"))
     for event in pybullet.events(robot, factor=factor, inertia_from_file=from_file):
-        yield ctx.finding(
-            event.message,
-            event.source,
-            link=event.link,
-            expected=event.expected,
-            help=HELP[event.kind],
-            severity=severity_of(event.verdict),
-        )
+        yield ctx.engine_finding(event, HELP[event.kind])
