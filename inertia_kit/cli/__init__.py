@@ -628,11 +628,9 @@ lint_main = lint_command
 
 
 def _material_help() -> str:
-    # the table lives in fill.py; spelled out here so --help needs no import of the physics
-    return (
-        "Density from a material: steel 7850, aluminium 2700, abs 1040, pla 1240, petg 1270, "
-        "nylon 1150, carbon-fibre 1600, water 1000, wood 700 kg/m³."
-    )
+    from inertia_kit.fill.materials import materials_text
+
+    return f"Density from a material: {materials_text()}."
 
 
 @click.command("fill", context_settings={"help_option_names": ["-h", "--help"]})
@@ -745,7 +743,9 @@ def fill(
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
-    from inertia_kit.fill.plan import MATERIALS, apply, plan_fill, plan_fill_output, write_output
+    from inertia_kit.fill.output import plan_fill_output, write_output
+    from inertia_kit.fill.plan import apply, plan_fill
+    from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config import ConfigFinder
 
     try:
@@ -754,21 +754,10 @@ def fill(
         if output is not None and len(paths) != 1:
             raise UsageError(f"-o takes exactly one PATH, got {len(paths)}")
         arguments = _xacro_args(xacro_args)
-        if material is not None:
-            if density is not None:
-                raise UsageError("give --density or --material, not both")
-            if material.lower() not in MATERIALS:
-                raise UsageError(f"--material: unknown {material!r}; known: {', '.join(MATERIALS)}")
-            density = MATERIALS[material.lower()]
-        if total_mass is not None:
-            if density is not None:
-                raise UsageError("give --total-mass or --density/--material, not both")
-            if not (total_mass > 0 and total_mass != float("inf")):
-                raise UsageError(f"--total-mass must be a positive number of kg, got {total_mass}")
-        if density is None:
-            density = 1000.0
-        if not (density > 0 and density != float("inf")):
-            raise UsageError(f"--density must be a positive number of kg/m³, got {density}")
+        try:
+            density = density_option(density, material, total_mass)
+        except ValueError as error:
+            raise UsageError(str(error)) from None
         masses = _masses(mass_options)
         finder = ConfigFinder(config_path)
     except UsageError as error:
@@ -788,12 +777,7 @@ def fill(
     }
     for path in paths:
         try:
-            # configured per-link settings, under --mass given on the command line
-            links = finder.for_file(path).links
-            per_file = {
-                "masses": {n: v.mass for n, v in links.items() if v.mass is not None} | masses,
-                "densities": {n: v.density for n, v in links.items() if v.density is not None},
-            }
+            per_file = per_link(finder.for_file(path).links, masses)
             if output is not None:
                 plans.append(plan_fill_output(path, output, **options, **per_file))
             else:
@@ -804,12 +788,9 @@ def fill(
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             failed = True
-    known = set().union(*(plan.links for plan in plans)) if plans else set()
-    unknown = [name for name in masses if name not in known]
-    if unknown and plans:
-        click.echo(
-            f"error: --mass names no link in the files: {', '.join(sorted(unknown))}", err=True
-        )
+    unknown = unknown_links(masses, plans)
+    if unknown:
+        click.echo(f"error: --mass names no link in the files: {', '.join(unknown)}", err=True)
         return 2
 
     write = not (show_diff or check)

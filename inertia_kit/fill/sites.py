@@ -61,10 +61,12 @@ def written_values(properties: MassProperties, rpy=(0.0, 0.0, 0.0)) -> dict[str,
 
 @dataclass(frozen=True)
 class Target:
-    """A link to fill with ``properties`` (link frame, about its centre of mass)."""
+    """A link to fill with ``properties`` (link frame, about its centre of mass); ``basis``
+    says where its mass comes from."""
 
     link: LinkAnalysis
     properties: MassProperties
+    basis: str = ""
 
     @property
     def name(self) -> str:
