@@ -561,6 +561,7 @@ def lint(
 
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.findings import Severity
+    from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render, summary
     from inertia_kit.lint.output import statistics as rule_statistics
     from inertia_kit.lint.runner import lint_paths
@@ -581,43 +582,22 @@ def lint(
         click.echo(f"error: {message}", err=True)
         return 2
 
-    told: set[str] = set()
-    for result in results:
-        lines = [f"error: {result.error}"] if result.error else []
-        if result.fragment:
-            lines.append(
-                f"note: {result.path}: a xacro fragment (macros and properties only, to be "
-                "included): skipped"
-            )
-        lines += [f"warning: {note}" for note in result.notes]
-        for line in lines:
-            if line not in told:
-                told.add(line)
-                click.echo(line, err=True)
+    run = merge(results)
+    for level, text in run.messages:
+        click.echo(f"{level}: {text}", err=True)
     if not results:
         click.echo(
             f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}", err=True
         )
-
-    findings, counted, seen = [], False, set()
-    for result in results:
-        for finding in result.findings:
-            key = (finding.path, finding.line, finding.column, finding.code, finding.message)
-            if key not in seen:
-                seen.add(key)
-                findings.append(finding)
-        counted = counted or bool(result.failing)
-    errors = [result.error for result in results if result.error is not None]
     if statistics:
-        output = rule_statistics(findings, as_json=output_format == "json")
+        output = rule_statistics(run.findings, as_json=output_format == "json")
     else:
-        output = render(findings, output_format, errors=errors, style=click.style)
+        output = render(run.findings, output_format, errors=run.errors, style=click.style)
     click.echo(output, nl=False, color=_colour())
-    checked = sum(1 for r in results if r.error is None and not r.fragment and not r.disabled)
-    click.echo(summary(findings, checked, len(errors)), err=True)
-    if errors:
+    click.echo(summary(run.findings, run.checked, len(run.errors)), err=True)
+    if run.errors:
         return 2
-    return 1 if counted and not exit_zero else 0
+    return 1 if run.failing and not exit_zero else 0
 
 
 main.add_command(lint_command)
