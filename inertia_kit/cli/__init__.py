@@ -11,7 +11,6 @@ import os
 # set before numpy is first imported, unless the user chose
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import json
 import textwrap
 from collections.abc import Callable
 from typing import Any
@@ -103,11 +102,13 @@ def _common_options(command: Callable) -> Callable:
 
 
 def _run_primitive(description: dict[str, Any], build: Callable[..., Any], **options: Any) -> None:
+    from inertia_kit.report.mass import Part
+
     try:
-        unit = build(density=1.0)  # at unit density the mass is the volume
+        part = Part(description, build(density=1.0))  # at unit density the mass is the volume
     except ValueError as error:
         raise UsageError(str(error)) from None
-    _report(description, unit, unit.mass, None, **options)
+    _show(part, options)
 
 
 @mass_group.command("box")
@@ -187,29 +188,13 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
     """A closed triangle mesh: STL, OBJ, DAE, PLY or GLB."""
     factors = _parse_scale(scale)
     from inertia_kit.errors import MeshError
-    from inertia_kit.physics.meshes import mesh_solid
+    from inertia_kit.report.mass import mesh_part
 
     try:
-        solid = mesh_solid(path, factors)
+        part = mesh_part(path, factors)
     except MeshError as error:
         raise UsageError(str(error)) from None
-    unit = solid.mass_properties(density=1.0)
-    diagnostics = {
-        "method": solid.method,
-        "closed": solid.closed,
-        "inverted": solid.inverted,
-        "volume_error": solid.volume_error,
-        "triangles": solid.triangle_count,
-        "unit_scale": solid.unit_scale,
-        "bounds": solid.bounds.tolist(),
-    }
-    _report(
-        {"shape": "mesh", "path": path, "scale": list(factors)},
-        unit,
-        unit.mass,
-        diagnostics,
-        **options,
-    )
+    _show(part, options)
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:
@@ -224,119 +209,14 @@ def _parse_scale(text: str) -> tuple[float, float, float]:
     return values[0], values[1], values[2]
 
 
-def _report(
-    description: dict[str, Any],
-    unit: Any,
-    volume: float,
-    mesh: dict[str, Any] | None,
-    *,
-    density: float | None,
-    mass_kg: float | None,
-    xyz: tuple[float, float, float],
-    rpy: tuple[float, float, float],
-    about: tuple[float, float, float] | None,
-    about_rpy: tuple[float, float, float] | None,
-    output_format: str,
-) -> None:
-    import numpy as np
+def _show(part: Any, options: dict[str, Any]) -> None:
+    from inertia_kit.report.mass import render
 
-    from inertia_kit.description.inertial_xml import inertial_block
-    from inertia_kit.physics.formatting import fmt
-    from inertia_kit.physics.frames import rpy_matrix
-    from inertia_kit.physics.primitives import body_mass
-
-    if density is None and mass_kg is None:
-        density = 1000.0
     try:
-        total = body_mass(volume, density, mass_kg)
-        body = unit.with_mass(total).placed(xyz, rpy).cleaned()
+        text = render(part, **options)
     except ValueError as error:
         raise UsageError(str(error)) from None
-    point = None if about is None and about_rpy is None else np.asarray(about or (0.0, 0.0, 0.0))
-    axes = None if about_rpy is None else rpy_matrix(about_rpy)
-    about_tensor = None if point is None else body.inertia_about(point, axes)
-    block = inertial_block(body)
-
-    if output_format == "json":
-        payload = {
-            **description,
-            "placement": {"xyz": list(xyz), "rpy": list(rpy)},
-            "density": total / volume,
-            "volume": volume,
-            "mass": body.mass,
-            "com": body.com.tolist(),
-            "inertia": body.inertia.tolist(),
-            "principal_moments": body.principal_moments.tolist(),
-            "principal_axes": body.principal_axes.tolist(),
-            "radii_of_gyration": body.radii_of_gyration.tolist(),
-            "about": None
-            if point is None
-            else {
-                "point": point.tolist(),
-                "rpy": None if about_rpy is None else list(about_rpy),
-                "inertia": about_tensor.tolist(),
-            },
-            "mesh": mesh,
-            "urdf": block,
-        }
-        click.echo(json.dumps(payload, indent=2))
-        return
-
-    def vector(v: Any) -> str:
-        return "(" + ", ".join(fmt(x) for x in v) + ")"
-
-    def tensor_lines(t: Any) -> list[str]:
-        return [
-            f"  ixx {fmt(t[0, 0]):>11}   iyy {fmt(t[1, 1]):>11}   izz {fmt(t[2, 2]):>11}",
-            f"  ixy {fmt(t[0, 1]):>11}   ixz {fmt(t[0, 2]):>11}   iyz {fmt(t[1, 2]):>11}",
-        ]
-
-    shape = description["shape"]
-    dims = ", ".join(
-        f"{key} {vector(value) if isinstance(value, list) else fmt(value)} m"
-        for key, value in description.items()
-        if key not in ("shape", "path", "scale")
-    )
-    title = (
-        f"{shape} {description['path']} scale {vector(description['scale'])}"
-        if shape == "mesh"
-        else f"{shape} {dims}"
-    )
-    basis = f"density {fmt(density)} kg/m³" if mass_kg is None else f"mass {fmt(mass_kg)} kg"
-    lines = [f"{title}, {basis}"]
-    if mesh is not None:
-        lines.append(
-            f"mesh: {mesh['triangles']} triangles, {mesh['method']}"
-            + (
-                f" (volume error up to {fmt(100 * mesh['volume_error'], 3)} %)"
-                if mesh["volume_error"]
-                else ""
-            )
-            + (
-                ", INVERTED: triangles wound inside-out, computed from the flipped surface"
-                if mesh["inverted"]
-                else ""
-            )
-            + (f", file unit {fmt(mesh['unit_scale'])} m" if mesh["unit_scale"] != 1 else "")
-        )
-        lines.append(f"bounds: {vector(mesh['bounds'][0])} to {vector(mesh['bounds'][1])} m")
-    lines += [
-        f"mass:   {fmt(body.mass, 6)} kg   "
-        f"(volume {fmt(volume, 6)} m³, density {fmt(total / volume)} kg/m³)",
-        f"centre of mass: {vector(body.com)} m",
-        "inertia about the centre of mass, link axes (kg·m²):",
-        *tensor_lines(body.inertia),
-        f"principal moments: {vector(body.principal_moments)} kg·m²;"
-        f" radii of gyration {vector(body.radii_of_gyration)} m",
-    ]
-    if about_tensor is not None:
-        axes_note = "" if about_rpy is None else f", axes rotated by rpy {vector(about_rpy)}"
-        lines += [
-            f"inertia about {vector(point)} m{axes_note} (kg·m²):",
-            *tensor_lines(about_tensor),
-        ]
-    lines += ["URDF:", block]
-    click.echo("\n".join(lines))
+    click.echo(text)
 
 
 # --- options shared by report, lint and fill ---------------------------------------------------
