@@ -16,7 +16,7 @@ from click.testing import CliRunner
 from kit import REPO, moving
 
 from inertia_kit import load
-from inertia_kit.cli import fill_command
+from inertia_kit.cli.fill import fill_command
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.frames import rpy_matrix
 from inertia_kit.physics.mass import shift_tensor

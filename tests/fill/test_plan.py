@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 from kit import REPO
 
-from inertia_kit.cli import fill_command
+from inertia_kit.cli.fill import fill_command
 from inertia_kit.fill.materials import MATERIALS
 from inertia_kit.fill.plan import apply, plan_fill
 from inertia_kit.lint.runner import Selection, lint_file

@@ -17,7 +17,7 @@ from click.testing import CliRunner
 from kit import REPO
 from test_plan import block, box, cylinder
 
-from inertia_kit.cli import fill_command
+from inertia_kit.cli.fill import fill_command
 from inertia_kit.errors import InputError
 from inertia_kit.fill.plan import apply, plan_fill
 from inertia_kit.lint.runner import Selection, lint_file
