@@ -47,7 +47,7 @@ class Case:
     args: tuple[str, ...] = ()
     exit: int = 1
     expected: dict[str, str] = field(default_factory=dict)  # name -> text; others unchanged
-    stderr: tuple[str, ...] = ()  # phrases the report must hold
+    stderr: tuple[str, ...] = ()  # phrases stderr must hold
 
 
 # --- a macro used once: its body is filled ------------------------------------------------------
