@@ -130,7 +130,7 @@ def fill(
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
-    from inertia_kit.fill.output import plan_fill_output, write_output
+    from inertia_kit.fill.output import write_output
     from inertia_kit.fill.plan import apply, plan_fill
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config import ConfigFinder
@@ -165,10 +165,7 @@ def fill(
     for path in paths:
         try:
             per_file = per_link(finder.for_file(path).links, masses)
-            if output is not None:
-                plans.append(plan_fill_output(path, output, **options, **per_file))
-            else:
-                plans.append(plan_fill(path, **options, **per_file))
+            plans.append(plan_fill(path, output=output, **options, **per_file))
         except ConfigError as error:
             click.echo(f"error: {error}", err=True)
             return 2

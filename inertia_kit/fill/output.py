@@ -9,72 +9,52 @@ sources.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from inertia_kit.errors import InputError
-from inertia_kit.fill.plan import FillPlan, plan_fill, plan_robot
-from inertia_kit.fill.policy import MassChoice, check_fix
 
 if TYPE_CHECKING:
-    from inertia_kit.description.model import Robot
-
-
-def plan_fill_output(
-    path: str | Path,
-    output: str | Path,
-    *,
-    density: float = 1000.0,
-    masses: Mapping[str, float] | None = None,
-    fix: str = "missing",
-    package_paths: Sequence[str | Path] = (),
-    xacro_args: Mapping[str, str] | None = None,
-    densities: Mapping[str, float] | None = None,
-    total_mass: float | None = None,
-) -> FillPlan:
-    """
-    Plan filling ``path`` into a new file ``output`` (``inertia-fill -o``); nothing is written
-    (:func:`write_output` writes). The plan's ``source`` is what gets filled: the input's bytes
-    for a URDF file, the fully expanded URDF for a xacro file (so links produced by macros or
-    includes can be filled too); its ``path`` is ``output``, its ``input_path`` is ``path``.
-
-    Raises ``InputError`` as :func:`plan_fill`, for a xacro fragment (no robot to write), and
-    when ``output`` is ``path`` itself.
-    """
     from inertia_kit.description.edits import SourceText
-    from inertia_kit.description.loader import needs_expansion
+    from inertia_kit.description.model import Robot
+    from inertia_kit.fill.plan import FillPlan
+
+
+def output_source(
+    path: Path,
+    output: Path,
+    package_paths: Sequence[str | Path],
+    xacro_args: Mapping[str, str] | None,
+) -> tuple[SourceText, Robot]:
+    """
+    What filling ``path`` into the new file ``output`` fills: the input's bytes and robot for a
+    URDF file; for a xacro file, the fully expanded URDF as text (named ``output``) and its
+    robot, so that links produced by macros or includes can be filled too.
+
+    Raises ``InputError`` when the file cannot be read, for a xacro fragment (no robot to write),
+    and when ``output`` is ``path`` itself.
+    """
+    from inertia_kit.description.edits import SourceText, read_source
+    from inertia_kit.description.loader import load, needs_expansion
     from inertia_kit.description.safexml import read_bounded
 
-    check_fix(fix)
-    choice = MassChoice.checked(density, masses, densities, total_mass)
-    path, output = Path(path), Path(output)
     if output.exists() and path.exists() and output.resolve() == path.resolve():
         raise InputError("-o names the input file itself; give another output file", path)
-    data = read_bounded(path)
-    if not needs_expansion(data):
-        # a URDF file: its own bytes, edited (offsets into them), written elsewhere
-        plan = plan_fill(
-            path,
-            density=density,
-            masses=masses,
-            fix=fix,
-            package_paths=package_paths,
-            densities=densities,
-            total_mass=total_mass,
-        )
-        if plan.fragment:
-            raise InputError("a xacro fragment without links: no robot to write", path)
-        return dataclasses.replace(plan, path=str(output), input_path=str(path))
-    text, robot = _expanded(path, output, package_paths, xacro_args)
-    source = SourceText(str(output), text.encode("utf-8"), text, "utf-8", b"")
-    return plan_robot(str(output), source, robot, choice, fix=fix, input_path=str(path))
+    if needs_expansion(read_bounded(path)):
+        text, robot = _expanded(path, output, package_paths, xacro_args)
+        return SourceText(str(output), text.encode("utf-8"), text, "utf-8", b""), robot
+    # a URDF file: its own bytes, edited (offsets into them), written elsewhere
+    source = read_source(path)
+    robot = load(path, package_paths=package_paths)
+    if robot.fragment:
+        raise InputError("a xacro fragment without links: no robot to write", path)
+    return source, robot
 
 
 def write_output(plan: FillPlan) -> bool:
     """
-    Write ``plan``'s filled text to its ``path`` (a plan from :func:`plan_fill_output`),
+    Write ``plan``'s filled text to its ``path`` (a plan of ``plan_fill(..., output=...)``),
     atomically, creating the file if need be; an existing file keeps its permission bits and
     is left alone when it already holds these bytes. Returns whether the file was written;
     ``InputError`` for a folder, a missing folder or a read-only file.

@@ -6,8 +6,8 @@ atomically.
 A plan is made in three steps: :mod:`~inertia_kit.fill.policy` chooses the links and their
 values, :mod:`~inertia_kit.fill.sites` finds where each link's values are written (in xacro,
 perhaps a macro body or a macro call) and the edits there, and :class:`FillPlan` holds the
-result: the edits, the refusals with their reasons, the diff. ``-o OUT`` plans are made by
-:mod:`~inertia_kit.fill.output`.
+result: the edits, the refusals with their reasons, the diff. For ``-o OUT``,
+:mod:`~inertia_kit.fill.output` says what is filled and writes it.
 """
 
 from __future__ import annotations
@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
 from inertia_kit.errors import InputError
+from inertia_kit.fill.output import output_source
 from inertia_kit.fill.policy import MassChoice, check_fix, choose
 from inertia_kit.physics.mass import MassProperties
 
@@ -156,6 +157,7 @@ def plan_fill(
     xacro_args: Mapping[str, str] | None = None,
     densities: Mapping[str, float] | None = None,
     total_mass: float | None = None,
+    output: str | Path | None = None,
 ) -> FillPlan:
     """
     Plan the ``<inertial>`` edits for one file (nothing is written).
@@ -174,11 +176,16 @@ def plan_fill(
       kg of the whole robot: the links that would take ``density`` take instead the one
       density that brings the robot's total mass (declared, kept and given masses included)
       to this; they are refused when the other links already weigh that much.
+    output : path
+      ``inertia-fill -o``: plan filling ``path`` into this new file instead
+      (:func:`~inertia_kit.fill.output.output_source`; ``write_output`` writes it). The plan's
+      ``path`` is ``output``, its ``input_path`` is ``path``.
 
     Raises
     ------
     InputError
-      The file cannot be read or parsed.
+      The file cannot be read or parsed; with ``output``, also a xacro fragment (no robot to
+      write) and ``output`` being ``path`` itself.
     ValueError
       Bad ``density``, ``masses``, ``densities``, ``total_mass`` or ``fix``.
     """
@@ -188,6 +195,9 @@ def plan_fill(
     check_fix(fix)
     choice = MassChoice.checked(density, masses, densities, total_mass)
     path = Path(path)
+    if output is not None:
+        source, robot = output_source(path, Path(output), package_paths, xacro_args)
+        return plan_robot(str(output), source, robot, choice, fix=fix, input_path=str(path))
     source = read_source(path)
     robot = load(path, xacro_args=xacro_args, package_paths=package_paths)
     return plan_robot(str(path), source, robot, choice, fix=fix)

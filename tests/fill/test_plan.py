@@ -390,3 +390,18 @@ def test_literal_link_in_xacro_is_filled(tmp_path: Path):
         + "\n",
     )
     assert path.read_text() == expected
+
+
+def test_a_xacro_fragment_is_a_plan_with_nothing_to_fill(tmp_path: Path):
+    path = tmp_path / "macros.xacro"
+    path.write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="m" params=""><link name="x"/></xacro:macro>\n</robot>\n'
+    )
+    plan = plan_fill(path)
+    assert (plan.fragment, plan.notes, plan.fills, plan.changed) == (
+        True,
+        ("a xacro fragment without links",),
+        (),
+        False,
+    )
