@@ -23,7 +23,12 @@ def mass_group() -> None:
     """
 
 
+def _triple(flag: str, help: str, default: tuple[float, float, float] | None) -> Callable:
+    return click.option(flag, nargs=3, type=float, default=default, help=help)
+
+
 # how much the part weighs, where it is placed, and about what it is reported: every sub-command
+_ORIGIN = (0.0, 0.0, 0.0)
 _PART_OPTIONS = (
     click.option(
         "--density",
@@ -32,33 +37,15 @@ _PART_OPTIONS = (
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
     ),
     click.option("--mass", "mass_kg", type=float, default=None, help="Total mass, kg."),
-    click.option(
+    _triple(
         "--xyz",
-        nargs=3,
-        type=float,
-        default=(0.0, 0.0, 0.0),
-        help="Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
+        "Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
+        _ORIGIN,
     ),
-    click.option(
-        "--rpy",
-        nargs=3,
-        type=float,
-        default=(0.0, 0.0, 0.0),
-        help="Place the shape: roll pitch yaw, rad (as a URDF <origin rpy>).",
-    ),
-    click.option(
-        "--about",
-        nargs=3,
-        type=float,
-        default=None,
-        help="Also report the tensor about this point of the link frame, m.",
-    ),
-    click.option(
-        "--about-rpy",
-        nargs=3,
-        type=float,
-        default=None,
-        help="...and in the axes of a frame rotated by these roll pitch yaw, rad.",
+    _triple("--rpy", "Place the shape: roll pitch yaw, rad (as a URDF <origin rpy>).", _ORIGIN),
+    _triple("--about", "Also report the tensor about this point of the link frame, m.", None),
+    _triple(
+        "--about-rpy", "...and in the axes of a frame rotated by these roll pitch yaw, rad.", None
     ),
     click.option(
         "--format",
@@ -69,27 +56,23 @@ _PART_OPTIONS = (
     ),
 )
 
-_RADIUS = ("--radius", {"type": float, "help": "m"})
-_TRIPLE = {"nargs": 3, "type": float}
-# shape -> (help, its dimensions: option and click settings), in the order
+_RADIUS = ("--radius", 1, "m")
+# shape -> (help, its dimensions: option, how many numbers, help), in the order
 # ``inertia_kit.physics.primitives.<shape>`` takes them
-_PRIMITIVES: dict[str, tuple[str, tuple[tuple[str, dict[str, Any]], ...]]] = {
-    "box": (
-        "A solid box centred on its frame.",
-        (("--size", {**_TRIPLE, "help": "Edge lengths x y z, m."}),),
-    ),
+_PRIMITIVES: dict[str, tuple[str, tuple[tuple[str, int, str], ...]]] = {
+    "box": ("A solid box centred on its frame.", (("--size", 3, "Edge lengths x y z, m."),)),
     "cylinder": (
         "A solid cylinder along z, centred on its frame (as URDF).",
-        (_RADIUS, ("--length", {"type": float, "help": "m, along z"})),
+        (_RADIUS, ("--length", 1, "m, along z")),
     ),
     "sphere": ("A solid sphere.", (_RADIUS,)),
     "capsule": (
         "A solid capsule along z: a cylinder capped by two hemispheres.",
-        (_RADIUS, ("--length", {"type": float, "help": "m, of the cylinder between the caps"})),
+        (_RADIUS, ("--length", 1, "m, of the cylinder between the caps")),
     ),
     "ellipsoid": (
         "A solid ellipsoid with semi-axes along x, y, z.",
-        (("--radii", {**_TRIPLE, "help": "Semi-axes a b c, m."}),),
+        (("--radii", 3, "Semi-axes a b c, m."),),
     ),
 }
 
@@ -107,7 +90,7 @@ def _part_options(command: Callable) -> Callable:
 
 
 def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Command:
-    names = [flag.lstrip("-") for flag, _ in dimensions]
+    names = [flag.lstrip("-") for flag, _, _ in dimensions]
 
     def run(**options: Any) -> None:
         from inertia_kit.physics import primitives
@@ -124,7 +107,10 @@ def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Comman
             raise UsageError(str(error)) from None
         _show(part, options)
 
-    own = [click.option(flag, required=True, **settings) for flag, settings in dimensions]
+    own = [
+        click.option(flag, nargs=n, type=float, required=True, help=text)
+        for flag, n, text in dimensions
+    ]
     return click.command(shape, help=help)(_with_options(_part_options(run), own))
 
 

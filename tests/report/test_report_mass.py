@@ -19,20 +19,13 @@ def run(*args: str):
     return CliRunner().invoke(main, ["mass", *args])
 
 
+# README's quick start: the cylinder of MRM's link_01, and its tensor about its base
+QUICK_START = ("cylinder", "--radius", "0.35", "--length", "0.4", "--density", "1024")
+QUICK_START += ("--about", "0", "0", "-0.2")
+
+
 def test_quick_start_cylinder_about_its_base():
-    result = run(
-        "cylinder",
-        "--radius",
-        "0.35",
-        "--length",
-        "0.4",
-        "--density",
-        "1024",
-        "--about",
-        "0",
-        "0",
-        "-0.2",
-    )
+    result = run(*QUICK_START)
     assert result.exit_code == 0, result.output
     assert "mass:   157.633 kg" in result.output
     assert "ixx      6.9293" in result.output
@@ -42,21 +35,7 @@ def test_quick_start_cylinder_about_its_base():
 
 
 def test_json_has_the_numbers_of_the_closed_form():
-    result = run(
-        "cylinder",
-        "--radius",
-        "0.35",
-        "--length",
-        "0.4",
-        "--density",
-        "1024",
-        "--about",
-        "0",
-        "0",
-        "-0.2",
-        "--format",
-        "json",
-    )
+    result = run(*QUICK_START, "--format", "json")
     assert result.exit_code == 0, result.output
     data = json.loads(result.output)
     m = 1024 * math.pi * 0.35**2 * 0.4
