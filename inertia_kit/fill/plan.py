@@ -70,13 +70,13 @@ class FillPlan:
     fills: tuple[LinkFill, ...] = ()
     refused: tuple[Refusal, ...] = ()
     notes: tuple[str, ...] = ()
-    fragment: bool = False  # a xacro file of macros and properties: no robot, nothing filled
     links: frozenset[str] = field(default_factory=frozenset)  # every link name in the file
     # for ``-o``: the file read (``path`` is the one written, ``source`` the text filled:
     # the input's bytes, or the expanded URDF of a xacro input)
     input_path: str | None = None
     # the other files edits go to: xacro files holding macros or included links
     others: tuple[SourceText, ...] = ()
+    fragment: bool = False  # a xacro file of macros and properties: no robot, nothing filled
 
     @property
     def edits(self) -> list[Edit]:

@@ -135,6 +135,7 @@ class MassChoice:
 
 
 def check_fix(fix: str) -> None:
+    """``ValueError`` unless ``fix`` is one of :data:`FIX_MODES`."""
     if fix not in FIX_MODES:
         raise ValueError(f"fix must be one of {', '.join(FIX_MODES)}, got {fix!r}")
 
