@@ -345,9 +345,9 @@ def test_explain_unknown_or_undocumented(monkeypatch, tmp_path):
         "error: --explain: `non-positive-mas` is no rule code or name (did you mean "
         "`non-positive-mass`?)\n",
     )
-    from inertia_kit.lint import output as report
+    from inertia_kit.lint import output
 
-    monkeypatch.setattr(report, "documents_folder", lambda: tmp_path)  # no documents at all
+    monkeypatch.setattr(output, "documents_folder", lambda: tmp_path)  # no documents at all
     assert run("--explain", "IN002") == (
         2,
         "",
