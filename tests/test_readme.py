@@ -9,7 +9,7 @@ import pytest
 from click.testing import CliRunner
 from kit import REPO
 
-from inertia_kit.cli import lint_command
+from inertia_kit.cli.lint import lint_command
 
 ROOT = REPO
 README = (ROOT / "README.md").read_text()

@@ -26,12 +26,22 @@ from __future__ import annotations
 import functools
 import re
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.model import Inertial
+from inertia_kit.fill.files import Files, Key, key, location
+from inertia_kit.fill.xacro_macros import (
+    child,
+    enclosing_macro,
+    macro_of,
+    parameter_names,
+    parameter_reference,
+    used_elsewhere,
+    written_name,
+)
+from inertia_kit.physics.formatting import xml_number
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -40,14 +50,6 @@ if TYPE_CHECKING:
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Source
     from inertia_kit.physics.mass import MassProperties
-
-Key = tuple[str, int | None, int | None]
-_PARAMETER = re.compile(r"^\$\{\s*([A-Za-z_]\w*)\s*\}$")
-_EXPRESSION = re.compile(r"\$\{([^}]*)\}")
-
-
-def key(source: Source) -> Key:
-    return (str(Path(source.path).resolve()), source.line, source.column)
 
 
 def written_values(properties: MassProperties, rpy=(0.0, 0.0, 0.0)) -> dict[str, str]:
@@ -61,10 +63,12 @@ def written_values(properties: MassProperties, rpy=(0.0, 0.0, 0.0)) -> dict[str,
 
 @dataclass(frozen=True)
 class Target:
-    """A link to fill with ``properties`` (link frame, about its centre of mass)."""
+    """A link to fill with ``properties`` (link frame, about its centre of mass); ``basis``
+    says where its mass comes from."""
 
     link: LinkAnalysis
     properties: MassProperties
+    basis: str = ""
 
     @property
     def name(self) -> str:
@@ -74,72 +78,6 @@ class Target:
     def values(self) -> dict[str, str]:
         """The text written for each value (compared across links sharing a macro body)."""
         return written_values(self.properties)
-
-
-@dataclass
-class Files:
-    """The files edits may touch: read once, parsed once, and only inside ``root``."""
-
-    root: Path
-    sources: dict[str, SourceText] = field(default_factory=dict)
-    _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
-
-    @classmethod
-    def for_input(cls, path: str | Path) -> Files:
-        path = Path(path).resolve()
-        for folder in path.parents:
-            if (folder / "package.xml").is_file():
-                return cls(folder)
-        return cls(path.parent)
-
-    def editable(self, path: str) -> bool:
-        return Path(path).resolve().is_relative_to(self.root)
-
-    def source(self, path: str) -> SourceText:
-        from inertia_kit.description.edits import read_source
-
-        resolved = str(Path(path).resolve())
-        if resolved not in self.sources:
-            self.sources[resolved] = read_source(path)
-        return self.sources[resolved]
-
-    def add(self, source: SourceText) -> None:
-        """Use ``source`` for its path (the text a plan was made from)."""
-        self.sources[str(Path(source.path).resolve())] = source
-
-    def offset(self, where: Source, tag: str) -> int | None:
-        """The offset of the ``<`` of the element written at ``where`` (``None``: not found)."""
-        if where.line is None:
-            return None
-        source = self.source(where.path)
-        text = source.text
-        try:
-            line_start = source.offset(where.line)
-        except ValueError:
-            return None
-        pattern = re.compile(r"<" + re.escape(tag) + r"(?=[\s/>])")
-        if where.column is not None and pattern.match(text, line_start + where.column - 1):
-            return line_start + where.column - 1
-        line_end = text.find("\n", line_start)
-        found = [
-            m.start()
-            for m in pattern.finditer(text, line_start, len(text) if line_end < 0 else line_end)
-        ]
-        return found[0] if len(found) == 1 else None
-
-    def element(self, where: Source) -> etree._Element | None:
-        """The parsed element written at ``where`` (for reading a macro's attributes)."""
-        from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
-
-        resolved = str(Path(where.path).resolve())
-        if resolved not in self._elements:
-            source = self.source(where.path)
-            tree = parse_xml(source.original, where.path)
-            positions = start_tag_positions(source.original, tree) or {}
-            self._elements[resolved] = {position: e for e, position in positions.items()}
-        if where.line is None or where.column is None:
-            return None
-        return self._elements[resolved].get((where.line, where.column))
 
 
 @dataclass(frozen=True)
@@ -220,13 +158,9 @@ def _place(target: Target, wanted: Mapping[str, Target], users: _Users, files: F
 def _shared_words(where: Source, sharers: Sequence[str], what: str) -> str:
     names = ", ".join(f"`{n}`" for n in sharers[:6]) + (", ..." if len(sharers) > 6 else "")
     return (
-        f"its {what} is written once ({_where(where)}) for {len(sharers)} links ({names}) "
+        f"its {what} is written once ({location(where)}) for {len(sharers)} links ({names}) "
         "that need different values"
     )
-
-
-def _where(where: Source) -> str:
-    return f"{where.path}:{where.line}" if where.line is not None else where.path
 
 
 def _insert(target: Target, files: Files) -> Placement:
@@ -234,17 +168,19 @@ def _insert(target: Target, files: Files) -> Placement:
 
     where = target.link.link.source
     if not files.editable(where.path):
-        return Placement(problem=f"its <link> is written in {_where(where)}, outside {files.root}")
+        return Placement(
+            problem=f"its <link> is written in {location(where)}, outside {files.root}"
+        )
     offset = files.offset(where, "link")
     if offset is None:
-        return Placement(problem=f"its <link> was not found at {_where(where)}")
+        return Placement(problem=f"its <link> was not found at {location(where)}")
     source = files.source(where.path)
     text = source.text
     span = element_span(text, offset)
     block = _block(target, source, line_indent(text, offset), inner=True)
     newline = source.newline
     if span.empty:  # <link name="x"/>: no geometry, never filled; defensive
-        return Placement(problem=f"its <link> at {_where(where)} is an empty element")
+        return Placement(problem=f"its <link> at {location(where)} is an empty element")
     rest = re.compile(r"[ \t]*(\r\n|\n|\r)").match(text, span.start_tag_end)
     if rest is not None:
         edit = Edit(source.path, rest.end(), rest.end(), block + newline)
@@ -275,10 +211,10 @@ def _replace_element(target: Target, where: Source, tag: str, files: Files) -> P
     from inertia_kit.description.xmlspan import element_span, line_indent
 
     if not files.editable(where.path):
-        return Placement(problem=f"<{tag}> is written in {_where(where)}, outside {files.root}")
+        return Placement(problem=f"<{tag}> is written in {location(where)}, outside {files.root}")
     offset = files.offset(where, tag)
     if offset is None:
-        return Placement(problem=f"<{tag}> was not found at {_where(where)}")
+        return Placement(problem=f"<{tag}> was not found at {location(where)}")
     source = files.source(where.path)
     span = element_span(source.text, offset)
     block = _block(target, source, line_indent(source.text, offset), inner=False)
@@ -303,7 +239,7 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
     for index in range(len(chain) - 2, -1, -1):
         call, made = chain[index], chain[index + 1]
         element = files.element(made)
-        macro = None if element is None else _macro_of(element)
+        macro = None if element is None else macro_of(element)
         if macro is None or [c for c in macro if isinstance(c.tag, str)] != [element]:
             continue  # the macro makes more than this element
         if not _agree(users.chain.get(key(call), []), wanted):
@@ -311,7 +247,7 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
         call_element = files.element(call)
         if call_element is None:
             continue
-        tag = _written_name(call_element)
+        tag = written_name(call_element)
         return _replace_element(target, call, tag, files)
     if not inertial.source.calls:
         return Placement(problem="the <inertial> is not made by a macro call")
@@ -320,6 +256,8 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
 
 def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placement:
     """Way 2: the numbers the innermost macro call passes for the values that change."""
+    from inertia_kit.description.inertial_xml import DIGITS
+
     link = target.link
     inertial = link.link.inertial
     assert inertial is not None
@@ -327,13 +265,13 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
         return Placement(problem="the <inertial> is not made by a macro call")
     call = inertial.source.calls[-1]
     body = files.element(inertial.source)
-    macro = None if body is None else _enclosing_macro(body)
+    macro = None if body is None else enclosing_macro(body)
     call_element = files.element(call)
     if body is None or macro is None or call_element is None:
         return Placement(problem="its macro was not found")
     macro_name = macro.get("name", "?")
     if not files.editable(call.path):
-        return Placement(problem=f"the call at {_where(call)} is outside {files.root}")
+        return Placement(problem=f"the call at {location(call)} is outside {files.root}")
     rpy = inertial.origin.rpy if isinstance(inertial.origin.rpy, tuple) else (0.0, 0.0, 0.0)
     new = written_values(target.properties, rpy)
     declared = link.declared
@@ -343,37 +281,37 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
     # the current written tensor, not the link-frame one recomputed: what the file says
     old.update(
         {
-            name: _number_text(getattr(inertial, name))
+            name: xml_number(getattr(inertial, name), DIGITS)
             for name in Inertial.TENSOR
             if isinstance(getattr(inertial, name), float)
         }
     )
-    old["mass"] = _number_text(inertial.mass)
+    old["mass"] = xml_number(inertial.mass, DIGITS)
     attributes = {
-        "mass": (_child(body, "mass"), "value"),
-        "xyz": (_child(body, "origin"), "xyz"),
-        **{name: (_child(body, "inertia"), name) for name in Inertial.TENSOR},
+        "mass": (child(body, "mass"), "value"),
+        "xyz": (child(body, "origin"), "xyz"),
+        **{name: (child(body, "inertia"), name) for name in Inertial.TENSOR},
     }
-    parameters = _parameter_names(macro)
+    parameters = parameter_names(macro)
     changes: dict[str, str] = {}  # parameter -> new text
     mapped: dict[str, list[tuple[etree._Element, str]]] = {}
     for name, (element, attribute) in attributes.items():
         text = None if element is None else element.get(attribute)
         if name == "xyz" and text is None:
             text = "0 0 0"
-        parameter = None if text is None else _PARAMETER.match(text.strip())
-        if parameter is not None and parameter.group(1) in parameters:
-            mapped.setdefault(parameter.group(1), []).append((element, attribute))
-            if changes.get(parameter.group(1), new[name]) != new[name]:
-                return Placement(problem=f"parameter `{parameter.group(1)}` would need two values")
+        parameter = None if text is None else parameter_reference(text)
+        if parameter is not None and parameter in parameters:
+            mapped.setdefault(parameter, []).append((element, attribute))
+            if changes.get(parameter, new[name]) != new[name]:
+                return Placement(problem=f"parameter `{parameter}` would need two values")
             if old[name] != new[name]:
-                changes[parameter.group(1)] = new[name]
+                changes[parameter] = new[name]
             continue
         if old[name] != new[name]:
             label = "the centre of mass" if name == "xyz" else f"`{name}`"
             written = "absent" if text is None else f"`{text}`"
             return Placement(
-                problem=f"{label} in macro `{macro_name}` ({_where(inertial.source)}) is "
+                problem=f"{label} in macro `{macro_name}` ({location(inertial.source)}) is "
                 f"{written}, "
                 "not a parameter the call passes"
             )
@@ -382,7 +320,7 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
         return Placement(problem=_shared_words(call, sharers, f"call of `{macro_name}`"))
     edits = []
     for parameter, value in changes.items():
-        if _used_elsewhere(macro, parameter, mapped[parameter]):
+        if used_elsewhere(macro, parameter, mapped[parameter]):
             return Placement(
                 problem=f"parameter `{parameter}` of `{macro_name}` is used for more than the "
                 f"<inertial>: changing it to {value} would change the rest"
@@ -394,95 +332,20 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
     return Placement(tuple(edits))
 
 
-def _number_text(value) -> str:
-    from inertia_kit.description.inertial_xml import DIGITS
-    from inertia_kit.physics.formatting import xml_number
-
-    return xml_number(value, DIGITS)
-
-
-def _child(element: etree._Element, name: str) -> etree._Element | None:
-    return next((c for c in element if isinstance(c.tag, str) and c.tag == name), None)
-
-
-def _is_xacro(element: etree._Element, name: str) -> bool:
-    from lxml import etree
-
-    if not isinstance(element.tag, str):
-        return False
-    qname = etree.QName(element)
-    return qname.localname == name and "xacro" in (qname.namespace or "")
-
-
-def _macro_of(element: etree._Element) -> etree._Element | None:
-    """The ``<xacro:macro>`` whose body holds ``element`` directly (not inside another element)."""
-    parent = element.getparent()
-    while parent is not None and not _is_xacro(parent, "macro"):
-        if not (_is_xacro(parent, "if") or _is_xacro(parent, "unless")):
-            return None
-        parent = parent.getparent()
-    return parent
-
-
-def _enclosing_macro(element: etree._Element) -> etree._Element | None:
-    """The innermost ``<xacro:macro>`` holding ``element``."""
-    parent = element.getparent()
-    while parent is not None and not _is_xacro(parent, "macro"):
-        parent = parent.getparent()
-    return parent
-
-
-def _written_name(element: etree._Element) -> str:
-    from lxml import etree
-
-    local = etree.QName(element).localname
-    return f"{element.prefix}:{local}" if element.prefix else local
-
-
-def _parameter_names(macro: etree._Element) -> dict[str, bool]:
-    """``name -> has a default`` for a macro's ``params`` (blocks ``*x`` left out)."""
-    names = {}
-    for token in (macro.get("params") or "").split():
-        if token.startswith("*"):
-            continue
-        name, _, default = token.partition(":=")
-        if not default:
-            name, _, default = token.partition("=")
-        names[name.strip("^|")] = bool(default)
-    return names
-
-
-def _used_elsewhere(macro: etree._Element, parameter: str, mapped) -> bool:
-    """Whether ``${...}`` expressions in the macro use ``parameter`` outside ``mapped``."""
-    word = re.compile(rf"\b{re.escape(parameter)}\b")
-    allowed = {(id(element), attribute) for element, attribute in mapped}
-    for element in macro.iter():
-        if element is macro or not isinstance(element.tag, str):
-            continue
-        texts = [
-            value for name, value in element.attrib.items() if (id(element), name) not in allowed
-        ]
-        texts += [element.text or "", element.tail or ""]
-        for text in texts:
-            if any(word.search(expression) for expression in _EXPRESSION.findall(text)):
-                return True
-    return False
-
-
 def _attribute_edit(files, call: Source, element, parameter: str, value: str, has_default: bool):
     """The edit setting ``parameter="value"`` on the call's start tag, or why it cannot."""
     from inertia_kit.description.xmlspan import element_span
 
     source = files.source(call.path)
-    offset = files.offset(call, _written_name(element))
+    offset = files.offset(call, written_name(element))
     if offset is None:
-        return f"the call at {_where(call)} was not found"
+        return f"the call at {location(call)} was not found"
     span = element_span(source.text, offset)
     start_tag = source.text[offset : span.start_tag_end]
     match = re.search(rf"(\s){re.escape(parameter)}\s*=\s*(\"([^\"]*)\"|'([^']*)')", start_tag)
     if match is None:
         if not has_default:
-            return f"the call at {_where(call)} does not pass `{parameter}`"
+            return f"the call at {location(call)} does not pass `{parameter}`"
         end = span.start_tag_end - (2 if span.empty else 1)
         while end > offset and source.text[end - 1] in " \t\r\n":
             end -= 1
@@ -490,7 +353,7 @@ def _attribute_edit(files, call: Source, element, parameter: str, value: str, ha
     written = match.group(3) if match.group(3) is not None else match.group(4)
     if "${" in written or "$(" in written:
         return (
-            f'the call at {_where(call)} passes {parameter}="{written}", an expression: '
+            f'the call at {location(call)} passes {parameter}="{written}", an expression: '
             f"write {value} there or in what it names"
         )
     group = 3 if match.group(3) is not None else 4

@@ -7,7 +7,7 @@ from typing import Any
 
 from inertia_kit.analysis.links import declared, geometry_summary
 from inertia_kit.description import model
-from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.formatting import fmt, tensor_text, vector_text
 
 
 def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
@@ -79,7 +79,7 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
                 if row["parent_joint"] is None
                 else f"{row['parent_joint']} ({row['joint_type']})",
                 "-" if row["mass"] is None else fmt(row["mass"], 6),
-                "-" if row["com"] is None else "(" + ", ".join(fmt(x, 4) for x in row["com"]) + ")",
+                "-" if row["com"] is None else vector_text(row["com"]),
                 ("-" if row["inertial"] == "none" else row["inertial"])
                 if row["principal_moments"] is None
                 else ", ".join(fmt(x, 4) for x in row["principal_moments"]),
@@ -90,17 +90,27 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
     name = robot.name or "unnamed robot"
     footer = f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})"
     if output_format == "markdown":
-        lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-        lines += [
-            "| " + " | ".join(cell.replace("|", "\\|") for cell in r) + " |" for r in table[1:]
-        ]
-        return "\n".join([*lines, "", f"**{footer}**"])
-    widths = [max(len(r[i]) for r in table) for i in range(len(header))]
+        return "\n".join([*_markdown_table(table), "", f"**{footer}**"])
+    return "\n".join([*_text_table(table), footer])
+
+
+def _markdown_table(table: list[list[str]]) -> list[str]:
+    """The rows of ``table`` (the first is the header) as a Markdown table."""
+    return [
+        "| " + " | ".join(table[0]) + " |",
+        "|" + "---|" * len(table[0]),
+        *("| " + " | ".join(cell.replace("|", "\\|") for cell in r) + " |" for r in table[1:]),
+    ]
+
+
+def _text_table(table: list[list[str]]) -> list[str]:
+    """The rows of ``table`` (the first is the header) in aligned columns, the header ruled."""
+    widths = [max(len(r[i]) for r in table) for i in range(len(table[0]))]
     lines = [
         "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in table
     ]
     lines.insert(1, "  ".join("-" * w for w in widths))
-    return "\n".join([*lines, footer])
+    return lines
 
 
 # --- inertia-kit report --lumped ------------------------------------------------------------
@@ -180,8 +190,8 @@ def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: s
                     ", ".join(body["links"]),
                     body["joint"] or "-",
                     "-" if body["mass"] is None else fmt(body["mass"], 6),
-                    "-" if body["com"] is None else _vector(body["com"]),
-                    "-" if tensor is None else _tensor(tensor),
+                    "-" if body["com"] is None else vector_text(body["com"]),
+                    "-" if tensor is None else tensor_text(tensor, separator="="),
                     "-"
                     if body["principal_moments"] is None
                     else ", ".join(fmt(x, 4) for x in body["principal_moments"]),
@@ -200,48 +210,13 @@ def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: s
             f" links, {len(record['dropped'])} dropped"
         )
         if output_format == "markdown":
-            lines = [f"## {title}", "", "| " + " | ".join(header) + " |"]
-            lines.append("|" + "---|" * len(header))
-            lines += [
-                "| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |"
-                for row in table[1:]
-            ]
-            lines += ["", f"**{summary}**"]
+            lines = [f"## {title}", "", *_markdown_table(table), "", f"**{summary}**"]
             lines += [f"- note: {n}" for n in notes]
             lines += [f"- dropped: {d}" for d in dropped]
             out.append("\n".join(lines))
             continue
-        widths = [max(len(r[i]) for r in table) for i in range(len(header))]
-        lines = [f"{title}:"]
-        lines += [
-            "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip()
-            for r in table
-        ]
-        lines.insert(2, "  ".join("-" * w for w in widths))
-        lines.append(summary)
+        lines = [f"{title}:", *_text_table(table), summary]
         lines += [f"note: {n}" for n in notes]
         lines += [f"dropped: {d}" for d in dropped]
         out.append("\n".join(lines))
     return "\n\n".join(out)
-
-
-def _vector(values: list[float]) -> str:
-    return "(" + ", ".join(fmt(x, 4) for x in values) + ")"
-
-
-def _tensor(tensor: list[list[float]]) -> str:
-    """``ixx iyy izz`` and the products that are not negligible, as in URDF."""
-    scale = max(abs(tensor[i][i]) for i in range(3)) or 1.0
-    names = {
-        "ixx": (0, 0),
-        "iyy": (1, 1),
-        "izz": (2, 2),
-        "ixy": (0, 1),
-        "ixz": (0, 2),
-        "iyz": (1, 2),
-    }
-    return ", ".join(
-        f"{name}={fmt(tensor[i][j], 4)}"
-        for name, (i, j) in names.items()
-        if i == j or abs(tensor[i][j]) > 1e-9 * scale
-    )

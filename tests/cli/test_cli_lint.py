@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from console_scripts import console_script
 from kit import REPO
 
 from inertia_kit.cli import lint_main, main
@@ -307,7 +308,14 @@ def test_console_script(tmp_path):
     bad = tmp_path / "bad.urdf"
     bad.write_text(urdf(0.0))
     done = subprocess.run(
-        ["inertia-lint", "--select", "IN002", "--output-format", "concise", str(bad)],
+        [
+            console_script("inertia-lint"),
+            "--select",
+            "IN002",
+            "--output-format",
+            "concise",
+            str(bad),
+        ],
         capture_output=True,
         text=True,
         env={**os.environ, "NO_COLOR": "1"},
@@ -361,7 +369,7 @@ def test_explain_reads_the_package_data_folder():
 def test_start_up_imports_no_numpy():
     """--explain, --help and usage errors stay fast: numpy and the rules load only to lint."""
     code = (
-        "import sys; from inertia_kit.cli import lint;"
+        "import sys; from inertia_kit.cli.lint import lint;"
         "lint([], explain='IN002');"
         "heavy = ('numpy', 'lxml', 'inertia_kit.analysis.links');"
         "print(sorted(m for m in heavy if m in sys.modules),"

@@ -9,16 +9,15 @@ from __future__ import annotations
 import math
 import os
 import stat
-import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from kit import REPO
 
-from inertia_kit.cli import fill_command
-from inertia_kit.fill.plan import MATERIALS, apply, plan_fill
+from inertia_kit.cli.fill import fill_command
+from inertia_kit.fill.materials import MATERIALS
+from inertia_kit.fill.plan import apply, plan_fill
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.formatting import xml_number
 
@@ -331,7 +330,7 @@ def test_fill_table(case: Case, how: str, tmp_path: Path):
         assert bad == []
 
 
-def test_report_lines(tmp_path: Path):
+def test_filled_and_refused_lines(tmp_path: Path):
     path = tmp_path / "robot.urdf"
     path.write_text(MISSING_MESH)
     result = CliRunner().invoke(fill_command, [str(path)])
@@ -393,309 +392,16 @@ def test_literal_link_in_xacro_is_filled(tmp_path: Path):
     assert path.read_text() == expected
 
 
-@pytest.mark.parametrize(
-    "args, message",
-    [
-        (("--density", "1000", "--material", "steel"), "not both"),
-        (("--material", "unobtainium"), "unknown 'unobtainium'"),
-        (("--mass", "upper"), "LINK=KG"),
-        (("--mass", "upper=-1"), "LINK=KG"),
-        (("--mass", "nosuch=1"), "names no link"),
-        (("--density", "0"), "positive"),
-    ],
-)
-def test_usage_errors_exit_2(args, message, tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(ARM)
-    result = CliRunner().invoke(fill_command, [*args, str(path)])
-    assert result.exit_code == 2
-    assert message in result.stderr
-    assert path.read_text() == ARM
-
-
-def test_unreadable_input_exits_2(tmp_path: Path):
-    result = CliRunner().invoke(fill_command, [str(tmp_path / "missing.urdf")])
-    assert result.exit_code == 2
-    assert "cannot read" in result.stderr
-
-
-def test_millimetre_mesh_is_refused(tmp_path: Path):
-    trimesh = pytest.importorskip("trimesh")
-    trimesh.creation.box(extents=(300, 50, 50)).export(tmp_path / "part.stl")  # 0.3 m, in mm
-    elbow = (
-        '<joint name="elbow" type="revolute"><origin xyz="0.3 0 0"/><parent link="shell"/>'
-        '<child link="tip"/><axis xyz="0 0 1"/>'
-        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n  <link name="tip"/>\n'
-    )
-    text = MISSING_MESH.replace("meshes/nowhere.stl", "part.stl").replace("</robot>", "")
-    text += "  " + elbow + "</robot>\n"
-    path = tmp_path / "robot.urdf"
-    path.write_text(text)
-    result = CliRunner().invoke(fill_command, [str(path)])
-    assert result.exit_code == 1
-    assert "link `shell` not filled: a mesh looks authored in other units (IN031)" in result.stderr
-    assert 'set scale="0.001 0.001 0.001" if that is its unit' in result.stderr
-    expected = text.replace(
-        '<link name="rod">\n',
-        '<link name="rod">\n' + block(cylinder(0.02, 0.5, density=1000), indent="    ") + "\n",
-    )
-    assert path.read_text() == expected
-
-
-def test_console_script_umbrella():
-    done = subprocess.run(["inertia-kit", "fill", "--help"], capture_output=True, text=True)
-    assert done.returncode == 0
-    assert "--material" in done.stdout
-
-
-# --- -o OUT ------------------------------------------------------------------------------------
-
-EXAMPLE = REPO / "examples" / "my_robot_description" / "urdf"
-
-
-def _inertial(path: Path, link: str):
-    """(com, mass, {ixx..izz}) of ``link``'s <inertial> in the URDF file ``path``."""
-    from lxml import etree
-
-    (element,) = etree.parse(str(path)).getroot().findall(f"link[@name='{link}']/inertial")
-    com = tuple(float(v) for v in element.find("origin").get("xyz").split())
-    mass = float(element.find("mass").get("value"))
-    inertia = {k: float(v) for k, v in element.find("inertia").attrib.items()}
-    return com, mass, inertia
-
-
-@pytest.mark.parametrize(
-    "text, code, expected",
-    [
-        (ARM, 1, ARM_FILLED),
-        (MISSING_MESH, 1, MISSING_MESH_FILLED),  # a refusal: the other link still filled
-        (ARM_FILLED, 0, ARM_FILLED),  # nothing to fill: OUT is written all the same
-    ],
-    ids=["filled", "refusal", "nothing-to-fill"],
-)
-def test_output_of_a_urdf_is_its_bytes_edited(text, code, expected, tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(text)
-    out = tmp_path / "out" / "filled.urdf"
-    out.parent.mkdir()
-    result = CliRunner().invoke(fill_command, ["-o", str(out), str(path)])
-    assert result.exit_code == code, result.stderr
-    assert path.read_text() == text
-    assert out.read_text() == expected
-    if code and expected is ARM_FILLED:
-        assert f"Filled 1 link of {path} into {out}: upper " in result.stderr
-    if not code:
-        assert f"Wrote {out}: nothing to fill in {path}" in result.stderr
-    assert [p.name for p in out.parent.iterdir()] == ["filled.urdf"]  # no temporary left
-
-
-def test_output_check_and_diff_write_nothing(tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(ARM)
-    out = tmp_path / "filled.urdf"
-    result = CliRunner().invoke(fill_command, ["--check", "-o", str(out), str(path)])
-    assert (result.exit_code, out.exists()) == (1, False)
-    result = CliRunner().invoke(fill_command, ["--diff", "-o", str(out), str(path)])
-    assert (result.exit_code, out.exists()) == (1, False)
-    assert "+    <inertial>\n" in result.stdout
-
-
-def test_output_of_the_example_xacro_is_the_expanded_urdf_filled(tmp_path: Path):
-    sources = {p: p.read_bytes() for p in EXAMPLE.iterdir()}
-    out = tmp_path / "robot.urdf"
-    result = CliRunner().invoke(
-        fill_command, ["--density", "500", "-o", str(out), str(EXAMPLE / "robot.xacro")]
-    )
-    assert result.exit_code == 1, result.stderr
-    assert {p: p.read_bytes() for p in EXAMPLE.iterdir()} == sources  # the input untouched
-    text = out.read_text()
-    assert "xacro" not in text.replace("from robot.xacro", "")  # fully expanded
-    # base_link: its collision box 0.4 × 0.4 × 0.1 m raised 0.05 m, at 500 kg/m³
-    m, ixx, iyy, izz = box((0.4, 0.4, 0.1), density=500)
-    com, mass, inertia = _inertial(out, "base_link")
-    assert com == (0, 0, 0.05)
-    assert mass == pytest.approx(m, rel=1e-6) and m == pytest.approx(8.0)
-    assert inertia["ixx"] == pytest.approx(ixx, rel=1e-5)
-    assert inertia["iyy"] == pytest.approx(iyy, rel=1e-5)
-    assert inertia["izz"] == pytest.approx(izz, rel=1e-5)
-    assert (inertia["ixy"], inertia["ixz"], inertia["iyz"]) == (0, 0, 0)
-    assert f"into {out}: base_link 8 kg" in result.stderr
-    # the wheels keep the inertials their macro wrote
-    assert _inertial(out, "left_wheel_link")[1] == 0.3
-    # the output is a URDF that needs nothing more
-    assert not plan_fill(out).changed
-    assert lint_file(out, Selection(select=("IN001",))).findings == []
-
-
-def test_output_fills_links_made_by_xacro_macros(tmp_path: Path):
-    path = tmp_path / "robot.urdf.xacro"
-    text = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="part" params="name size">
-    <link name="${name}">
-      <collision><geometry><box size="${size}"/></geometry></collision></link>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:part name="arm" size="0.1 0.1 0.4"/>
-  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-</robot>
-"""
-    path.write_text(text)
-    out = tmp_path / "robot.urdf"
-    out.write_text("old")
-    out.chmod(0o640)
-    result = CliRunner().invoke(fill_command, ["--mass", "arm=2", "-o", str(out), str(path)])
-    assert result.exit_code == 1, result.stderr
-    assert path.read_text() == text
-    assert stat.S_IMODE(out.stat().st_mode) == 0o640  # an existing OUT keeps its mode
-    m, ixx, iyy, izz = box((0.1, 0.1, 0.4), mass=2)
-    assert out.read_text().endswith(
-        '  <link name="arm">\n'
-        + block((m, ixx, iyy, izz), indent="    ")
-        + "\n    <collision>\n      <geometry>\n"
-        '        <box size="0.1 0.1 0.4"/>\n      </geometry>\n    </collision>\n  </link>\n'
-        '  <joint name="j" type="revolute">\n'
-        '    <parent link="base"/>\n    <child link="arm"/>\n    <axis xyz="0 0 1"/>\n'
-        '    <limit lower="-1" upper="1" effort="1" velocity="1"/>\n  </joint>\n</robot>\n'
-    )
-    # run again: the same bytes, so OUT is not rewritten
-    before = out.stat().st_mtime_ns
-    again = CliRunner().invoke(fill_command, ["--mass", "arm=2", "-o", str(out), str(path)])
-    assert again.exit_code == 1 and out.stat().st_mtime_ns == before
-
-
-@pytest.mark.parametrize(
-    "args, message",
-    [
-        (("-o", "{out}", "{path}", "{path}"), "-o takes exactly one PATH, got 2"),
-        (("-o", "{path}", "{path}"), "names the input file itself"),
-        (("-o", "{tmp}/nowhere/out.urdf", "{path}"), "no folder"),
-        (("--xacro-arg", "nope", "-o", "{out}", "{path}"), "NAME:=VALUE"),
-    ],
-)
-def test_output_errors_exit_2(args, message, tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(ARM)
-    out = tmp_path / "out.urdf"
-    fields = {"path": path, "out": out, "tmp": tmp_path}
-    result = CliRunner().invoke(fill_command, [a.format(**fields) for a in args])
-    assert result.exit_code == 2
-    assert message in result.stderr
-    assert path.read_text() == ARM
-    assert not out.exists()
-
-
-def test_output_of_a_xacro_resolves_meshes_from_its_sources(tmp_path: Path):
-    """A relative mesh path resolves from the xacro file that wrote it, wherever OUT goes."""
-    trimesh = pytest.importorskip("trimesh")
-    source = tmp_path / "description"
-    source.mkdir()
-    trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(source / "part.stl")
-    path = source / "robot.xacro"
+def test_a_xacro_fragment_is_a_plan_with_nothing_to_fill(tmp_path: Path):
+    path = tmp_path / "macros.xacro"
     path.write_text(
-        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-        '  <xacro:macro name="part" params="name">\n'
-        '    <link name="${name}"><collision><geometry><mesh filename="part.stl"/></geometry>'
-        "</collision></link>\n"
-        "  </xacro:macro>\n"
-        '  <link name="base"/>\n  <xacro:part name="arm"/>\n  ' + joint("arm") + "\n</robot>\n"
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="m" params=""><link name="x"/></xacro:macro>\n</robot>\n'
     )
-    out = tmp_path / "elsewhere" / "robot.urdf"
-    out.parent.mkdir()
-    result = CliRunner().invoke(fill_command, ["-o", str(out), str(path)])
-    assert result.exit_code == 1, result.stderr
-    assert "not filled" not in result.stderr
-    _, mass, inertia = _inertial(out, "arm")
-    m, ixx, iyy, izz = box((0.1, 0.2, 0.3), density=1000)
-    assert mass == pytest.approx(m, rel=1e-5)
-    assert [inertia[k] for k in ("ixx", "iyy", "izz")] == pytest.approx([ixx, iyy, izz], rel=1e-5)
-
-
-# --- --total-mass and per-link configuration ---------------------------------------------------
-
-TWO_LINKS = """<robot name="r">
-  <link name="base">
-    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
-    <inertial><mass value="2"/>
-      <inertia ixx="0.00833333" ixy="0" ixz="0" iyy="0.00833333" iyz="0" izz="0.0133333"/>
-    </inertial>
-  </link>
-  {j1}
-  <link name="upper">
-    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
-  </link>
-  {j2}
-  <link name="lower">
-    <collision><geometry><box size="0.1 0.1 0.2"/></geometry></collision>
-  </link>
-</robot>
-""".format(j1=joint("upper"), j2=joint("lower", parent="upper"))
-
-
-def filled_two_links(upper_mass: float, lower_mass: float) -> str:
-    return TWO_LINKS.replace(
-        '<link name="upper">\n',
-        '<link name="upper">\n'
-        + block(box((0.1, 0.1, 0.4), mass=upper_mass), indent="    ")
-        + "\n",
-    ).replace(
-        '<link name="lower">\n',
-        '<link name="lower">\n'
-        + block(box((0.1, 0.1, 0.2), mass=lower_mass), indent="    ")
-        + "\n",
+    plan = plan_fill(path)
+    assert (plan.fragment, plan.notes, plan.fills, plan.changed) == (
+        True,
+        ("a xacro fragment without links",),
+        (),
+        False,
     )
-
-
-def test_total_mass_is_shared_by_volume_after_the_declared_masses(tmp_path: Path):
-    """5 kg in all, the base declares 2: the other 3 kg go 2:1 to the 4 L and 2 L boxes."""
-    path = tmp_path / "robot.urdf"
-    path.write_text(TWO_LINKS)
-    result = CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)])
-    assert result.exit_code == 1, result.stderr
-    assert path.read_text() == filled_two_links(2.0, 1.0)
-    assert "upper 2 kg, lower 1 kg" in result.stderr
-    assert CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)]).exit_code == 0
-
-
-def test_total_mass_below_what_the_others_weigh_is_refused(tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(TWO_LINKS)
-    result = CliRunner().invoke(fill_command, ["--total-mass", "1.5", str(path)])
-    assert result.exit_code == 1
-    assert "link `upper` not filled: --total-mass 1.5 kg leaves nothing" in result.stderr
-    assert "already weigh 2 kg" in result.stderr
-    assert path.read_text() == TWO_LINKS
-
-
-@pytest.mark.parametrize(
-    "args", [("--total-mass", "5", "--density", "1000"), ("--total-mass", "-1")]
-)
-def test_total_mass_usage_errors(args, tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(TWO_LINKS)
-    result = CliRunner().invoke(fill_command, [*args, str(path)])
-    assert result.exit_code == 2 and "--total-mass" in result.stderr
-
-
-def test_configured_link_density_and_mass(tmp_path: Path):
-    """[links.NAME] in .inertia-kit.toml: a density for one link, a mass for another; a
-    --mass on the command line wins over the configured one."""
-    path = tmp_path / "robot.urdf"
-    path.write_text(TWO_LINKS)
-    (tmp_path / ".inertia-kit.toml").write_text(
-        "[links.upper]\ndensity = 2700.0\n\n[links.lower]\nmass = 0.75\n"
-    )
-    result = CliRunner().invoke(fill_command, ["--diff", str(path)])
-    assert result.exit_code == 1, result.stderr
-    assert "upper 10.8 kg, lower 0.75 kg" in result.stderr
-    result = CliRunner().invoke(fill_command, ["--mass", "lower=0.5", str(path)])
-    assert path.read_text() == filled_two_links(2700 * 0.004, 0.5)
-
-
-def test_bad_configuration_exits_2(tmp_path: Path):
-    path = tmp_path / "robot.urdf"
-    path.write_text(TWO_LINKS)
-    (tmp_path / ".inertia-kit.toml").write_text("[links.upper]\ndensity = -1.0\n")
-    result = CliRunner().invoke(fill_command, [str(path)])
-    assert result.exit_code == 2 and ".inertia-kit.toml" in result.stderr
-    assert path.read_text() == TWO_LINKS

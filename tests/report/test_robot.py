@@ -49,20 +49,6 @@ def test_markdown_report_with_meshes():
     assert "mesh pan.stl ×0.001" in result.output
 
 
-def test_unreadable_input_exits_2(tmp_path):
-    bad = tmp_path / "bad.urdf"
-    bad.write_text("<robot><link></robot>")
-    result = report(str(bad))
-    assert result.exit_code == 2
-    assert f"{bad}:1" in result.output
-
-
-def test_bad_xacro_arg_exits_2():
-    result = report(str(EXAMPLES / "simple_arm/urdf/simple_arm.urdf.xacro"), "--xacro-arg", "oops")
-    assert result.exit_code == 2
-    assert "NAME:=VALUE" in result.output
-
-
 # --- report --lumped -----------------------------------------------------------------------
 
 
@@ -115,11 +101,3 @@ def test_report_lumped_tables_for_all_engines(tmp_path, output_format):
     for title in ("MuJoCo", "Gazebo", "Drake", "PyBullet", "KDL"):
         assert title in result.output
     assert "arm, tool" in result.output and "dropped: ghost (joint j2)" in result.output
-
-
-def test_report_engine_needs_lumped_and_a_known_name(tmp_path):
-    path = tmp_path / "r.urdf"
-    path.write_text(LUMPED_URDF)
-    assert CliRunner().invoke(main, ["report", "--engine", "kdl", str(path)]).exit_code == 2
-    result = CliRunner().invoke(main, ["report", "--lumped", "--engine", "isaac", str(path)])
-    assert result.exit_code == 2 and "unknown engine" in result.output

@@ -17,7 +17,7 @@ from click.testing import CliRunner
 from kit import REPO
 from test_plan import block, box, cylinder
 
-from inertia_kit.cli import fill_command
+from inertia_kit.cli.fill import fill_command
 from inertia_kit.errors import InputError
 from inertia_kit.fill.plan import apply, plan_fill
 from inertia_kit.lint.runner import Selection, lint_file
@@ -47,7 +47,7 @@ class Case:
     args: tuple[str, ...] = ()
     exit: int = 1
     expected: dict[str, str] = field(default_factory=dict)  # name -> text; others unchanged
-    stderr: tuple[str, ...] = ()  # phrases the report must hold
+    stderr: tuple[str, ...] = ()  # phrases stderr must hold
 
 
 # --- a macro used once: its body is filled ------------------------------------------------------

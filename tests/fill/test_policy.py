@@ -1,7 +1,11 @@
 """
-inertia-fill --fix invalid undoes a recognised slip (IN060-IN064) instead of replacing the
-declared tensor with the geometry's: the closed-form tensor of a turned box is written wrongly in
-each way, filled, and read back. Expected values come from the closed form computed here.
+Which links inertia-fill fills and the mass each gets (fill.policy).
+
+--fix invalid undoes a recognised slip (IN060-IN064) instead of replacing the declared tensor
+with the geometry's: the closed-form tensor of a turned box is written wrongly in each way,
+filled, and read back. Expected values come from the closed form computed here. A mesh authored
+in other units is refused; --total-mass is shared by volume after the declared masses; a
+configured link density or mass is used, under --mass.
 """
 
 from __future__ import annotations
@@ -14,9 +18,13 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from kit import REPO, moving
+from test_plan import MISSING_MESH, block, box, cylinder, joint
 
 from inertia_kit import load
-from inertia_kit.cli import fill_command
+from inertia_kit.cli.fill import fill_command
+from inertia_kit.fill.plan import FillPlan
+from inertia_kit.fill.policy import density_option, per_link, unknown_links
+from inertia_kit.lint.config import LinkSettings
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.frames import rpy_matrix
 from inertia_kit.physics.mass import shift_tensor
@@ -173,3 +181,127 @@ def test_a_mass_in_grams_is_written_in_kilograms(tmp_path: Path):
     assert inertial.mass == pytest.approx(MASS)
     assert inertial.ixx == pytest.approx(turned_box()[0, 0], rel=1e-5)
     assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 0
+
+
+# --- refusals, --total-mass and per-link configuration -----------------------------------------
+
+
+def test_millimetre_mesh_is_refused(tmp_path: Path):
+    trimesh = pytest.importorskip("trimesh")
+    trimesh.creation.box(extents=(300, 50, 50)).export(tmp_path / "part.stl")  # 0.3 m, in mm
+    elbow = (
+        '<joint name="elbow" type="revolute"><origin xyz="0.3 0 0"/><parent link="shell"/>'
+        '<child link="tip"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n  <link name="tip"/>\n'
+    )
+    text = MISSING_MESH.replace("meshes/nowhere.stl", "part.stl").replace("</robot>", "")
+    text += "  " + elbow + "</robot>\n"
+    path = tmp_path / "robot.urdf"
+    path.write_text(text)
+    result = CliRunner().invoke(fill_command, [str(path)])
+    assert result.exit_code == 1
+    assert "link `shell` not filled: a mesh looks authored in other units (IN031)" in result.stderr
+    assert 'set scale="0.001 0.001 0.001" if that is its unit' in result.stderr
+    expected = text.replace(
+        '<link name="rod">\n',
+        '<link name="rod">\n' + block(cylinder(0.02, 0.5, density=1000), indent="    ") + "\n",
+    )
+    assert path.read_text() == expected
+
+
+TWO_LINKS = """<robot name="r">
+  <link name="base">
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+    <inertial><mass value="2"/>
+      <inertia ixx="0.00833333" ixy="0" ixz="0" iyy="0.00833333" iyz="0" izz="0.0133333"/>
+    </inertial>
+  </link>
+  {j1}
+  <link name="upper">
+    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+  </link>
+  {j2}
+  <link name="lower">
+    <collision><geometry><box size="0.1 0.1 0.2"/></geometry></collision>
+  </link>
+</robot>
+""".format(j1=joint("upper"), j2=joint("lower", parent="upper"))
+
+
+def filled_two_links(upper_mass: float, lower_mass: float) -> str:
+    return TWO_LINKS.replace(
+        '<link name="upper">\n',
+        '<link name="upper">\n'
+        + block(box((0.1, 0.1, 0.4), mass=upper_mass), indent="    ")
+        + "\n",
+    ).replace(
+        '<link name="lower">\n',
+        '<link name="lower">\n'
+        + block(box((0.1, 0.1, 0.2), mass=lower_mass), indent="    ")
+        + "\n",
+    )
+
+
+def test_total_mass_is_shared_by_volume_after_the_declared_masses(tmp_path: Path):
+    """5 kg in all, the base declares 2: the other 3 kg go 2:1 to the 4 L and 2 L boxes."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    result = CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert path.read_text() == filled_two_links(2.0, 1.0)
+    assert "upper 2 kg, lower 1 kg" in result.stderr
+    assert CliRunner().invoke(fill_command, ["--total-mass", "5", str(path)]).exit_code == 0
+
+
+def test_total_mass_below_what_the_others_weigh_is_refused(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    result = CliRunner().invoke(fill_command, ["--total-mass", "1.5", str(path)])
+    assert result.exit_code == 1
+    assert "link `upper` not filled: --total-mass 1.5 kg leaves nothing" in result.stderr
+    assert "already weigh 2 kg" in result.stderr
+    assert path.read_text() == TWO_LINKS
+
+
+def test_configured_link_density_and_mass(tmp_path: Path):
+    """[links.NAME] in .inertia-kit.toml: a density for one link, a mass for another; a
+    --mass on the command line wins over the configured one."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(TWO_LINKS)
+    (tmp_path / ".inertia-kit.toml").write_text(
+        "[links.upper]\ndensity = 2700.0\n\n[links.lower]\nmass = 0.75\n"
+    )
+    result = CliRunner().invoke(fill_command, ["--diff", str(path)])
+    assert result.exit_code == 1, result.stderr
+    assert "upper 10.8 kg, lower 0.75 kg" in result.stderr
+    result = CliRunner().invoke(fill_command, ["--mass", "lower=0.5", str(path)])
+    assert path.read_text() == filled_two_links(2700 * 0.004, 0.5)
+
+
+# --- the options --------------------------------------------------------------------------------
+
+
+def test_density_options():
+    assert density_option(None, None, None) == 1000.0
+    assert density_option(None, "Aluminium", None) == 2700.0
+    assert density_option(None, None, 5.0) == 1000.0  # each link's share replaces it
+    for density, material, total, message in [
+        (1000.0, "pla", None, "give --density or --material, not both"),
+        (None, "pla", 5.0, "give --total-mass or --density/--material, not both"),
+        (None, None, float("inf"), "--total-mass must be a positive number of kg, got inf"),
+        (0.0, None, None, "--density must be a positive number of kg/m³, got 0.0"),
+    ]:
+        with pytest.raises(ValueError) as raised:
+            density_option(density, material, total)
+        assert str(raised.value) == message
+
+
+def test_configured_links_under_given_masses_and_unknown_names():
+    configured = {"a": LinkSettings(mass=1.0), "b": LinkSettings(density=2.0)}
+    assert per_link(configured, {"a": 3.0, "c": 4.0}) == {
+        "masses": {"a": 3.0, "c": 4.0},
+        "densities": {"b": 2.0},
+    }
+    plans = [FillPlan("x.urdf", None, links=frozenset({"a", "b"}))]
+    assert unknown_links(["c", "a", "nosuch"], plans) == ["c", "nosuch"]
+    assert unknown_links(["c"], []) == []  # no file was read: its error is what to tell

@@ -1,0 +1,219 @@
+"""``inertia-fill`` (``inertia-kit fill``): write the ``<inertial>`` blocks links need."""
+
+from __future__ import annotations
+
+import textwrap
+from typing import Any
+
+import click
+
+from inertia_kit.cli.options import (
+    HELP,
+    UsageError,
+    package_path_option,
+    parse_xacro_args,
+    xacro_arg_option,
+)
+from inertia_kit.fill.materials import materials_text
+from inertia_kit.version import __version__
+
+
+@click.command("fill", context_settings=HELP)
+@click.argument("paths", nargs=-1, type=click.Path())
+@click.option(
+    "--density",
+    type=float,
+    default=None,
+    metavar="KG_PER_M3",
+    help="Uniform density for links without a known mass, kg/m³ [default: 1000].",
+)
+@click.option(
+    "--material", default=None, metavar="NAME", help=f"Density from a material: {materials_text()}."
+)
+@click.option(
+    "--mass",
+    "mass_options",
+    multiple=True,
+    metavar="LINK=KG",
+    help="A link's mass, kg; its tensor is scaled to it (repeatable).",
+)
+@click.option(
+    "--total-mass",
+    type=float,
+    default=None,
+    metavar="KG",
+    help="The robot's total mass, kg: the links without a known mass share what the others "
+    "leave, in proportion to their volume (instead of --density).",
+)
+@click.option(
+    "--config",
+    "config_path",
+    default=None,
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Configuration file whose [links.NAME] tables give a link's density or mass "
+    "[default: the nearest pyproject.toml with [tool.inertia-kit], or .inertia-kit.toml].",
+)
+@click.option(
+    "--fix",
+    type=click.Choice(["missing", "invalid", "all"]),
+    default="missing",
+    show_default=True,
+    help="missing: links that need an <inertial> and have none; invalid: also replace "
+    "impossible ones (a valid declared mass is kept); all: every link with geometry.",
+)
+@click.option("--diff", "show_diff", is_flag=True, help="Print a unified diff; write nothing.")
+@click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
+@click.option(
+    "-o",
+    "--output",
+    default=None,
+    type=click.Path(dir_okay=False),
+    metavar="OUT",
+    help="Write the filled robot to OUT and leave PATH (exactly one) untouched: a URDF's own "
+    "text, edited; for xacro, the fully expanded URDF, where links made by macros are filled "
+    "too. OUT is always written; exit 1 if links were filled or refused, 0 if none needed it.",
+)
+@package_path_option
+@xacro_arg_option
+@click.version_option(__version__, prog_name="inertia-fill")
+@click.pass_context
+def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
+    """
+    Write <inertial> blocks computed from each link's geometry (collision shapes, else visual
+    ones, at uniform density) into URDF files, as small text edits: comments, layout, quoting
+    and line endings are kept.
+
+    \b
+    Exit codes: 0 nothing to do; 1 a file was (or would be) changed, or a link was refused;
+    2 unreadable input or bad usage. With -o: 1 when links were (or would be) filled into OUT
+    or refused, 0 when none needed filling (OUT is written all the same).
+    \b
+    Examples:
+      inertia-fill robot.urdf
+      inertia-fill --material aluminium --mass gripper=0.35 --diff robot.urdf
+      inertia-fill --fix invalid --check urdf/*.urdf
+      inertia-fill --density 1200 -o robot_filled.urdf robot.urdf.xacro
+      inertia-fill --total-mass 12.5 --fix all robot.urdf.xacro
+    """
+    ctx.exit(fill(paths, **options))
+
+
+def _masses(values: tuple[str, ...]) -> dict[str, float]:
+    masses = {}
+    for value in values:
+        name, sep, text = value.partition("=")
+        try:
+            kg = float(text)
+        except ValueError:
+            kg = float("nan")
+        if not sep or not name or not (kg > 0 and kg != float("inf")):
+            raise UsageError(f"--mass takes LINK=KG with a positive mass, got {value!r}")
+        masses[name] = kg
+    return masses
+
+
+def fill(
+    paths: tuple[str, ...] | list[str],
+    *,
+    density: float | None = None,
+    material: str | None = None,
+    mass_options: tuple[str, ...] = (),
+    total_mass: float | None = None,
+    config_path: str | None = None,
+    fix: str = "missing",
+    show_diff: bool = False,
+    check: bool = False,
+    output: str | None = None,
+    package_paths: tuple[str, ...] = (),
+    xacro_args: tuple[str, ...] = (),
+) -> int:
+    """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
+    from inertia_kit.errors import ConfigError, InputError
+    from inertia_kit.fill.output import write_output
+    from inertia_kit.fill.plan import apply, plan_fill
+    from inertia_kit.fill.policy import density_option, per_link, unknown_links
+    from inertia_kit.lint.config_files import ConfigFinder
+
+    try:
+        if not paths:
+            raise UsageError("give URDF files to fill")
+        if output is not None and len(paths) != 1:
+            raise UsageError(f"-o takes exactly one PATH, got {len(paths)}")
+        arguments = parse_xacro_args(xacro_args)
+        try:
+            density = density_option(density, material, total_mass)
+        except ValueError as error:
+            raise UsageError(str(error)) from None
+        masses = _masses(mass_options)
+        finder = ConfigFinder(config_path)
+    except UsageError as error:
+        click.echo(f"error: {error.format_message()}", err=True)
+        return 2
+    except ConfigError as error:
+        click.echo(f"error: {error}", err=True)
+        return 2
+
+    plans, failed = [], False
+    options = {
+        "density": density,
+        "fix": fix,
+        "package_paths": package_paths,
+        "xacro_args": arguments,
+        "total_mass": total_mass,
+    }
+    for path in paths:
+        try:
+            per_file = per_link(finder.for_file(path).links, masses)
+            plans.append(plan_fill(path, output=output, **options, **per_file))
+        except ConfigError as error:
+            click.echo(f"error: {error}", err=True)
+            return 2
+        except InputError as error:
+            click.echo(f"error: {error}", err=True)
+            failed = True
+    unknown = unknown_links(masses, plans)
+    if unknown:
+        click.echo(f"error: --mass names no link in the files: {', '.join(unknown)}", err=True)
+        return 2
+
+    write = not (show_diff or check)
+    changed = refused = False
+    for plan in plans:
+        for note in plan.notes:
+            click.echo(f"note: {plan.path}: {note}", err=True)
+        if show_diff and plan.changed:
+            click.echo(plan.diff(), nl=False)
+        filled = plan.changed_links
+        if filled or (plan.input_path is not None and write):
+            try:
+                if write:
+                    (apply if plan.input_path is None else write_output)(plan)
+            except InputError as error:
+                click.echo(f"error: {error}", err=True)
+                failed = True
+            else:
+                changed = changed or bool(filled)
+                click.echo(_fill_line(plan, write), err=True)
+        for refusal in plan.refused:
+            refused = True
+            click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
+            if refusal.block is not None:
+                click.echo(textwrap.indent(refusal.block, "    "), err=True)
+    if failed:
+        return 2
+    return 1 if changed or refused else 0
+
+
+def _fill_line(plan: Any, write: bool) -> str:
+    """``Filled 2 links in robot.urdf: arm 1.2 kg, ...`` (``of IN into OUT`` for ``-o``)."""
+    filled = plan.changed_links
+    where = (
+        f"in {plan.path}" if plan.input_path is None else f"of {plan.input_path} into {plan.path}"
+    )
+    if not filled:
+        return f"Wrote {plan.path}: nothing to fill in {plan.input_path}"
+    verb = "Filled" if write else "Would fill"
+    count = f"{len(filled)} link{'s' if len(filled) != 1 else ''}"
+    what = ", ".join(f"{f.link} {f.mass_text} kg" for f in filled)
+    return f"{verb} {count} {where}: {what}"

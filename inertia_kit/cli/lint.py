@@ -1,0 +1,181 @@
+"""``inertia-lint`` (``inertia-kit lint``): lint files and folders, print the findings."""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import click
+
+from inertia_kit.cli.options import (
+    HELP,
+    UsageError,
+    package_path_option,
+    parse_xacro_args,
+    xacro_arg_option,
+)
+from inertia_kit.version import __version__
+
+OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif")
+
+
+def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
+    """``--select IN01,IN020 --select IN002`` → ``("IN01", "IN020", "IN002")``."""
+    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
+
+
+def _colour() -> bool | None:
+    """``None``: colour on a terminal only (click strips it elsewhere); NO_COLOR, FORCE_COLOR."""
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return None
+
+
+@click.command("lint", context_settings=HELP)
+@click.argument("paths", nargs=-1, type=click.Path())
+@click.option(
+    "--output-format",
+    type=click.Choice(OUTPUT_FORMATS),
+    default="full",
+    show_default=True,
+    help="How findings are printed (to stdout).",
+)
+@click.option(
+    "--select",
+    multiple=True,
+    metavar="CODES",
+    help="Rules to run: codes, code prefixes or names, comma-separated (repeatable). "
+    "Replaces the configured select and ignore lists.",
+)
+@click.option(
+    "--ignore",
+    multiple=True,
+    metavar="CODES",
+    help="Rules not to run, as --select (repeatable); added to the configured ignore list.",
+)
+@click.option(
+    "--engine",
+    "engines",
+    multiple=True,
+    metavar="NAMES",
+    help="Predict what these simulators do with each link (loads, silently changes or "
+    "refuses it, with the engine's own message): mujoco, gazebo, drake, pybullet, kdl or all, "
+    "comma-separated (repeatable). Replaces the configured `engines`; none by default.",
+)
+@click.option(
+    "--fail-on",
+    type=click.Choice(["error", "warning", "info"]),
+    default=None,
+    help="Lowest severity that makes the exit code 1 [default: fail-on in the "
+    "configuration, else warning].",
+)
+@click.option(
+    "--exit-zero",
+    is_flag=True,
+    help="Exit 0 even with findings (unreadable input or bad configuration still exit 2).",
+)
+@click.option(
+    "--statistics", is_flag=True, help="Print how often each rule fired instead of the findings."
+)
+@click.option(
+    "--config",
+    "config_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Configuration file for every linted file (pyproject.toml or .inertia-kit.toml) "
+    "instead of the nearest one.",
+)
+@package_path_option
+@xacro_arg_option
+@click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
+@click.version_option(__version__, prog_name="inertia-lint")
+@click.pass_context
+def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
+    """
+    Lint the <inertial> blocks of URDF and xacro robot descriptions: files, or folders (their
+    *.urdf and *.xacro files; xacro fragments that only define macros are skipped).
+
+    \b
+    Exit codes: 0 no findings at or above --fail-on; 1 findings; 2 unreadable input,
+    bad configuration or usage.
+    \b
+    Examples:
+      inertia-lint urdf/
+      inertia-lint --select IN01,IN020 --output-format concise robot.urdf.xacro
+      inertia-lint --engine mujoco,gazebo robot.urdf
+      inertia-lint --explain IN002
+    """
+    ctx.exit(lint(paths, **options))
+
+
+def lint(
+    paths: tuple[str, ...] | list[str],
+    *,
+    output_format: str = "full",
+    select: tuple[str, ...] = (),
+    ignore: tuple[str, ...] = (),
+    engines: tuple[str, ...] = (),
+    fail_on: str | None = None,
+    exit_zero: bool = False,
+    statistics: bool = False,
+    config_path: str | None = None,
+    package_paths: tuple[str, ...] = (),
+    xacro_args: tuple[str, ...] = (),
+    explain: str | None = None,
+) -> int:
+    """``inertia-lint``: print what it finds; return the exit code."""
+    if explain is not None:
+        from inertia_kit.lint.documents import explain as document
+
+        try:
+            click.echo(document(explain), nl=False)
+        except LookupError as error:
+            click.echo(f"error: --explain: {error}", err=True)
+            return 2
+        return 0
+    if not paths:
+        click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
+        return 2
+
+    from inertia_kit.errors import ConfigError
+    from inertia_kit.lint.findings import Severity
+    from inertia_kit.lint.merge import merge
+    from inertia_kit.lint.output import render
+    from inertia_kit.lint.output.summary import statistics as rule_statistics
+    from inertia_kit.lint.output.summary import summary
+    from inertia_kit.lint.runner import lint_paths
+
+    try:
+        results = lint_paths(
+            paths,
+            config=config_path,
+            select=_codes(select),
+            ignore=_codes(ignore),
+            engines=engines or None,
+            fail_on=None if fail_on is None else Severity.parse(fail_on),
+            xacro_args=parse_xacro_args(xacro_args),
+            package_paths=package_paths,
+        )
+    except (ConfigError, UsageError) as error:
+        message = error.format_message() if isinstance(error, UsageError) else str(error)
+        click.echo(f"error: {message}", err=True)
+        return 2
+
+    run = merge(results)
+    for level, text in run.messages:
+        click.echo(f"{level}: {text}", err=True)
+    if not results:
+        click.echo(
+            f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}", err=True
+        )
+    if statistics:
+        output = rule_statistics(run.findings, as_json=output_format == "json")
+    else:
+        output = render(run.findings, output_format, errors=run.errors, style=click.style)
+    click.echo(output, nl=False, color=_colour())
+    click.echo(summary(run.findings, run.checked, len(run.errors)), err=True)
+    if run.errors:
+        return 2
+    return 1 if run.failing and not exit_zero else 0

@@ -1,0 +1,162 @@
+"""``inertia-kit mass``: one sub-command per primitive, and ``mesh``; the report is report.mass."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import click
+
+from inertia_kit.cli.options import UsageError
+
+
+@click.group("mass")
+def mass_group() -> None:
+    """
+    Mass properties of a primitive or a mesh: mass, centre of mass, the inertia tensor about
+    the centre of mass (and about any point), and a ready-to-paste URDF <inertial> block.
+
+    \b
+    Examples:
+      inertia-kit mass cylinder --radius 0.35 --length 0.4 --density 1024 --about 0 0 -0.2
+      inertia-kit mass mesh part.stl --density 2700 --scale 0.001
+    """
+
+
+def _triple(flag: str, help: str, default: tuple[float, float, float] | None) -> Callable:
+    return click.option(flag, nargs=3, type=float, default=default, help=help)
+
+
+# how much the part weighs, where it is placed, and about what it is reported: every sub-command
+_ORIGIN = (0.0, 0.0, 0.0)
+_PART_OPTIONS = (
+    click.option(
+        "--density",
+        type=float,
+        default=None,
+        help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
+    ),
+    click.option("--mass", "mass_kg", type=float, default=None, help="Total mass, kg."),
+    _triple(
+        "--xyz",
+        "Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
+        _ORIGIN,
+    ),
+    _triple("--rpy", "Place the shape: roll pitch yaw, rad (as a URDF <origin rpy>).", _ORIGIN),
+    _triple("--about", "Also report the tensor about this point of the link frame, m.", None),
+    _triple(
+        "--about-rpy", "...and in the axes of a frame rotated by these roll pitch yaw, rad.", None
+    ),
+    click.option(
+        "--format",
+        "output_format",
+        type=click.Choice(["text", "json"]),
+        default="text",
+        show_default=True,
+    ),
+)
+
+_RADIUS = ("--radius", 1, "m")
+# shape -> (help, its dimensions: option, how many numbers, help), in the order
+# ``inertia_kit.physics.primitives.<shape>`` takes them
+_PRIMITIVES: dict[str, tuple[str, tuple[tuple[str, int, str], ...]]] = {
+    "box": ("A solid box centred on its frame.", (("--size", 3, "Edge lengths x y z, m."),)),
+    "cylinder": (
+        "A solid cylinder along z, centred on its frame (as URDF).",
+        (_RADIUS, ("--length", 1, "m, along z")),
+    ),
+    "sphere": ("A solid sphere.", (_RADIUS,)),
+    "capsule": (
+        "A solid capsule along z: a cylinder capped by two hemispheres.",
+        (_RADIUS, ("--length", 1, "m, of the cylinder between the caps")),
+    ),
+    "ellipsoid": (
+        "A solid ellipsoid with semi-axes along x, y, z.",
+        (("--radii", 3, "Semi-axes a b c, m."),),
+    ),
+}
+
+
+def _with_options(command: Callable, options: list[Callable]) -> Callable:
+    """``command`` decorated with ``options``, shown in this order by ``--help``."""
+    for option in reversed(options):
+        command = option(command)
+    return command
+
+
+def _part_options(command: Callable) -> Callable:
+    """The options every sub-command takes after its own."""
+    return _with_options(command, list(_PART_OPTIONS))
+
+
+def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Command:
+    names = [flag.lstrip("-") for flag, _, _ in dimensions]
+
+    def run(**options: Any) -> None:
+        from inertia_kit.physics import primitives
+        from inertia_kit.report.mass import Part
+
+        sizes = [options.pop(name) for name in names]
+        description: dict[str, Any] = {"shape": shape}
+        for name, size in zip(names, sizes, strict=True):
+            description[name] = list(size) if isinstance(size, tuple) else size
+        try:
+            # at unit density the mass is the volume
+            part = Part(description, getattr(primitives, shape)(*sizes, density=1.0))
+        except ValueError as error:
+            raise UsageError(str(error)) from None
+        _show(part, options)
+
+    own = [
+        click.option(flag, nargs=n, type=float, required=True, help=text)
+        for flag, n, text in dimensions
+    ]
+    return click.command(shape, help=help)(_with_options(_part_options(run), own))
+
+
+for _shape, (_help, _dimensions) in _PRIMITIVES.items():
+    mass_group.add_command(_primitive_command(_shape, _help, _dimensions))
+
+
+@mass_group.command("mesh")
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option(
+    "--scale",
+    default="1",
+    show_default=True,
+    help='URDF mesh scale: one factor or three, e.g. 0.001 or "0.001 0.001 0.001".',
+)
+@_part_options
+def mass_mesh(path: str, scale: str, **options: Any) -> None:
+    """A closed triangle mesh: STL, OBJ, DAE, PLY or GLB."""
+    factors = _parse_scale(scale)
+    from inertia_kit.errors import MeshError
+    from inertia_kit.report.mass import mesh_part
+
+    try:
+        part = mesh_part(path, factors)
+    except MeshError as error:
+        raise UsageError(str(error)) from None
+    _show(part, options)
+
+
+def _parse_scale(text: str) -> tuple[float, float, float]:
+    try:
+        values = [float(part) for part in text.replace(",", " ").split()]
+    except ValueError:
+        raise UsageError(f"--scale takes one or three numbers, got {text!r}") from None
+    if len(values) == 1:
+        values *= 3
+    if len(values) != 3:
+        raise UsageError(f"--scale takes one or three numbers, got {len(values)}")
+    return values[0], values[1], values[2]
+
+
+def _show(part: Any, options: dict[str, Any]) -> None:
+    from inertia_kit.report.mass import render
+
+    try:
+        text = render(part, **options)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    click.echo(text)

@@ -1,0 +1,76 @@
+"""``inertia-kit report``: the robot's link table, or the bodies each engine simulates."""
+
+from __future__ import annotations
+
+import click
+
+from inertia_kit.cli.options import (
+    UsageError,
+    package_path_option,
+    parse_xacro_args,
+    xacro_arg_option,
+)
+
+
+@click.command("report")
+@click.argument("path", type=click.Path(dir_okay=False))
+@click.option(
+    "--format",
+    "output_format",
+    type=click.Choice(["text", "markdown", "json"]),
+    default="text",
+    show_default=True,
+)
+@click.option(
+    "--lumped",
+    is_flag=True,
+    help="Instead, the bodies each engine simulates after fixed-joint lumping: their links, "
+    "combined mass, COM and tensor, and the links the engine drops.",
+)
+@click.option(
+    "--engine",
+    "engines",
+    multiple=True,
+    metavar="NAMES",
+    help="With --lumped: mujoco, gazebo, drake, pybullet, kdl or all, comma-separated "
+    "(repeatable) [default: all].",
+)
+@package_path_option
+@xacro_arg_option
+def report_command(
+    path: str,
+    output_format: str,
+    lumped: bool,
+    engines: tuple[str, ...],
+    package_paths: tuple[str, ...],
+    xacro_args: tuple[str, ...],
+) -> None:
+    """A table of the robot's links: parent joint, declared mass, COM, principal moments,
+    geometry and the source line to edit; and the robot's total mass. With --lumped, the
+    bodies each engine simulates."""
+    from inertia_kit.description.loader import load
+    from inertia_kit.engines.vocabulary import ENGINES, parse_engines
+    from inertia_kit.errors import InputError
+    from inertia_kit.report.robot import render, render_lumped
+
+    if engines and not lumped:
+        raise UsageError("--engine needs --lumped")
+    try:
+        chosen = parse_engines(engines) if engines else ENGINES
+    except ValueError as error:
+        raise UsageError(f"--engine: {error}") from None
+
+    try:
+        robot = load(path, xacro_args=parse_xacro_args(xacro_args), package_paths=package_paths)
+    except InputError as error:
+        raise UsageError(str(error)) from None
+    if robot.fragment:
+        click.echo(
+            f"{path}: a xacro fragment (macros and properties only, to be included): no links",
+            err=True,
+        )
+        return
+    if lumped:
+        click.echo(render_lumped(robot, chosen, output_format))
+    else:
+        click.echo(render(robot, output_format))

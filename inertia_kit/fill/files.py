@@ -1,0 +1,95 @@
+"""
+The files a fill may edit: read once, parsed once, and only inside the input's package (the
+folder holding the nearest ``package.xml``, else the input's folder).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from inertia_kit.description.edits import SourceText
+    from inertia_kit.description.model import Source
+
+#: Where an element is written: resolved path, line, column.
+Key = tuple[str, int | None, int | None]
+
+
+def key(source: Source) -> Key:
+    return (str(Path(source.path).resolve()), source.line, source.column)
+
+
+@dataclass
+class Files:
+    """The files edits may touch: read once, parsed once, and only inside ``root``."""
+
+    root: Path
+    sources: dict[str, SourceText] = field(default_factory=dict)
+    _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
+
+    @classmethod
+    def for_input(cls, path: str | Path) -> Files:
+        path = Path(path).resolve()
+        for folder in path.parents:
+            if (folder / "package.xml").is_file():
+                return cls(folder)
+        return cls(path.parent)
+
+    def editable(self, path: str) -> bool:
+        return Path(path).resolve().is_relative_to(self.root)
+
+    def source(self, path: str) -> SourceText:
+        from inertia_kit.description.edits import read_source
+
+        resolved = str(Path(path).resolve())
+        if resolved not in self.sources:
+            self.sources[resolved] = read_source(path)
+        return self.sources[resolved]
+
+    def add(self, source: SourceText) -> None:
+        """Use ``source`` for its path (the text a plan was made from)."""
+        self.sources[str(Path(source.path).resolve())] = source
+
+    def offset(self, where: Source, tag: str) -> int | None:
+        """The offset of the ``<`` of the element written at ``where`` (``None``: not found)."""
+        if where.line is None:
+            return None
+        source = self.source(where.path)
+        text = source.text
+        try:
+            line_start = source.offset(where.line)
+        except ValueError:
+            return None
+        pattern = re.compile(r"<" + re.escape(tag) + r"(?=[\s/>])")
+        if where.column is not None and pattern.match(text, line_start + where.column - 1):
+            return line_start + where.column - 1
+        line_end = text.find("\n", line_start)
+        found = [
+            m.start()
+            for m in pattern.finditer(text, line_start, len(text) if line_end < 0 else line_end)
+        ]
+        return found[0] if len(found) == 1 else None
+
+    def element(self, where: Source) -> etree._Element | None:
+        """The parsed element written at ``where`` (for reading a macro's attributes)."""
+        from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
+
+        resolved = str(Path(where.path).resolve())
+        if resolved not in self._elements:
+            source = self.source(where.path)
+            tree = parse_xml(source.original, where.path)
+            positions = start_tag_positions(source.original, tree) or {}
+            self._elements[resolved] = {position: e for e, position in positions.items()}
+        if where.line is None or where.column is None:
+            return None
+        return self._elements[resolved].get((where.line, where.column))
+
+
+def location(where: Source) -> str:
+    """``path:line`` of an element, for messages."""
+    return f"{where.path}:{where.line}" if where.line is not None else where.path

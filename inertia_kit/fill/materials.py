@@ -1,0 +1,27 @@
+"""
+Densities of common materials, for ``inertia-fill --material``.
+
+One table for the fill and for ``--help``, which shows it: this module imports nothing, so the
+help costs no import of the physics.
+"""
+
+from __future__ import annotations
+
+#: kg/m³, typical values for solid parts; 3D-printed parts are lighter at partial infill, so
+#: pass ``--mass`` when the real mass is known
+MATERIALS: dict[str, float] = {
+    "steel": 7850.0,
+    "aluminium": 2700.0,
+    "abs": 1040.0,
+    "pla": 1240.0,
+    "petg": 1270.0,
+    "nylon": 1150.0,
+    "carbon-fibre": 1600.0,
+    "water": 1000.0,
+    "wood": 700.0,
+}
+
+
+def materials_text() -> str:
+    """``steel 7850, aluminium 2700, ... wood 700 kg/m³``: the table in one line."""
+    return ", ".join(f"{name} {density:g}" for name, density in MATERIALS.items()) + " kg/m³"

@@ -1,0 +1,59 @@
+"""
+The results of linting several files as one: each finding and each message once.
+
+A xacro file included by several linted files is analysed with each of them, so its findings,
+and the notes about its suppression comments, come back once per including file; they are
+told once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from inertia_kit.errors import InputError
+    from inertia_kit.lint.findings import Finding
+    from inertia_kit.lint.runner import FileResult
+
+
+@dataclass(frozen=True)
+class Merged:
+    """
+    ``findings`` in the order the files gave them, each once; ``errors`` the files that could
+    not be read; ``messages`` what to tell besides the findings, as ``(level, text)`` each once
+    (``error`` unreadable, ``note`` a skipped fragment, ``warning`` a suppression comment not
+    understood); ``failing`` whether a file has a finding at or above its ``fail-on``;
+    ``checked`` how many files were linted.
+    """
+
+    findings: list[Finding]
+    errors: list[InputError]
+    messages: list[tuple[str, str]]
+    failing: bool
+    checked: int
+
+
+def merge(results: Sequence[FileResult]) -> Merged:
+    """The per-file ``results`` of one run as one."""
+    messages: dict[tuple[str, str], None] = {}
+    findings: dict[tuple, Finding] = {}
+    for result in results:
+        if result.error:
+            messages[("error", str(result.error))] = None
+        if result.fragment:
+            note = f"{result.path}: a xacro fragment (macros and properties only, to be included)"
+            messages[("note", f"{note}: skipped")] = None
+        for text in result.notes:
+            messages[("warning", text)] = None
+        for finding in result.findings:
+            where = (finding.path, finding.line, finding.column, finding.code, finding.message)
+            findings.setdefault(where, finding)
+    return Merged(
+        list(findings.values()),
+        [result.error for result in results if result.error is not None],
+        list(messages),
+        any(result.failing for result in results),
+        sum(1 for r in results if r.error is None and not r.fragment and not r.disabled),
+    )

@@ -1,0 +1,102 @@
+"""
+`inertia-fill` (and `inertia-kit fill`): usage errors, unreadable input and a bad configuration
+exit 2 and leave the file as it was; --help shows the materials; the console script.
+"""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from console_scripts import console_script
+from kit import moving
+
+from inertia_kit.cli.fill import fill_command
+from inertia_kit.fill.materials import MATERIALS
+
+# a moving link `upper` that inertia-fill would fill
+ROBOT = moving('<collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>', "upper")
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (("--density", "1000", "--material", "steel"), "not both"),
+        (("--material", "unobtainium"), "unknown 'unobtainium'"),
+        (("--mass", "upper"), "LINK=KG"),
+        (("--mass", "upper=-1"), "LINK=KG"),
+        (("--mass", "nosuch=1"), "names no link"),
+        (("--density", "0"), "positive"),
+    ],
+)
+def test_usage_errors_exit_2(args, message, tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(ROBOT)
+    result = CliRunner().invoke(fill_command, [*args, str(path)])
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert path.read_text() == ROBOT
+
+
+def test_unreadable_input_exits_2(tmp_path: Path):
+    result = CliRunner().invoke(fill_command, [str(tmp_path / "missing.urdf")])
+    assert result.exit_code == 2
+    assert "cannot read" in result.stderr
+
+
+def test_console_script_umbrella():
+    done = subprocess.run(
+        [console_script("inertia-kit"), "fill", "--help"], capture_output=True, text=True
+    )
+    assert done.returncode == 0
+    assert "--material" in done.stdout
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (("-o", "{out}", "{path}", "{path}"), "-o takes exactly one PATH, got 2"),
+        (("-o", "{path}", "{path}"), "names the input file itself"),
+        (("-o", "{tmp}/nowhere/out.urdf", "{path}"), "no folder"),
+        (("--xacro-arg", "nope", "-o", "{out}", "{path}"), "NAME:=VALUE"),
+    ],
+)
+def test_output_errors_exit_2(args, message, tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(ROBOT)
+    out = tmp_path / "out.urdf"
+    fields = {"path": path, "out": out, "tmp": tmp_path}
+    result = CliRunner().invoke(fill_command, [a.format(**fields) for a in args])
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert path.read_text() == ROBOT
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(
+    "args", [("--total-mass", "5", "--density", "1000"), ("--total-mass", "-1")]
+)
+def test_total_mass_usage_errors(args, tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(ROBOT)
+    result = CliRunner().invoke(fill_command, [*args, str(path)])
+    assert result.exit_code == 2 and "--total-mass" in result.stderr
+
+
+def test_bad_configuration_exits_2(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(ROBOT)
+    (tmp_path / ".inertia-kit.toml").write_text("[links.upper]\ndensity = -1.0\n")
+    result = CliRunner().invoke(fill_command, [str(path)])
+    assert result.exit_code == 2 and ".inertia-kit.toml" in result.stderr
+    assert path.read_text() == ROBOT
+
+
+def test_help_shows_every_material_with_its_density():
+    result = CliRunner().invoke(fill_command, ["--help"])
+    assert result.exit_code == 0
+    shown = " ".join(result.stdout.split())
+    for name, density in MATERIALS.items():
+        assert f"{name} {density:g}" in shown

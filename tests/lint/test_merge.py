@@ -1,0 +1,48 @@
+"""The results of several linted files as one run: each finding and message once."""
+
+from __future__ import annotations
+
+from inertia_kit.errors import InputError
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.merge import merge
+from inertia_kit.lint.runner import FileResult
+
+
+def finding(path: str, line: int, message: str = "m", severity=Severity.WARNING) -> Finding:
+    return Finding(path, line, 3, "IN099", "stub", severity, message)
+
+
+def test_a_finding_in_a_shared_macro_file_is_told_once():
+    shared = finding("macros.xacro", 7)
+    a = FileResult("a.xacro", [finding("a.xacro", 2), shared], notes=["macros.xacro:1: odd"])
+    b = FileResult(
+        "b.xacro", [shared, finding("macros.xacro", 7, "other")], notes=["macros.xacro:1: odd"]
+    )
+    merged = merge([a, b])
+    assert merged.findings == [
+        finding("a.xacro", 2),
+        shared,
+        finding("macros.xacro", 7, "other"),
+    ]
+    assert merged.messages == [("warning", "macros.xacro:1: odd")]
+    assert (merged.errors, merged.failing, merged.checked) == ([], True, 2)
+
+
+def test_unreadable_files_fragments_and_disabled_files_are_not_checked():
+    error = InputError("no such file", "missing.urdf")
+    results = [
+        FileResult("missing.urdf", error=error),
+        FileResult("macros.xacro", fragment=True),
+        FileResult("off.urdf", disabled=True),
+        FileResult("ok.urdf", [finding("ok.urdf", 1, severity=Severity.INFO)]),
+    ]
+    merged = merge(results)
+    assert merged.errors == [error]
+    assert merged.messages == [
+        ("error", str(error)),
+        (
+            "note",
+            "macros.xacro: a xacro fragment (macros and properties only, to be included): skipped",
+        ),
+    ]
+    assert (merged.failing, merged.checked) == (False, 1)  # an info is below fail-on warning
