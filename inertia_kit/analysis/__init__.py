@@ -1,1 +1,13 @@
-"""analysis"""
+"""
+analysis: what a robot's values and geometry mean, per link, for lint, fill and report.
+
+- ``links``: :class:`~inertia_kit.analysis.links.LinkAnalysis` and ``RobotAnalysis``, the entry
+  point (``analyse(robot)``): each link's declared values, geometry and bounds, computed lazily,
+  and the robot's fixed-joint groups.
+- ``declared``: the declared ``<inertial>`` as mass properties.
+- ``geometry``: shapes evaluated as solids at unit density, and their union.
+- ``bounds``: convex hulls of the geometry and the hard moment bounds they set.
+- ``tensors``: comparing two tensors about every axis.
+- ``describe``: a shape in words, for messages and for the report table.
+- ``forensics``: why a declared tensor disagrees with its geometry.
+"""

@@ -65,7 +65,9 @@ from inertia_kit.physics.frames import matrix_rpy, rpy_matrix
 from inertia_kit.physics.mass import MassProperties, shift_tensor
 
 if TYPE_CHECKING:
-    from inertia_kit.analysis.links import Geometry, Hull, LinkAnalysis
+    from inertia_kit.analysis.bounds import Hull
+    from inertia_kit.analysis.geometry import Geometry
+    from inertia_kit.analysis.links import LinkAnalysis
 
 #: a corrected tensor explains the numbers within this deviation (2 %): CAD values are rounded to
 #: 3–4 significant digits, far below it
@@ -665,10 +667,10 @@ def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
         if isinstance(xyz, tuple) and all(isinstance(v, float) for v in xyz):
             points.append((f"the origin of joint `{joint.name}`", xyz))
     rotations: list[tuple[str, ArrayLike]] = []
-    from inertia_kit.analysis.links import describe_geometry
+    from inertia_kit.analysis.describe import TABLE, describe_geometry
 
     for shape in (*link.link.collisions, *link.link.visuals):
-        what = f"the {shape.kind} {describe_geometry(shape.geometry).split(' ')[0]}"
+        what = f"the {shape.kind} {describe_geometry(shape.geometry, TABLE).split(' ')[0]}"
         xyz = shape.origin.xyz
         mesh = isinstance(shape.geometry, model.Mesh) and isinstance(xyz, tuple)
         if mesh and all(isinstance(v, float) for v in xyz) and any(xyz):  # type: ignore[union-attr]

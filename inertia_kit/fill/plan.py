@@ -592,14 +592,14 @@ def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:
 
 
 def _shape_name(solid) -> str:
-    from inertia_kit.analysis.links import shape_text
+    from inertia_kit.analysis.describe import describe_geometry
 
-    return f"{solid.shape.kind} {shape_text(solid.shape.geometry)}"
+    return f"{solid.shape.kind} {describe_geometry(solid.shape.geometry)}"
 
 
 def _mass(link: LinkAnalysis, choice: MassChoice, volume: float) -> tuple[float | None, str]:
     """The link's mass and where it comes from; ``None`` for a share of ``--total-mass``."""
-    from inertia_kit.analysis.links import declared_mass
+    from inertia_kit.analysis.declared import declared_mass
 
     if link.name in choice.masses:
         return choice.masses[link.name], "given mass"
@@ -620,7 +620,7 @@ def _share_total(analysis, chosen: dict[str, tuple[float | None, str]], total: f
     weigh ``total``: what the other links weigh (declared, kept or given masses) is subtracted
     first. Updates ``chosen``; returns why it cannot (the others already weigh that much).
     """
-    from inertia_kit.analysis.links import declared_mass
+    from inertia_kit.analysis.declared import declared_mass
 
     waiting = [name for name, (mass, _) in chosen.items() if mass is None]
     if not waiting:

@@ -10,8 +10,8 @@ import itertools
 import numpy as np
 import pytest
 
+from inertia_kit.analysis.bounds import Hull
 from inertia_kit.analysis.forensics import deviation, diagnose
-from inertia_kit.analysis.links import Hull
 from inertia_kit.physics.frames import rpy_matrix
 from inertia_kit.physics.mass import MassProperties
 

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.forensics import diagnose_link
-from inertia_kit.analysis.links import BOUND_RTOL, LinkAnalysis
+from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 

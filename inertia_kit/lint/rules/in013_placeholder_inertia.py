@@ -7,7 +7,8 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (

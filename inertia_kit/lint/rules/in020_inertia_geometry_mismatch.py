@@ -6,15 +6,11 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.forensics import diagnose_basis
-from inertia_kit.analysis.links import (
-    BOUND_RTOL,
-    Geometry,
-    LinkAnalysis,
-    TensorComparison,
-    axis_name,
-    compare_tensors,
-)
+from inertia_kit.analysis.geometry import Geometry
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.analysis.tensors import TensorComparison, axis_name, compare_tensors
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt

@@ -8,7 +8,8 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.description import model
 from inertia_kit.engines.verdicts import Verdict, verdict_expected, verdict_message
 from inertia_kit.lint.findings import Finding, Severity
