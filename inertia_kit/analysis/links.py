@@ -193,6 +193,10 @@ class RobotAnalysis:
             stack.extend(j.child for j in link.children if j.type == "fixed" and j.child)
         return tuple(seen.values())
 
+    def welded_to_world(self, name: str) -> bool:
+        """Whether a fixed-joint path joins ``name`` to the link ``world`` (a static body)."""
+        return any(member.name == model.WORLD for member in self.group_of(name))
+
     def mass_share(self, name: str) -> float:
         """
         The link's declared mass as a fraction of its fixed-joint group's (1.0 for a link alone

@@ -1,5 +1,6 @@
 """
-Inertia tensors against each other: how one compares with another about every axis
+Inertia tensors judged on their own and against each other: when a principal moment is zero
+(:func:`zero_tolerance`), how one tensor compares with another about every axis
 (:func:`compare_tensors`), and which link axis a direction is (:func:`axis_name`).
 """
 
@@ -9,6 +10,33 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from inertia_kit.physics.formatting import vector_text
+from inertia_kit.physics.mass import MassProperties
+
+# a principal moment within this fraction of the largest one (or below ZERO_ATOL) is zero:
+# eigenvalues of a singular tensor come out as ±1e-17·C, not as 0
+ZERO_RTOL = 1e-9
+ZERO_ATOL = 1e-18  # kg·m²: 1 mg at 1 µm
+
+
+def zero_tolerance(principal: NDArray[np.float64]) -> float:
+    """Below this a principal moment of ``principal`` (3,) kg·m² is zero, kg·m²."""
+    return max(ZERO_RTOL * float(np.abs(principal).max()), ZERO_ATOL)
+
+
+def positive_definite(body: MassProperties | None) -> bool:
+    """Whether every principal moment of ``body`` is above :func:`zero_tolerance`."""
+    if body is None:
+        return False
+    principal = body.principal_moments
+    return bool(principal[0] > zero_tolerance(principal))
+
+
+def moments_text(principal: NDArray[np.float64]) -> str:
+    """``(0, 0.0521, 0.09895) kg·m²``: eigenvalue noise of a zero moment shown as 0."""
+    tol = zero_tolerance(principal)
+    return vector_text(0.0 if abs(v) <= tol else v for v in principal) + " kg·m²"
 
 
 @dataclass(frozen=True)

@@ -7,8 +7,16 @@ import math
 import numpy as np
 import pytest
 
-from inertia_kit.analysis.tensors import axis_name, compare_tensors
-from inertia_kit.physics.frames import rpy_matrix
+from inertia_kit.analysis.tensors import (
+    ZERO_ATOL,
+    axis_name,
+    compare_tensors,
+    moments_text,
+    positive_definite,
+    zero_tolerance,
+)
+from inertia_kit.physics.frames import rpy_matrix, transform
+from inertia_kit.physics.mass import MassProperties
 
 
 def test_compare_tensors_of_a_scaled_tensor_gives_the_scale_on_every_axis():
@@ -57,3 +65,21 @@ def test_compare_tensors_refuses_what_is_not_positive_definite():
 def test_axis_name():
     assert axis_name((0.0, -1.0, 0.0)) == "y"
     assert axis_name((0.6, 0.8, 0.0)) is None
+
+
+# --- zero moments -------------------------------------------------------------------------------
+
+
+def test_zero_tolerance_is_relative_with_an_absolute_floor():
+    assert zero_tolerance(np.array([0.0, 1.0, 2.0])) == pytest.approx(2e-9)
+    assert zero_tolerance(np.zeros(3)) == ZERO_ATOL
+
+
+def test_positive_definite_sees_eigenvalue_noise_as_zero():
+    rod = MassProperties(1.0, np.zeros(3), np.diag([1.0, 1.0, 0.0]))
+    turned = rod.transformed(transform(rpy=(0.3, 0.2, 0.1)))
+    assert abs(turned.principal_moments[0]) < 1e-15  # noise, not an exact zero
+    assert not positive_definite(turned)
+    assert not positive_definite(None)
+    assert positive_definite(MassProperties(1.0, np.zeros(3), np.eye(3)))
+    assert moments_text(turned.principal_moments) == "(0, 1, 1) kg·m²"
