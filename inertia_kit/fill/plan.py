@@ -12,7 +12,7 @@ What is filled (``fix``):
   IN010, IN011, IN020 (error) or IN023; and links whose tensor shows a recognised slip
   (IN060-IN064: about the link origin, flipped product signs, other axes, a unit slip,
   transposed values), which get their declared values with the slip undone
-  (:func:`inertia_kit.analysis.forensics.diagnose_link`), not the geometry's.
+  (:func:`inertia_kit.analysis.forensics.links.diagnose_link`), not the geometry's.
 - ``all``: every link with geometry.
 
 The mass: ``masses[link]`` when given (``--mass``, or configured); else a declared mass that is
@@ -541,7 +541,7 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
         return True
     if any(f.severity >= Severity.ERROR for f in codes.get("IN020", ())):
         return True
-    from inertia_kit.analysis.forensics import diagnose_link
+    from inertia_kit.analysis.forensics.links import diagnose_link
 
     return diagnose_link(link) is not None  # a recognised slip (IN06x)
 
@@ -549,7 +549,7 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
 def _diagnosis(link: LinkAnalysis, choice: MassChoice):
     """The IN06x diagnosis whose corrected values ``--fix invalid`` writes (``None`` when the
     link has none, or a mass is given for it: then the geometry's tensor for that mass)."""
-    from inertia_kit.analysis.forensics import diagnose_link
+    from inertia_kit.analysis.forensics.links import diagnose_link
 
     if link.name in choice.masses:
         return None

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.bounds import BOUND_RTOL
-from inertia_kit.analysis.forensics import diagnose_link
+from inertia_kit.analysis.forensics.links import diagnose_link
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -27,10 +27,10 @@ def diagnosed(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         severity = Severity.ERROR
         beyond = "; as written no mass inside the geometry can have it (IN023)"
     yield ctx.finding(
-        f"link `{link.name}`: {diagnosis.summary}: {diagnosis.detail}{beyond}",
+        f"link `{link.name}`: {diagnosis.wording.summary}: {diagnosis.wording.detail}{beyond}",
         inertial.inertia_source or inertial.source,
         link=link.name,
         expected=diagnosis.expected(),
-        help=diagnosis.help,
+        help=diagnosis.wording.help,
         severity=severity,
     )
