@@ -31,6 +31,8 @@ Entry points
     ``corrected`` values.
 ``links.diagnose_basis(link, basis, loose=False)``
     The same against one of ``link.bases``; ``loose=True`` is IN020's "likely" note.
+``links.explain(link, hypothesis)``
+    What the forensic rule of ``hypothesis`` (e.g. ``AboutPoint``) reports about a link.
 ``diagnosis.diagnose(declared, expected, ...)``
     The pure test of one declared value against one geometry-derived value.
 ``measure.deviation(tensor, reference)``

@@ -1,18 +1,21 @@
 """
 The forensics of a link: its declared tensor diagnosed against its collision geometry, else its
-visual one, with the link's own reference points and frames as the named candidates.
+visual one, with the link's own reference points and frames as the named candidates; and what
+the IN06x rules say about a diagnosis.
 """
 
 from __future__ import annotations
 
 import weakref
-from dataclasses import replace
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.describe import TABLE, describe_geometry
+from inertia_kit.analysis.forensics.candidate import Candidate
 from inertia_kit.analysis.forensics.diagnosis import Diagnosis, diagnose
 from inertia_kit.analysis.forensics.measure import (
     BETTER,
@@ -140,3 +143,36 @@ def diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
         if diagnosis is not None:
             found.append(diagnosis)
     return found[0] if found else None
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """What a forensic rule's finding says about a link whose diagnosis is its hypothesis."""
+
+    link: str  # the link's name
+    message: str  # link `name`: summary: detail (and why it is an error, when it is one)
+    source: model.Source | None  # the <inertia> element, else the <inertial>
+    expected: dict[str, Any]  # :meth:`Diagnosis.expected`
+    help: str
+    # beyond the geometry's hard bound: the finding replaces IN023's error, so it is one too
+    impossible: bool
+
+
+def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:
+    """The link's diagnosis when ``hypothesis`` explains it (see :func:`diagnose_link`)."""
+    diagnosis = diagnose_link(link)
+    inertial = link.link.inertial
+    if diagnosis is None or not isinstance(diagnosis.slip, hypothesis) or inertial is None:
+        return None
+    excess = link.excess
+    impossible = excess is not None and excess.ratio > 1.0 + BOUND_RTOL
+    beyond = "; as written no mass inside the geometry can have it (IN023)" if impossible else ""
+    wording = diagnosis.wording
+    return Explanation(
+        link.name,
+        f"link `{link.name}`: {wording.summary}: {wording.detail}{beyond}",
+        inertial.inertia_source or inertial.source,
+        diagnosis.expected(),
+        wording.help,
+        impossible,
+    )
