@@ -13,7 +13,8 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.description import model
 from inertia_kit.description.model import WORLD
 from inertia_kit.engines.lumping import written_tensor

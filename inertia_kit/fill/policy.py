@@ -232,7 +232,7 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
         return True
     if any(f.severity >= Severity.ERROR for f in codes.get("IN020", ())):
         return True
-    from inertia_kit.analysis.forensics import diagnose_link
+    from inertia_kit.analysis.forensics.links import diagnose_link
 
     return diagnose_link(link) is not None  # a recognised slip (IN06x)
 
@@ -240,7 +240,7 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
 def _diagnosis(link: LinkAnalysis, choice: MassChoice):
     """The IN06x diagnosis whose corrected values ``--fix invalid`` writes (``None`` when the
     link has none, or a mass is given for it: then the geometry's tensor for that mass)."""
-    from inertia_kit.analysis.forensics import diagnose_link
+    from inertia_kit.analysis.forensics.links import diagnose_link
 
     if link.name in choice.masses:
         return None
@@ -283,14 +283,14 @@ def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:
 
 
 def _shape_name(solid) -> str:
-    from inertia_kit.analysis.links import shape_text
+    from inertia_kit.analysis.describe import describe_geometry
 
-    return f"{solid.shape.kind} {shape_text(solid.shape.geometry)}"
+    return f"{solid.shape.kind} {describe_geometry(solid.shape.geometry)}"
 
 
 def _mass(link: LinkAnalysis, choice: MassChoice, volume: float) -> tuple[float | None, str]:
     """The link's mass and where it comes from; ``None`` for a share of ``--total-mass``."""
-    from inertia_kit.analysis.links import declared_mass
+    from inertia_kit.analysis.declared import declared_mass
 
     if link.name in choice.masses:
         return choice.masses[link.name], "given mass"
@@ -313,7 +313,7 @@ def _share_total(
     weigh ``total``: what the other links weigh (declared, kept or given masses) is subtracted
     first. Updates ``chosen``; returns why it cannot (the others already weigh that much).
     """
-    from inertia_kit.analysis.links import declared_mass
+    from inertia_kit.analysis.declared import declared_mass
 
     waiting = [name for name, (mass, _) in chosen.items() if mass is None]
     if not waiting:

@@ -19,7 +19,8 @@ from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
-from inertia_kit.analysis.links import MeshLoader, RobotAnalysis, analyse
+from inertia_kit.analysis.geometry import MeshLoader
+from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.errors import InputError
 from inertia_kit.lint import catalog

@@ -5,7 +5,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from inertia_kit.analysis.links import declared, geometry_summary
+from inertia_kit.analysis.declared import declared
+from inertia_kit.analysis.describe import geometry_summary
 from inertia_kit.description import model
 from inertia_kit.physics.formatting import fmt, tensor_text, vector_text
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from inertia_kit.analysis.links import Geometry, LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis.geometry import Geometry
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext

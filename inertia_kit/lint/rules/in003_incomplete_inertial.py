@@ -4,16 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from inertia_kit.analysis.expected import geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
-    TENSOR,
-    geometry_tensor,
-    tensor_text,
-    written_axes,
-)
 from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.tensor_names import DIAGONAL, TENSOR
 
 CODE = "IN003"
 NAME = "incomplete-inertial"
@@ -21,7 +17,6 @@ SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "`<inertial>` without `<mass>` or `<inertia>`, or an `<inertia>` attribute missing"
 
-DIAGONAL = ("ixx", "iyy", "izz")
 DENSITY = 1000.0  # kg/m³ for the expected values when the mass is missing too
 
 
@@ -79,20 +74,17 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     basis = ""
     if geometry.unit is not None and geometry.volume > 0:
         at = mass if mass is not None else DENSITY * geometry.volume
-        values_at = geometry_tensor(link, at)
-        if values_at is not None:
-            payload, _, inertia = values_at
-            payload["mass"] = at
+        written = geometry_tensor(link, at)
+        if written is not None:
+            payload = {**written.fields, "mass": at}
             if mass is None:
                 payload["density"] = DENSITY
                 how = f"at 1000 kg/m³ holds {fmt(at, 4)} kg with"
             else:
                 how = f"with the declared {fmt(mass)} kg gives"
-            wanted = tuple(a for a in TENSOR if a in absent)
-            if missing_inertia or missing_mass or not wanted:
-                wanted = ()
-            _, axes = written_axes(inertial, inertia)
-            basis = f"; its {geometry.describe()} {how} {tensor_text(inertia, wanted)} kg·m²{axes}"
+            # only the missing attributes, when the rest of the <inertial> is there
+            wanted = [] if missing_inertia or missing_mass else [a for a in TENSOR if a in absent]
+            basis = f"; its {geometry.describe()} {how} {written.text(wanted or None)}"
     yield ctx.finding(
         f"link `{link.name}`: `<inertial>` has {' and '.join(parts)} "
         f"({_engines(missing_mass, missing_inertia, absent)}){basis}",

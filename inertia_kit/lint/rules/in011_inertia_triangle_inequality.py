@@ -8,20 +8,14 @@ from decimal import Decimal
 
 import numpy as np
 
+from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.analysis.tensors import ZERO_ATOL, moments_text, positive_definite, zero_tolerance
 from inertia_kit.description import model
+from inertia_kit.engines.lumping import lumped, positive_mass
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
-    ZERO_ATOL,
-    geometry_tensor,
-    lumped_positive_definite,
-    moments_text,
-    positive_mass,
-    welded_to_world,
-    zero_tolerance,
-)
 from inertia_kit.physics.formatting import fmt
 
 CODE = "IN011"
@@ -81,7 +75,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if a < -tol0:
             continue  # a negative moment: IN010's
         if a <= tol0 and not (
-            welded_to_world(robot, link.name) or lumped_positive_definite(robot, link)
+            robot.welded_to_world(link.name)
+            or (len(robot.group_of(link.name)) > 1 and positive_definite(lumped(robot, link.name)))
         ):
             continue  # a zero moment IN010 reports
         inertial = link.link.inertial
@@ -93,15 +88,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         allowed = max(allowed, NOISE_RTOL * c, 3 * ZERO_ATOL)
         if shortfall <= allowed:
             continue
-        payload = None
-        basis = ""
-        values_at = geometry_tensor(link, declared.mass)
-        if values_at is not None:
-            payload, text, _ = values_at
-            basis = (
-                f"; its {link.geometry.describe()} with the declared {fmt(declared.mass)} kg "
-                f"gives {text}"
-            )
+        written = geometry_tensor(link, declared.mass)
+        basis = "" if written is None else f"; {basis_text(link, declared.mass)} {written.text()}"
         principal = np.array([a, b, c])
         shown = [0.0 if abs(v) <= tol0 else v for v in (a, b)]
         yield ctx.finding(
@@ -112,7 +100,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             f"refuses it, Gazebo and Drake reject it, PyBullet zeroes it){basis}",
             inertial.inertia_source or inertial.source,
             link=link.name,
-            expected=payload,
+            expected=None if written is None else written.fields,
             help="the tensor is impossible: check that it is about the centre of mass (not the "
             "link origin), that the products of inertia have the URDF sign (ixy = -∫xy dm), and "
             "that the values were not typed by hand; `inertia-fill --fix invalid` recomputes it "

@@ -5,17 +5,14 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+from inertia_kit.analysis.expected import basis_text
 from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.analysis.tensors import zero_tolerance
+from inertia_kit.engines.lumping import lumped, positive_mass
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
-    lumped,
-    positive_mass,
-    welded_to_world,
-    zero_tolerance,
-)
-from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.formatting import fmt, vector_text
 from inertia_kit.physics.mass import MassProperties
 
 CODE = "IN012"
@@ -53,7 +50,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             continue  # zero or negative: IN010's
         if not _too_small(declared, min_moment, min_radius):
             continue
-        if welded_to_world(robot, link.name):
+        if robot.welded_to_world(link.name):
             continue  # static: never integrated
         if len(robot.group_of(link.name)) > 1:
             body = lumped(robot, link.name)
@@ -79,8 +76,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             geometry_moments = expected.principal_moments
             payload["geometry_principal_moments"] = [float(v) for v in geometry_moments]
             geometry_text = (
-                f"; its {link.geometry.describe()} with the declared {fmt(mass)} kg gives "
-                f"principal moments ({', '.join(fmt(v, 3) for v in geometry_moments)}) kg·m²"
+                f"; {basis_text(link, mass)} principal moments "
+                f"{vector_text(geometry_moments, 3)} kg·m²"
             )
         yield ctx.finding(
             f"link `{link.name}`: smallest principal moment {fmt(smallest, 3)} kg·m² (radius of "

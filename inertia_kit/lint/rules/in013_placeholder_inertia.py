@@ -7,17 +7,14 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis, compare_tensors
+from inertia_kit.analysis.expected import basis_text, geometry_tensor
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.analysis.tensors import compare_tensors
+from inertia_kit.engines.lumping import lumped, positive_mass
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules.in010_inertia_not_positive_definite import (
-    geometry_tensor,
-    lumped,
-    positive_mass,
-    tensor_text,
-)
-from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.formatting import fmt, tensor_text
 
 CODE = "IN013"
 NAME = "placeholder-inertia"
@@ -120,11 +117,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         principal = expected.principal_moments
         if not principal[0] > 0 or principal[2] / principal[0] <= anisotropy:
             continue  # a sphere, a cube, a near-cube: an isotropic tensor is right
-        at = geometry_tensor(link, declared.mass)
-        if at is None:
-            continue
-        payload, text, tensor = at
-        if _negligible(robot, link, tensor):
+        written = geometry_tensor(link, declared.mass)
+        if written is None or _negligible(robot, link, written.tensor):
             continue
         inertial = link.link.inertial
         assert inertial is not None
@@ -134,10 +128,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             f"of inertia is an isotropic placeholder, but its {link.geometry.describe()} has "
             f"principal moments in the ratio 1 : {fmt(principal[1] / principal[0], 3)} : "
             f"{fmt(principal[2] / principal[0], 3)}: with the declared {fmt(declared.mass)} kg "
-            f"it gives {text}",
+            f"it gives {written.text()}",
             inertial.inertia_source or inertial.source,
             link=link.name,
-            expected={"mass": declared.mass, **payload},
+            expected={"mass": declared.mass, **written.fields},
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
@@ -149,22 +143,22 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         for member in members:
             declared = positive_mass(member)
             assert declared is not None
-            at = geometry_tensor(member, declared.mass)
-            if at is not None:
-                candidates.append((member, declared.mass, at))
+            written = geometry_tensor(member, declared.mass)
+            if written is not None:
+                candidates.append((member, declared.mass, written))
         if len(candidates) < 2:
             continue
-        comparisons = [compare_tensors(declared_tensor, at[2]) for _, _, at in candidates]
+        comparisons = [compare_tensors(declared_tensor, w.tensor) for _, _, w in candidates]
         if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
         closeness = [c.factor for c in comparisons if c is not None]
-        original, _, (_, _, original_tensor) = candidates[int(np.argmin(closeness))]
-        for member, mass, (payload, text, tensor) in candidates:
+        original, _, original_written = candidates[int(np.argmin(closeness))]
+        for member, mass, written in candidates:
             if member is original or member.name in flagged:
                 continue
             # principal moments: a mirrored or turned copy of the same part is the same shape
-            apart = _spread(tensor, original_tensor)
-            if apart <= copy_factor or _negligible(robot, member, tensor):
+            apart = _spread(written.tensor, original_written.tensor)
+            if apart <= copy_factor or _negligible(robot, member, written.tensor):
                 continue
             inertial = member.link.inertial
             assert inertial is not None
@@ -172,11 +166,11 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             yield ctx.finding(
                 f"link `{member.name}`: its six `<inertia>` values are those of link "
                 f"`{original.name}` ({tensor_text(declared_tensor)} kg·m²), but the two shapes' "
-                f"principal moments differ by a factor of {fmt(apart, 3)}: its "
-                f"{member.geometry.describe()} with the declared {fmt(mass)} kg gives {text}",
+                f"principal moments differ by a factor of {fmt(apart, 3)}: "
+                f"{basis_text(member, mass)} {written.text()}",
                 inertial.inertia_source or inertial.source,
                 link=member.name,
-                expected={"mass": mass, **payload},
+                expected={"mass": mass, **written.fields},
                 help="compute this link's own tensor (from CAD, or `inertia-fill --fix invalid` "
                 "from the geometry) instead of copying another link's",
             )

@@ -6,15 +6,11 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.forensics import diagnose_basis
-from inertia_kit.analysis.links import (
-    BOUND_RTOL,
-    Geometry,
-    LinkAnalysis,
-    TensorComparison,
-    axis_name,
-    compare_tensors,
-)
+from inertia_kit.analysis.bounds import BOUND_RTOL
+from inertia_kit.analysis.forensics.links import diagnose_basis
+from inertia_kit.analysis.geometry import Geometry
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.analysis.tensors import TensorComparison, axis_name, compare_tensors
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -80,7 +76,9 @@ def _verdict(
         return None  # close enough whatever the cause: no need to look for a slip
     # a slip explained within rounding (an IN06x finding), else the likely one
     diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
-    mistake = None if diagnosis is None else f"likely {diagnosis.summary} ({diagnosis.code})"
+    mistake = (
+        None if diagnosis is None else f"likely {diagnosis.wording.summary} ({diagnosis.code})"
+    )
     ratios = comparison.ratios
     if ratios.max() > above or ratios.min() < 1.0 / below:
         return comparison, mistake

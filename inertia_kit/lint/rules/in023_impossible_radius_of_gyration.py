@@ -6,7 +6,9 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.links import BOUND_RTOL, LinkAnalysis, axis_name
+from inertia_kit.analysis.bounds import BOUND_RTOL
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.analysis.tensors import axis_name
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext

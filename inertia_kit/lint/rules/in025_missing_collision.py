@@ -4,7 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from inertia_kit.analysis.links import LinkAnalysis, declared_mass, geometry_summary
+from inertia_kit.analysis.declared import declared_mass
+from inertia_kit.analysis.describe import geometry_summary
+from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext

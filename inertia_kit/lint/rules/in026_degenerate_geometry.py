@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from inertia_kit.analysis.links import LinkAnalysis, shape_text
+from inertia_kit.analysis.describe import describe_geometry
+from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -52,7 +53,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                     continue  # a flat decal or ground plane draws fine and weighs nothing
                 severity = Severity.WARNING
             yield ctx.finding(
-                f"link `{link.name}`: its {shape.kind} {shape_text(shape.geometry)} is "
+                f"link `{link.name}`: its {shape.kind} {describe_geometry(shape.geometry)} is "
                 f"degenerate: {detail}",
                 shape.geometry.source or shape.source,
                 link=link.name,

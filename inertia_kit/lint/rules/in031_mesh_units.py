@@ -9,7 +9,10 @@ from pathlib import Path
 
 import numpy as np
 
-from inertia_kit.analysis.links import LinkAnalysis, Solid, declared_mass, shape_text
+from inertia_kit.analysis.declared import declared_mass
+from inertia_kit.analysis.describe import describe_geometry
+from inertia_kit.analysis.geometry import Solid
+from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
@@ -122,7 +125,7 @@ def _describe(solid: Solid) -> str:
     geometry = solid.shape.geometry
     if isinstance(geometry, model.Mesh):
         return f"{solid.shape.kind} mesh `{Path(geometry.filename).name}`"
-    return f"{solid.shape.kind} {shape_text(geometry)}"
+    return f"{solid.shape.kind} {describe_geometry(geometry)}"
 
 
 def _evidence(

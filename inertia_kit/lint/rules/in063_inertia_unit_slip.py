@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from inertia_kit.analysis.forensics.links import explain
+from inertia_kit.analysis.forensics.unit_slip import UnitSlip
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules._forensic import diagnosed
 
 CODE = "IN063"
 NAME = "inertia-unit-slip"
@@ -24,4 +25,10 @@ SUPERSEDES = ("IN020", "IN023", "IN012", "IN022")
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    yield from diagnosed(link, ctx)
+    why = explain(link, UnitSlip)
+    if why is None:
+        return
+    level = Severity.ERROR if why.impossible else None  # beyond the hard bound: IN023's error
+    yield ctx.finding(
+        why.message, why.source, link=why.link, expected=why.expected, help=why.help, severity=level
+    )

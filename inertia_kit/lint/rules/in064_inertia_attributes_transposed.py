@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from inertia_kit.analysis.forensics.links import explain
+from inertia_kit.analysis.forensics.transposed import Transposed
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.lint.rules._forensic import diagnosed
 
 CODE = "IN064"
 NAME = "inertia-attributes-transposed"
@@ -20,4 +21,10 @@ SUPERSEDES = ("IN020", "IN023")
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    yield from diagnosed(link, ctx)
+    why = explain(link, Transposed)
+    if why is None:
+        return
+    level = Severity.ERROR if why.impossible else None  # beyond the hard bound: IN023's error
+    yield ctx.finding(
+        why.message, why.source, link=why.link, expected=why.expected, help=why.help, severity=level
+    )

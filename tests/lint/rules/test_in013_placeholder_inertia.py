@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from inertia_kit.analysis.links import compare_tensors
+from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.physics.formatting import fmt
 
 

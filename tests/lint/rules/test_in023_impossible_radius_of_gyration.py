@@ -7,7 +7,7 @@ import math
 import pytest
 from kit import moving
 
-from inertia_kit.analysis.links import RIM_SIDES
+from inertia_kit.analysis.bounds import RIM_SIDES
 from inertia_kit.lint.findings import Severity
 
 RIM = 1.0 / math.cos(math.pi / RIM_SIDES)

@@ -1,0 +1,178 @@
+"""
+The forensics of a link: its declared tensor diagnosed against its collision geometry, else its
+visual one, with the link's own reference points and frames as the named candidates; and what
+the IN06x rules say about a diagnosis.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from inertia_kit.analysis.bounds import BOUND_RTOL
+from inertia_kit.analysis.describe import TABLE, describe_geometry
+from inertia_kit.analysis.forensics.candidate import Candidate
+from inertia_kit.analysis.forensics.diagnosis import Diagnosis, diagnose
+from inertia_kit.analysis.forensics.measure import (
+    BETTER,
+    LOOSE,
+    LOOSE_BETTER,
+    MIN_MISMATCH,
+    TOLERANCE,
+    deviation,
+)
+from inertia_kit.analysis.forensics.other_axes import rpy_text
+from inertia_kit.description import model
+from inertia_kit.physics.frames import rpy_matrix
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.geometry import Geometry
+    from inertia_kit.analysis.links import LinkAnalysis
+
+
+def _origin_rotation(origin: model.Origin) -> NDArray[np.float64] | None:
+    rpy = origin.rpy
+    if not isinstance(rpy, tuple) or not all(isinstance(v, float) for v in rpy):
+        return None
+    return rpy_matrix(rpy)
+
+
+def _snapped(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
+    """An axis permutation when ``rotation`` is one up to a rounded pi (``rpy="0 1.5708 0"``)."""
+    rounded = np.round(rotation)
+    if np.abs(rotation - rounded).max() <= 1e-4 and np.allclose(rounded @ rounded.T, np.eye(3)):
+        return rounded
+    return rotation
+
+
+def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
+    """Reference points (link origin, child joints, mesh origins) and shape frames of a link."""
+    points: list[tuple[str, ArrayLike]] = [("the link origin", (0.0, 0.0, 0.0))]
+    for joint in link.children:
+        xyz = joint.origin.xyz
+        if isinstance(xyz, tuple) and all(isinstance(v, float) for v in xyz):
+            points.append((f"the origin of joint `{joint.name}`", xyz))
+    rotations: list[tuple[str, ArrayLike]] = []
+    for shape in (*link.link.collisions, *link.link.visuals):
+        # the shape's kind as the report table names it: box, cylinder, mesh, …
+        kind = describe_geometry(shape.geometry, TABLE).split(" ")[0]
+        what = f"the {shape.kind} {kind}"
+        xyz = shape.origin.xyz
+        mesh = isinstance(shape.geometry, model.Mesh) and isinstance(xyz, tuple)
+        if mesh and all(isinstance(v, float) for v in xyz) and any(xyz):  # type: ignore[union-attr]
+            points.append((f"the origin of {what} `{shape.geometry.filename}`", xyz))
+        rotation = _origin_rotation(shape.origin)
+        if rotation is not None and not np.allclose(rotation, np.eye(3)):
+            rpy = rpy_text(shape.origin.rpy)  # type: ignore[arg-type]
+            rotations.append((f'{what}\'s own axes (<origin rpy="{rpy}">)', _snapped(rotation)))
+    return points, rotations
+
+
+_CACHE: weakref.WeakKeyDictionary[LinkAnalysis, dict[tuple, Diagnosis | None]] = (
+    weakref.WeakKeyDictionary()
+)
+
+
+def diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool = False) -> Diagnosis | None:
+    """
+    The diagnosis of a link's declared tensor against one of its :attr:`LinkAnalysis.bases`
+    (``basis`` set), whether or not it agrees with the other; cached per link and basis.
+
+    ``loose``: what the tensor most likely is when it is not explained within
+    :data:`TOLERANCE`: a match within :data:`LOOSE` (a real part is not the uniform solid of
+    its collision shapes), only by named points, rotations, signs, units and transpositions (no
+    point solved for). IN020 names it in its message; nothing is corrected from it.
+    """
+    cache = _CACHE.setdefault(link, {})
+    key = (basis.kind, loose)
+    if key not in cache:
+        cache[key] = _diagnose_basis(link, basis, loose)
+    return cache[key]
+
+
+def _diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool) -> Diagnosis | None:
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return None
+    expected = basis.at_mass(declared.mass)
+    if expected is None:
+        return None
+    inertial = link.link.inertial
+    axes = None if inertial is None else _origin_rotation(inertial.origin)
+    points, rotations = _named_frames(link)
+    diagnosis = diagnose(
+        declared,
+        expected,
+        points=points,
+        rotations=rotations,
+        axes=axes,
+        hull=None if loose else basis.hull,
+        volume=basis.volume,
+        geometry=basis.describe(),
+        tolerance=LOOSE if loose else TOLERANCE,
+        better=LOOSE_BETTER if loose else BETTER,
+    )
+    return None if diagnosis is None else replace(diagnosis, basis=basis.kind)
+
+
+def diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
+    """
+    The diagnosis of a link's declared tensor, or ``None``: no declared value, no usable
+    geometry, a tensor that agrees with the collision or the visual geometry (within
+    :data:`MIN_MISMATCH`), or nothing that explains it. The collision geometry's diagnosis is
+    preferred. ``inertia-fill --fix invalid`` writes its ``corrected`` values.
+    """
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return None
+    found = []
+    for basis in link.bases:
+        expected = basis.at_mass(declared.mass)
+        if expected is None:
+            return None
+        try:
+            if deviation(declared.inertia, expected.inertia) < MIN_MISMATCH:
+                return None  # agrees with one basis: nothing to explain
+        except np.linalg.LinAlgError:
+            return None
+        diagnosis = diagnose_basis(link, basis)
+        if diagnosis is not None:
+            found.append(diagnosis)
+    return found[0] if found else None
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """What a forensic rule's finding says about a link whose diagnosis is its hypothesis."""
+
+    link: str  # the link's name
+    message: str  # link `name`: summary: detail (and why it is an error, when it is one)
+    source: model.Source | None  # the <inertia> element, else the <inertial>
+    expected: dict[str, Any]  # :meth:`Diagnosis.expected`
+    help: str
+    # beyond the geometry's hard bound: the finding replaces IN023's error, so it is one too
+    impossible: bool
+
+
+def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:
+    """The link's diagnosis when ``hypothesis`` explains it (see :func:`diagnose_link`)."""
+    diagnosis = diagnose_link(link)
+    inertial = link.link.inertial
+    if diagnosis is None or not isinstance(diagnosis.slip, hypothesis) or inertial is None:
+        return None
+    excess = link.excess
+    impossible = excess is not None and excess.ratio > 1.0 + BOUND_RTOL
+    beyond = "; as written no mass inside the geometry can have it (IN023)" if impossible else ""
+    wording = diagnosis.wording
+    return Explanation(
+        link.name,
+        f"link `{link.name}`: {wording.summary}: {wording.detail}{beyond}",
+        inertial.inertia_source or inertial.source,
+        diagnosis.expected(),
+        wording.help,
+        impossible,
+    )

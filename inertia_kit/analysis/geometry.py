@@ -1,0 +1,220 @@
+"""
+A link's geometry as solids: each ``<visual>``/``<collision>`` shape evaluated at unit density
+in the link frame (:func:`evaluate_shape`), and the shapes of one kind together, their overlaps
+counted once (:func:`evaluate_geometry`).
+
+Geometry-derived values (DESIGN.md): the link's ``<collision>`` shapes, else its ``<visual>``
+ones, each placed by its origin, meshes scaled as URDF says, at uniform density, overlaps of
+primitives counted once (solid union).
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import NDArray
+
+from inertia_kit.analysis.bounds import Hull, box_corners
+from inertia_kit.analysis.describe import describe_geometry
+from inertia_kit.description import model
+from inertia_kit.physics.mass import MassProperties
+
+if TYPE_CHECKING:
+    from inertia_kit.physics.meshes import MeshSolid
+    from inertia_kit.physics.unions import Part
+
+
+@dataclass(frozen=True, eq=False)
+class Solid:
+    """
+    One ``<visual>``/``<collision>`` shape evaluated as a solid in the link frame.
+
+    ``unit`` is its mass properties at 1 kg/m³ (so ``unit.mass`` is its volume); ``None``
+    with ``problem`` set when the shape yields none: ``(kind, message)`` with kind one of
+    ``invalid-number``, ``degenerate``, ``unknown-geometry``, ``mesh-not-found``,
+    ``mesh-unreadable``, ``mesh-empty``.
+    """
+
+    shape: model.Shape
+    unit: MassProperties | None
+    corners: NDArray[np.float64] | None  # (8, 3) corners of its own bounding box, link frame
+    part: Part | None = None
+    mesh: MeshSolid | None = None
+    problem: tuple[str, str] | None = None
+
+    @property
+    def volume(self) -> float:
+        return 0.0 if self.unit is None else self.unit.mass
+
+    @functools.cached_property
+    def hull(self) -> Hull | None:
+        """A convex set containing the solid (see :class:`Hull`), or ``None`` without a solid."""
+        if self.part is not None:
+            return Hull.of_part(self.part)
+        if self.corners is not None:
+            return Hull(self.corners)
+        return None
+
+
+@dataclass(frozen=True, eq=False)
+class Geometry:
+    """
+    The solids of one kind (``collision`` or ``visual``) of a link, and their union.
+
+    ``unit`` is the union's mass properties at 1 kg/m³ when every shape yielded a solid, else
+    ``None`` (a partial geometry would give wrong expectations).
+    """
+
+    kind: str | None
+    solids: tuple[Solid, ...]
+    unit: MassProperties | None
+    overlap_volume: float = 0.0
+
+    @property
+    def volume(self) -> float:
+        return 0.0 if self.unit is None else self.unit.mass
+
+    @property
+    def problems(self) -> list[tuple[Solid, tuple[str, str]]]:
+        return [(s, s.problem) for s in self.solids if s.problem is not None]
+
+    @property
+    def corners(self) -> NDArray[np.float64] | None:
+        """(8k, 3) bounding-box corners of every solid, link frame: a hull of the geometry."""
+        boxes = [s.corners for s in self.solids if s.corners is not None]
+        return np.concatenate(boxes) if boxes else None
+
+    @functools.cached_property
+    def hull(self) -> Hull | None:
+        """A convex set containing every solid, or ``None`` when a shape yielded no solid."""
+        hulls = [s.hull for s in self.solids]
+        if not hulls or any(h is None for h in hulls):
+            return None
+        return Hull.union(hulls)  # type: ignore[arg-type]
+
+    def at_mass(self, mass: float) -> MassProperties | None:
+        """The geometry's mass properties for a total mass, at uniform density."""
+        if self.unit is None or not self.unit.mass > 0 or not mass > 0:
+            return None
+        return self.unit.with_mass(mass)
+
+    def describe(self) -> str:
+        """``collision cylinder (r = 0.05 m, l = 0.3 m)`` or ``2 collision shapes (...)``."""
+        parts = [describe_geometry(s.shape.geometry) for s in self.solids]
+        if len(parts) == 1:
+            return f"{self.kind} {parts[0]}"
+        return f"{len(parts)} {self.kind} shapes ({'; '.join(parts)})"
+
+
+MeshLoader = Callable[[str, tuple[float, float, float]], "MeshSolid"]
+
+
+def default_mesh_loader(path: str, scale: tuple[float, float, float]) -> MeshSolid:
+    """A mesh as a solid, through the on-disk cache."""
+    # the on-disk cache: re-linting an unchanged mesh reads a 1 kB entry, not the mesh
+    from inertia_kit.physics.mesh_cache import cached_mesh_solid
+
+    return cached_mesh_solid(path, scale)
+
+
+def _pose(origin: model.Origin) -> NDArray[np.float64] | None:
+    from inertia_kit.physics.frames import transform
+
+    if not isinstance(origin.xyz, tuple) or not isinstance(origin.rpy, tuple):
+        return None
+    return transform(origin.xyz, origin.rpy)
+
+
+def _positive(values: tuple[model.Number, ...]) -> tuple[float, ...] | None:
+    if not all(isinstance(v, float) for v in values):
+        return None
+    return tuple(values) if all(v > 0 for v in values) else ()  # type: ignore[return-value]
+
+
+def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_loader) -> Solid:
+    """Evaluate one placed shape as a solid at unit density, in the link frame."""
+    from inertia_kit.errors import MeshError
+    from inertia_kit.physics.unions import Part
+
+    pose = _pose(shape.origin)
+    if pose is None:
+        return Solid(shape, None, None, problem=("invalid-number", "its <origin> is not numeric"))
+    geometry = shape.geometry
+    if isinstance(geometry, model.Unknown):
+        what = f"<{geometry.tag}>" if geometry.tag else "nothing"
+        return Solid(
+            shape, None, None, problem=("unknown-geometry", f"its <geometry> holds {what}")
+        )
+    if isinstance(geometry, model.Mesh):
+        if geometry.path is None:
+            return Solid(shape, None, None, problem=("mesh-not-found", geometry.problem or ""))
+        scale = geometry.scale
+        if not isinstance(scale, tuple):
+            return Solid(
+                shape, None, None, problem=("invalid-number", "its mesh scale is not numeric")
+            )
+        if any(v == 0 for v in scale):
+            return Solid(
+                shape, None, None, problem=("degenerate", "its mesh scale has a zero factor")
+            )
+        try:
+            solid = load_mesh(geometry.path, scale)
+        except MeshError as error:
+            kind = {"not-found": "mesh-not-found", "empty": "mesh-empty"}.get(
+                error.kind, "mesh-unreadable"
+            )
+            return Solid(shape, None, None, problem=(kind, error.message))
+        unit = solid.mass_properties(density=1.0).transformed(pose)
+        corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
+        return Solid(shape, unit, corners, mesh=solid)
+    if isinstance(geometry, model.Box):
+        size = geometry.size
+        dims = None if not isinstance(size, tuple) else _positive(size)
+        make = lambda d: Part.box(d, pose)  # noqa: E731
+    elif isinstance(geometry, model.Cylinder):
+        dims = _positive((geometry.radius, geometry.length))
+        make = lambda d: Part.cylinder(*d, pose)  # noqa: E731
+    elif isinstance(geometry, model.Capsule):
+        dims = _positive((geometry.radius, geometry.length))
+        make = lambda d: Part.capsule(*d, pose)  # noqa: E731
+    else:  # Sphere
+        dims = _positive((geometry.radius,))
+        make = lambda d: Part.sphere(d[0], pose)  # noqa: E731
+    if dims is None:
+        return Solid(shape, None, None, problem=("invalid-number", "a dimension is not numeric"))
+    if dims == ():
+        return Solid(shape, None, None, problem=("degenerate", "a dimension is zero or negative"))
+    part = make(dims)
+    return Solid(shape, part.mass_properties(density=1.0), box_corners(part.bounds), part=part)
+
+
+def evaluate_geometry(
+    shapes: tuple[model.Shape, ...], kind: str | None, load_mesh: MeshLoader = default_mesh_loader
+) -> Geometry:
+    """The solids of ``shapes`` and, when all are usable, their union at unit density."""
+    solids = tuple(evaluate_shape(shape, load_mesh) for shape in shapes)
+    if not solids or any(s.unit is None for s in solids):
+        return Geometry(kind, solids, None)
+    if len(solids) == 1:
+        return Geometry(kind, solids, solids[0].unit)
+    parts = [s.part for s in solids if s.part is not None]
+    meshes = [s.unit for s in solids if s.part is None]
+    overlap = 0.0
+    unit = None
+    if len(parts) > 1:
+        from inertia_kit.physics.unions import union
+
+        try:
+            result = union(parts, density=1.0)
+            unit, overlap = result.mass_properties, result.overlap_volume
+        except ValueError:
+            unit = None
+    if unit is None and parts:
+        unit = sum(s.part.mass_properties(density=1.0) for s in solids if s.part is not None)
+    # meshes are added whole: their overlaps with other shapes are not removed
+    total = sum(meshes, unit) if unit is not None else sum(meshes)
+    return Geometry(kind, solids, total, overlap)

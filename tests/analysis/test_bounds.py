@@ -1,0 +1,145 @@
+"""analysis.bounds: hulls and the hard moment bounds, against closed forms and invariants."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from inertia_kit.analysis.bounds import RIM_SIDES, Hull, moment_excess
+from inertia_kit.analysis.tensors import axis_name
+from inertia_kit.physics.frames import rpy_matrix, transform
+from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.unions import Part
+
+RIM = 1.0 / math.cos(math.pi / RIM_SIDES)  # how far the cylinder hull's corners overshoot
+
+
+# --- Hull -------------------------------------------------------------------------------------
+
+
+def test_box_hull_support_and_reach_to_its_corners():
+    size = np.array([0.4, 0.2, 0.1])
+    hull = Hull.of_part(Part.box(size, transform((1.0, 0.0, 0.0))))
+    assert hull.support(np.eye(3)) == pytest.approx([1.2, 0.1, 0.05])
+    assert hull.support(-np.eye(3)) == pytest.approx([-0.8, 0.1, 0.05])
+    # from its centre the hull reaches half the diagonal, towards a corner
+    corner = size / 2
+    reach = hull.half_widths((1.0, 0.0, 0.0), [corner / np.linalg.norm(corner)])[0]
+    assert reach == pytest.approx(np.linalg.norm(corner))
+    np.testing.assert_allclose(hull.bounds, [[0.8, -0.1, -0.05], [1.2, 0.1, 0.05]])
+
+
+def test_rotated_box_hull_is_exact_not_its_bounding_box():
+    # a 1 × 0.1 × 0.1 box turned 45° about z reaches (0.5 + 0.05)/√2 along x, not 0.55
+    hull = Hull.of_part(Part.box((1.0, 0.1, 0.1), transform(rpy=(0, 0, math.pi / 4))))
+    assert hull.support([[1.0, 0.0, 0.0]])[0] == pytest.approx(0.55 / math.sqrt(2))
+
+
+def test_sphere_and_capsule_hulls_are_balls():
+    sphere = Hull.of_part(Part.sphere(0.3, transform((0.0, 0.0, 1.0))))
+    assert sphere.half_widths((0.0, 0.0, 0.0), [[0.0, 0.0, 1.0]])[0] == pytest.approx(1.3)
+    assert sphere.support([[0.0, 0.0, -1.0]])[0] == pytest.approx(-0.7)
+    capsule = Hull.of_part(Part.capsule(0.1, 0.4, transform(rpy=(0, math.pi / 2, 0))))
+    assert capsule.support(np.eye(3)) == pytest.approx([0.3, 0.1, 0.1])
+    assert capsule.farthest_from_axes((0, 0, 0), [[1.0, 0.0, 0.0]])[0] == pytest.approx(0.1)
+
+
+def test_cylinder_hull_contains_the_rim_and_overshoots_by_the_polygon_only():
+    radius, length = 0.05, 0.3
+    hull = Hull.of_part(Part.cylinder(radius, length))
+    reach = hull.farthest_from_axes((0, 0, 0), [[0.0, 0.0, 1.0]])[0]
+    assert radius <= reach <= radius * RIM + 1e-15
+    # any direction in the xy-plane: between the circle and the circumscribed polygon
+    angles = np.linspace(0, 2 * np.pi, 97)
+    directions = np.column_stack((np.cos(angles), np.sin(angles), np.zeros_like(angles)))
+    support = hull.support(directions)
+    assert (support >= radius - 1e-15).all() and (support <= radius * RIM + 1e-15).all()
+    assert hull.support([[0.0, 0.0, 1.0]])[0] == pytest.approx(length / 2)
+
+
+def test_moment_bound_of_a_centred_box_is_the_corner_distance():
+    a, b, c = 0.2, 0.1, 0.05  # half sizes
+    hull = Hull.of_part(Part.box((2 * a, 2 * b, 2 * c)))
+    bound = hull.moment_bound((0, 0, 0), np.eye(3))
+    np.testing.assert_allclose(bound, [b * b + c * c, a * a + c * c, a * a + b * b])
+
+
+def test_moment_bound_shrinks_with_an_off_centre_com_bhatia_davis():
+    a, b, c, d = 0.2, 0.1, 0.05, 0.15  # COM d along x from the centre
+    hull = Hull.of_part(Part.box((2 * a, 2 * b, 2 * c)))
+    bound = hull.moment_bound((d, 0, 0), np.eye(3))
+    # about y: second moments along x ≤ (a - d)(a + d), along z ≤ c²
+    assert bound[1] == pytest.approx((a - d) * (a + d) + c * c)
+    assert bound[1] < (a + d) ** 2 + c * c  # tighter than the distance to the far corner
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_moment_bound_holds_for_random_distributions_inside(seed):
+    """No distribution inside the geometry has more than the bound about its own COM."""
+    rng = np.random.default_rng(seed)
+    pose = transform(rng.uniform(-1, 1, 3), rng.uniform(-np.pi, np.pi, 3))
+    radius, length = 0.1, 0.5
+    hull = Hull.of_part(Part.cylinder(radius, length, pose))
+    count = int(rng.integers(2, 6))
+    # point masses on the cylinder's rims: the extreme distributions
+    angle = rng.uniform(0, 2 * np.pi, count)
+    local = np.column_stack(
+        (radius * np.cos(angle), radius * np.sin(angle), rng.choice([-0.5, 0.5], count) * length)
+    )
+    points = local @ pose[:3, :3].T + pose[:3, 3]
+    masses = rng.uniform(0.1, 1.0, count)
+    body = sum(MassProperties(m, p) for m, p in zip(masses, points, strict=True))
+    frames = [np.eye(3), body.principal_axes, rpy_matrix(rng.uniform(-3, 3, 3))]
+    for frame in frames:
+        bound = body.mass * hull.moment_bound(body.com, frame)
+        moments = np.einsum("ji,jk,ki->i", frame, body.inertia, frame)
+        assert (moments <= bound * (1 + 1e-12) + 1e-15).all()
+
+
+def test_distance_outside_is_a_lower_bound_and_zero_inside():
+    hull = Hull.of_part(Part.box((1.0, 1.0, 1.0)))
+    assert hull.distance_outside((0.2, -0.3, 0.4)) == 0.0
+    assert hull.distance_outside((0.8, 0.0, 0.0)) == pytest.approx(0.3)
+    true = math.dist((0.8, 0.8, 0.8), (0.5, 0.5, 0.5))
+    assert 0.9 * true <= hull.distance_outside((0.8, 0.8, 0.8)) <= true + 1e-12
+
+
+def test_union_of_hulls_keeps_every_ball():
+    left = Hull.of_part(Part.sphere(0.1, transform((-1.0, 0.0, 0.0))))
+    right = Hull.of_part(Part.box((0.2, 0.2, 0.2), transform((1.0, 0.0, 0.0))))
+    both = Hull.union([left, right])
+    assert both.support([[1.0, 0, 0], [-1.0, 0, 0]]) == pytest.approx([1.1, 1.1])
+    # the segment between them is inside the convex hull of the union
+    assert both.distance_outside((0.0, 0.0, 0.0)) == 0.0
+
+
+def test_hull_rejects_bad_shapes():
+    with pytest.raises(ValueError, match=r"\(k, 3\)"):
+        Hull(np.zeros((3, 2)))
+    with pytest.raises(ValueError, match="radii"):
+        Hull(np.zeros((2, 3)), np.zeros(3))
+
+
+# --- moment excess ------------------------------------------------------------------------------
+
+
+def test_moment_excess_reports_the_link_axis_beyond_the_bound():
+    hull = Hull.of_part(Part.cylinder(0.05, 0.05))
+    declared = MassProperties(1.0, np.zeros(3), np.diag([1.0, 1.0, 1.0]))
+    excess = moment_excess(declared, hull)
+    assert excess is not None and excess.ratio > 100
+    assert axis_name(excess.axis) is not None
+    # about a transverse axis the farthest points are the rim corners: r² + (l/2)²
+    if axis_name(excess.axis) in "xy":
+        assert excess.r_max == pytest.approx(math.hypot(0.05 * RIM, 0.025), rel=1e-9)
+
+
+def test_moment_excess_of_the_uniform_tensor_is_within_the_bound():
+    part = Part.box((0.4, 0.2, 0.1))
+    uniform = part.mass_properties(mass=3.0)
+    excess = moment_excess(uniform, Hull.of_part(part))
+    assert excess is not None
+    # a uniform box has a third of the corner bound about each axis: (b² + c²)/3 vs b² + c²
+    assert excess.ratio == pytest.approx(1 / 3)
