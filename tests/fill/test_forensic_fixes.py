@@ -13,7 +13,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from kit import REPO, moving
+from kit import EXAMPLES
+from kit.moments import box_tensor
+from kit.urdf import box, collision, inertial, moving
 
 from inertia_kit import load
 from inertia_kit.cli import fill_command
@@ -25,31 +27,18 @@ MASS, SIZE, YAW = 12.0, (0.4, 0.3, 0.2), math.pi / 6
 COM = np.array([0.0, 0.0, 0.25])
 NAMES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 INDEX = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
-EXAMPLES = REPO / "examples"
 
 
 def turned_box() -> np.ndarray:
     """The box's tensor about its centre, in link axes (turned by YAW about z)."""
-    x, y, z = SIZE
-    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * MASS / 12
-    rotation = rpy_matrix([0.0, 0.0, YAW])
-    return rotation @ moments @ rotation.T
+    return box_tensor(MASS, SIZE, rpy_matrix([0.0, 0.0, YAW]))
 
 
 def plate(values: dict[str, float], mass: float = MASS) -> str:
-    attributes = " ".join(f'{k}="{v!r}"' for k, v in values.items())
-    xyz = " ".join(repr(float(v)) for v in COM)
-    return moving(
-        f"""
-    <inertial>
-      <origin xyz="{xyz}"/>
-      <mass value="{mass!r}"/>
-      <inertia {attributes}/>
-    </inertial>
-    <collision><origin xyz="{xyz}" rpy="0 0 {YAW!r}"/>
-      <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  """
-    )
+    """The turned box at COM, with these ``<inertia>`` values written."""
+    xyz = tuple(float(v) for v in COM)
+    written = inertial(mass, **values, xyz=xyz)
+    return moving(written + collision(box(*SIZE), xyz=xyz, rpy=f"0 0 {YAW!r}"), name="plate")
 
 
 def values_of(tensor: np.ndarray) -> dict[str, float]:

@@ -5,12 +5,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from kit import REPO
+from kit.urdf import LIMIT, box, collision, inertial, link, robot
 
 from inertia_kit.analysis.links import analyse
 from inertia_kit.description.loader import load
 from inertia_kit.lint.rules.in073_pybullet_verdict import bad_tensor, predicted_inertia
 
-LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
 MESH = REPO / "examples/pan_tilt_description/meshes/pan.stl"
 INERTIA = '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/>'
 
@@ -124,18 +124,14 @@ def test_link_without_inertial_gets_one_kilogram(tmp_path):
 
 def run(lint, body, **options):
     return lint(
-        f'<robot name="r">{body}</robot>',
+        robot(body),
         select="IN073",
         engines=("pybullet",),
         options={"IN073": options} if options else {},
     )
 
 
-BOX = (
-    '<link name="a"><inertial><mass value="6"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.2" '
-    'iyz="0" izz="0.3"/></inertial><collision><geometry><box size="0.6 0.4 0.2"/></geometry>'
-    "</collision></link>"
-)
+BOX = link("a", inertial(6, 0.1, 0.2, 0.3), collision(box(0.6, 0.4, 0.2)))
 
 
 def test_declared_tensor_equal_to_the_computed_one_gives_nothing(lint):
