@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import REPO
+from kit.urdf import inertial, link, robot_lines
 
 from inertia_kit.cli import lint_main, main
 from inertia_kit.lint import rules as registry
@@ -49,12 +50,8 @@ STUBS = (
 
 
 def urdf(*masses: float) -> str:
-    links = "".join(
-        f'  <link name="l{i}"><inertial><mass value="{m}"/>'
-        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>\n'
-        for i, m in enumerate(masses)
-    )
-    return f'<robot name="r">\n{links}</robot>\n'
+    """Links `l0`, `l1`, ... of these masses, one a line, each with a unit tensor."""
+    return robot_lines(*(f"  {link(f'l{i}', inertial(m, 1))}\n" for i, m in enumerate(masses)))
 
 
 FRAGMENT = (

@@ -23,24 +23,14 @@ from pathlib import Path
 import pytest
 import yaml
 from kit import REPO
+from kit.urdf import box, collision, joint_lines, link_lines, robot_lines
 
 ROOT = REPO
 MANIFEST = ROOT / ".pre-commit-hooks.yaml"
 
-BAD = """<robot name="bad">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <inertial>
-      <mass value="0"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-</robot>
-"""
+BAD = robot_lines(
+    link_lines("base"), joint_lines("base", "arm"), link_lines("arm", 0, 0.001), name="bad"
+)
 GOOD = BAD.replace('name="bad"', 'name="good"').replace('value="0"', 'value="0.5"')
 # only IN002 runs, so that rules still being written cannot change what these tests see
 CONFIG = '[tool.inertia-kit]\nselect = ["IN002"]\n'
@@ -201,17 +191,12 @@ def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     assert re.search(r"inertia-lint\.+Passed", output), output
 
 
-MISSING = """<robot name="arm">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
-  </link>
-</robot>
-"""
+MISSING = robot_lines(
+    link_lines("base"),
+    joint_lines("base", "arm"),
+    f'  <link name="arm">\n    {collision(box(0.1, 0.1, 0.4))}\n  </link>\n',
+    name="arm",
+)
 
 
 def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):

@@ -6,6 +6,8 @@ import types
 from pathlib import Path
 
 import pytest
+from kit import write
+from kit.urdf import joint_lines, link_lines, robot_lines
 
 from inertia_kit.errors import ConfigError
 from inertia_kit.lint import config as config_module
@@ -21,20 +23,7 @@ from inertia_kit.lint.config import (
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.runner import Selection, lint_paths, selection_for
 
-ROBOT = """<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <inertial>
-      <mass value="3"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-</robot>
-"""
+ROBOT = robot_lines(link_lines("base"), joint_lines("base", "arm"), link_lines("arm", 3, 0.001))
 
 
 def _rule(code: str, name: str, options: dict, defaults: dict) -> types.ModuleType:
@@ -64,12 +53,6 @@ OTHER = _rule("IN099", "stub-other", {"limit": float}, {"limit": 100.0})
 @pytest.fixture(autouse=True)
 def stubs(monkeypatch):
     monkeypatch.setattr(registry, "load_rules", lambda *names: (HEAVY, OTHER))
-
-
-def write(path: Path, text: str) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-    return path
 
 
 FULL = """

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import REPO
+from kit.urdf import joint_lines, link_lines, robot_lines
 
 from inertia_kit import __version__
 from inertia_kit.cli import main
@@ -24,31 +25,15 @@ from inertia_kit.lint import rules as registry
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.output import _escape_data, _escape_property, render, statistics, summary
 
-ARM = """<?xml version="1.0"?>
-<robot name="arm">
-  <link name="base"/>
-  <joint name="shoulder" type="revolute">
-    <parent link="base"/><child link="upper"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="upper">
-    <inertial>
-      <mass value="0"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-  <joint name="elbow" type="revolute">
-    <parent link="upper"/><child link="fore"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="fore">
-    <inertial>
-      <mass value="25"/>
-      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/>
-    </inertial>
-  </link>
-</robot>
-"""
+ARM = robot_lines(
+    link_lines("base"),
+    joint_lines("base", "upper", name="shoulder"),
+    link_lines("upper", 0, 0.001),
+    joint_lines("upper", "fore", name="elbow"),
+    link_lines("fore", 25, 0.1),
+    name="arm",
+    head='<?xml version="1.0"?>\n',
+)
 CART = """<?xml version="1.0"?>
 <robot name="cart" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="wheel.xacro"/>
