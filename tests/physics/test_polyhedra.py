@@ -10,6 +10,8 @@ import math
 import numpy as np
 import pytest
 import trimesh
+from kit.meshes import box_triangles
+from kit.moments import box_tensor
 
 from inertia_kit.physics import polyhedra
 from inertia_kit.physics.polyhedra import (
@@ -21,21 +23,7 @@ from inertia_kit.physics.polyhedra import (
 
 RNG = np.random.default_rng(20261121)
 DENSITY = 1000.0
-
-
-def box_triangles(size=(0.5, 0.25, 2.0), low=(0.0, 0.0, 0.0)) -> np.ndarray:
-    """The 12 triangles of an axis-aligned box, wound counter-clockwise seen from outside."""
-    corners = np.array(low) + np.array(size) * np.array(
-        [[i >> 2 & 1, i >> 1 & 1, i & 1] for i in range(8)], dtype=np.float64
-    )
-    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
-    faces = [(a, b, c) for a, b, c, d in quads] + [(a, c, d) for a, b, c, d in quads]
-    return corners[np.array(faces)]
-
-
-def box_inertia(size, mass) -> np.ndarray:
-    x, y, z = np.square(size)
-    return mass / 12.0 * np.diag([y + z, x + z, x + y])
+SIZE = (0.5, 0.25, 2.0)  # dyadic: every vertex exact in float32
 
 
 def sphere_triangles(subdivisions=4, radius=0.3) -> np.ndarray:
@@ -69,11 +57,11 @@ def test_box_matches_the_closed_form(dtype):
     mass = DENSITY * math.prod(size)
     assert properties.mass == pytest.approx(mass, rel=1e-12)
     np.testing.assert_allclose(properties.com, np.add(low, np.multiply(size, 0.5)), atol=1e-12)
-    np.testing.assert_allclose(properties.inertia, box_inertia(size, mass), atol=1e-12 * mass)
+    np.testing.assert_allclose(properties.inertia, box_tensor(mass, size), atol=1e-12 * mass)
 
 
 def test_box_by_mass_and_by_density_agree():
-    moments = volume_moments(box_triangles())
+    moments = volume_moments(box_triangles(SIZE))
     by_density = moments.mass_properties(density=DENSITY)
     by_mass = moments.mass_properties(mass=by_density.mass)
     assert_same(by_mass, by_density)
@@ -146,7 +134,7 @@ def test_far_from_the_coordinate_origin_the_central_moments_keep_their_precision
     size, low = (0.5, 0.25, 2.0), (1000.25, -2000.5, 500.0)  # exact in float64
     properties = volume_moments(box_triangles(size, low)).mass_properties(density=DENSITY)
     mass = DENSITY * math.prod(size)
-    np.testing.assert_allclose(properties.inertia, box_inertia(size, mass), atol=1e-12 * mass)
+    np.testing.assert_allclose(properties.inertia, box_tensor(mass, size), atol=1e-12 * mass)
 
 
 @pytest.mark.parametrize(
@@ -171,11 +159,11 @@ def test_millimetre_mesh_scaled_to_metres():
     mass = DENSITY * math.prod(metres)
     assert properties.mass == pytest.approx(mass, rel=1e-12)
     np.testing.assert_allclose(properties.com, (0.5, -0.375, 2.0), atol=1e-12)
-    np.testing.assert_allclose(properties.inertia, box_inertia(metres, mass), atol=1e-12 * mass)
+    np.testing.assert_allclose(properties.inertia, box_tensor(mass, metres), atol=1e-12 * mass)
 
 
 def test_scaled_rejects_zero_and_non_finite_factors():
-    moments = volume_moments(box_triangles())
+    moments = volume_moments(box_triangles(SIZE))
     for scale in [(1.0, 0.0, 1.0), (1.0, np.nan, 1.0), (1.0, 1.0)]:
         with pytest.raises(ValueError, match="scale"):
             moments.scaled(scale)
@@ -355,6 +343,6 @@ def test_the_fingerprint_does_not_depend_on_chunking_or_order():
 
 
 def test_volume_moments_type():
-    moments = volume_moments(box_triangles())
+    moments = volume_moments(box_triangles(SIZE))
     assert isinstance(moments, VolumeMoments)
     np.testing.assert_allclose(moments.centroid, (0.25, 0.125, 1.0), atol=1e-15)
