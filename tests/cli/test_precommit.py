@@ -168,6 +168,7 @@ def _try_repo(
     )
 
 
+@pytest.mark.slow
 def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
     bad = _project(
         tmp_path / "bad",
@@ -183,6 +184,7 @@ def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
     assert "Found 1 error in 1 file." in output
 
 
+@pytest.mark.slow
 def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     good = _project(tmp_path / "good", {"pyproject.toml": CONFIG, "urdf/good.urdf": GOOD})
     done = _try_repo(hook_repo, good)
@@ -199,6 +201,7 @@ MISSING = robot_lines(
 )
 
 
+@pytest.mark.slow
 def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
     """The fixer writes the missing block and fails (exit 1) so the change is reviewed; run
     again on the filled file, it passes and changes nothing."""
@@ -225,6 +228,7 @@ def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
     assert urdf.read_text() == filled
 
 
+@pytest.mark.slow
 def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
     """
     A wheel built from the snapshot (what pre-commit and pip install) holds the rule
