@@ -1,10 +1,17 @@
-"""Shared helpers: write a robot to a file and lint it."""
+"""
+Shared fixtures: lint a robot text, and a private mesh cache for every test.
+
+This file sits at the root of tests/, which has no ``__init__.py``: pytest's default import mode
+puts this folder on ``sys.path``, so ``from kit import ...`` works in every subfolder, and each
+test module is imported by its file name, which must therefore be unique across the folders.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import pytest
+from kit import write
 
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.runner import Selection, lint_file
@@ -14,8 +21,7 @@ def lint_text(
     text: str, tmp_path: Path, select: tuple[str, ...] = ("IN0",), name: str = "robot.urdf", **kw
 ) -> list[Finding]:
     """Lint ``text`` written to ``tmp_path/name``; raise if the file is unreadable."""
-    path = tmp_path / name
-    path.write_text(text)
+    path = write(tmp_path / name, text)
     result = lint_file(path, Selection(select=select, **kw))
     if result.error is not None:
         raise result.error

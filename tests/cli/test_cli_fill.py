@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from console_scripts import console_script
-from kit import moving
+from kit.urdf import moving
 
 from inertia_kit.cli.fill import fill_command
 from inertia_kit.fill.materials import MATERIALS

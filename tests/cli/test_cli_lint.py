@@ -18,6 +18,7 @@ import pytest
 from click.testing import CliRunner
 from console_scripts import console_script
 from kit import REPO
+from kit.urdf import inertial, link, robot_lines
 
 from inertia_kit.cli import lint_main, main
 from inertia_kit.lint import catalog
@@ -50,12 +51,8 @@ STUBS = (
 
 
 def urdf(*masses: float) -> str:
-    links = "".join(
-        f'  <link name="l{i}"><inertial><mass value="{m}"/>'
-        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>\n'
-        for i, m in enumerate(masses)
-    )
-    return f'<robot name="r">\n{links}</robot>\n'
+    """Links `l0`, `l1`, ... of these masses, one a line, each with a unit tensor."""
+    return robot_lines(*(f"  {link(f'l{i}', inertial(m, 1))}\n" for i, m in enumerate(masses)))
 
 
 FRAGMENT = (

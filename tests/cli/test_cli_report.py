@@ -1,7 +1,8 @@
 """`inertia-kit report`: unreadable input, a bad --xacro-arg and a misused --engine exit 2."""
 
 from click.testing import CliRunner
-from kit import EXAMPLES, moving
+from kit import EXAMPLES
+from kit.urdf import moving
 
 from inertia_kit.cli import main
 

@@ -23,24 +23,14 @@ from pathlib import Path
 import pytest
 import yaml
 from kit import REPO
+from kit.urdf import box, collision, joint_lines, link_lines, robot_lines
 
 ROOT = REPO
 MANIFEST = ROOT / ".pre-commit-hooks.yaml"
 
-BAD = """<robot name="bad">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <inertial>
-      <mass value="0"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
-    </inertial>
-  </link>
-</robot>
-"""
+BAD = robot_lines(
+    link_lines("base"), joint_lines("base", "arm"), link_lines("arm", 0, 0.001), name="bad"
+)
 GOOD = BAD.replace('name="bad"', 'name="good"').replace('value="0"', 'value="0.5"')
 # only IN002 runs, so that rules still being written cannot change what these tests see
 CONFIG = '[tool.inertia-kit]\nselect = ["IN002"]\n'
@@ -178,6 +168,7 @@ def _try_repo(
     )
 
 
+@pytest.mark.slow
 def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
     bad = _project(
         tmp_path / "bad",
@@ -193,6 +184,7 @@ def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
     assert "Found 1 error in 1 file." in output
 
 
+@pytest.mark.slow
 def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     good = _project(tmp_path / "good", {"pyproject.toml": CONFIG, "urdf/good.urdf": GOOD})
     done = _try_repo(hook_repo, good)
@@ -201,19 +193,15 @@ def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     assert re.search(r"inertia-lint\.+Passed", output), output
 
 
-MISSING = """<robot name="arm">
-  <link name="base"/>
-  <joint name="j" type="revolute">
-    <parent link="base"/><child link="arm"/>
-    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
-  </joint>
-  <link name="arm">
-    <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
-  </link>
-</robot>
-"""
+MISSING = robot_lines(
+    link_lines("base"),
+    joint_lines("base", "arm"),
+    f'  <link name="arm">\n    {collision(box(0.1, 0.1, 0.4))}\n  </link>\n',
+    name="arm",
+)
 
 
+@pytest.mark.slow
 def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
     """The fixer writes the missing block and fails (exit 1) so the change is reviewed; run
     again on the filled file, it passes and changes nothing."""
@@ -240,6 +228,7 @@ def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
     assert urdf.read_text() == filled
 
 
+@pytest.mark.slow
 def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
     """
     A wheel built from the snapshot (what pre-commit and pip install) holds the rule

@@ -6,7 +6,7 @@ import time
 from pathlib import Path
 
 import pytest
-from kit import REPO
+from kit import REPO, write
 
 from inertia_kit.description import model
 from inertia_kit.description import safexml as load_module
@@ -22,15 +22,6 @@ def no_ros_environment(monkeypatch):
     """Package lookup must not depend on the machine's ROS set-up."""
     monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
     monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
-
-
-def write(path: Path, text: str | bytes) -> Path:
-    """Write ``text`` as is (its first line is line 1 of the file)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if isinstance(text, str):
-        text = text.encode("utf-8")
-    path.write_bytes(text)
-    return path
 
 
 def make_package(folder: Path, name: str) -> Path:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 import xacro
-from kit import REPO
+from kit import REPO, write
 from lxml import etree
 from xacro import substitution_args
 
@@ -20,13 +20,6 @@ from inertia_kit.errors import InputError
 EXAMPLES = REPO / "examples"
 XACRO_FILES = sorted(EXAMPLES.rglob("*.xacro"))
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
-
-
-def write(path: Path, text: str) -> Path:
-    """Write ``text`` (its first line is line 1 of the file)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
-    return path
 
 
 def include(filename: str) -> str:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from kit import REPO
+from kit.moments import box_tensor
+from kit.urdf import LIMIT, box_inertial
 
 from inertia_kit.analysis.links import analyse
 from inertia_kit.description.loader import load
@@ -16,22 +18,6 @@ from inertia_kit.engines.lumping import (
     simulated_bodies,
 )
 from inertia_kit.engines.vocabulary import ENGINES
-
-LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
-
-
-def box_tensor(mass, size):
-    x, y, z = size
-    return mass / 12 * np.diag([y * y + z * z, x * x + z * z, x * x + y * y])
-
-
-def inertial(mass, size, xyz="0 0 0"):
-    t = box_tensor(mass, size).tolist()
-    return (
-        f'<inertial><origin xyz="{xyz}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{t[0][0]!r}" ixy="0" ixz="0" iyy="{t[1][1]!r}" iyz="0" '
-        f'izz="{t[2][2]!r}"/></inertial>'
-    )
 
 
 def body_of(found: EngineBodies, link: str) -> Body | None:
@@ -46,13 +32,13 @@ def robot(tmp_path, body, name="robot.urdf"):
 
 
 WELDED = f"""
-<link name="base">{inertial(5.0, (0.5, 0.5, 0.5))}</link>
+<link name="base">{box_inertial(5.0, (0.5, 0.5, 0.5))}</link>
 <joint name="j" type="revolute"><parent link="base"/><child link="a"/>
   <axis xyz="0 0 1"/>{LIMIT}</joint>
-<link name="a">{inertial(2.0, (0.2, 0.2, 0.2))}
+<link name="a">{box_inertial(2.0, (0.2, 0.2, 0.2))}
   <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
 <joint name="weld" type="fixed"><parent link="a"/><child link="b"/><origin xyz="0 0 0.5"/></joint>
-<link name="b">{inertial(1.0, (0.1, 0.2, 0.3))}
+<link name="b">{box_inertial(1.0, (0.1, 0.2, 0.3))}
   <collision><geometry><box size="0.1 0.2 0.3"/></geometry></collision>
   <collision name="tip"><geometry><sphere radius="0.01"/></geometry></collision></link>
 <joint name="frame_joint" type="fixed"><parent link="b"/><child link="frame"/></joint>
@@ -121,7 +107,7 @@ def test_mujoco_matches_the_installed_mujoco(tmp_path):
 
 
 def test_kdl_root_segment_carries_no_inertia(tmp_path):
-    analysis = robot(tmp_path, f'<link name="base">{inertial(5.0, (1, 1, 1))}</link>')
+    analysis = robot(tmp_path, f'<link name="base">{box_inertial(5.0, (1, 1, 1))}</link>')
     body = simulated_bodies(analysis, "kdl").bodies[0]
     assert body.static and body.mass_properties is None and "KDL" in body.note
 
@@ -135,7 +121,7 @@ def test_gazebo_drops_a_massless_moving_link_with_its_subtree(tmp_path):
 <link name="ghost"/>
 <joint name="j3" type="revolute"><parent link="ghost"/><child link="hand"/>
   <axis xyz="0 0 1"/>{LIMIT}</joint>
-<link name="hand">{inertial(1.0, (0.1, 0.1, 0.1))}</link>
+<link name="hand">{box_inertial(1.0, (0.1, 0.1, 0.1))}</link>
 """
     )
     found = simulated_bodies(robot(tmp_path, text), "gazebo")
@@ -157,7 +143,7 @@ def test_gazebo_massless_root_is_dropped_with_the_whole_robot(tmp_path):
     text = f"""<link name="base"/>
 <joint name="j" type="revolute"><parent link="base"/><child link="a"/>
   <axis xyz="0 0 1"/>{LIMIT}</joint>
-<link name="a">{inertial(2.0, (0.2, 0.2, 0.2))}</link>"""
+<link name="a">{box_inertial(2.0, (0.2, 0.2, 0.2))}</link>"""
     found = simulated_bodies(robot(tmp_path, text), "gazebo")
     assert found.bodies == () and [d.link for d in found.dropped] == ["base", "a"]
 
@@ -183,7 +169,7 @@ def test_gazebo_disable_fixed_joint_lumping_keeps_the_link(tmp_path):
 def test_gazebo_does_not_lump_into_world(tmp_path):
     text = f"""<link name="world"/>
 <joint name="mount" type="fixed"><parent link="world"/><child link="a"/></joint>
-<link name="a">{inertial(2.0, (0.2, 0.2, 0.2))}</link>"""
+<link name="a">{box_inertial(2.0, (0.2, 0.2, 0.2))}</link>"""
     found = simulated_bodies(robot(tmp_path, text), "gazebo")
     assert [(b.name, b.joint) for b in found.bodies] == [("a", "mount")]
 

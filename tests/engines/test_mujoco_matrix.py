@@ -13,11 +13,12 @@ renumbers) are dropped.
 from __future__ import annotations
 
 import re
-import struct
 from pathlib import Path
 
-import numpy as np
 import pytest
+from kit import urdf
+from kit.meshes import ascii_stl, binary_stl, box_triangles, obj
+from kit.urdf import box, collision, cylinder, inertial, joint, link, mesh, sphere, visual
 
 from inertia_kit.lint.runner import Selection, lint_file
 
@@ -32,37 +33,8 @@ def _in_tmp_path(tmp_path, monkeypatch):
 
 # --- files --------------------------------------------------------------------------------------
 
-# a 0.1 × 0.2 × 0.3 m box, centred: 8 vertices, 12 outward-wound triangles
-_H = np.array([0.05, 0.1, 0.15])
-VERTICES = (np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * _H).tolist()
-FACES = [
-    (0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-    (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3),
-]  # fmt: skip
-
-
-def binary_stl() -> bytes:
-    records = b"".join(
-        struct.pack("<12fH", 0, 0, 0, *VERTICES[a], *VERTICES[b], *VERTICES[c], 0)
-        for a, b, c in FACES
-    )
-    return b"\0" * 80 + struct.pack("<I", len(FACES)) + records
-
-
-def ascii_stl() -> str:
-    facets = "".join(
-        "facet normal 0 0 0\n outer loop\n"
-        + "".join(f"  vertex {x!r} {y!r} {z!r}\n" for x, y, z in (VERTICES[i] for i in f))
-        + " endloop\nendfacet\n"
-        for f in FACES
-    )
-    return f"solid box\n{facets}endsolid box\n"
-
-
-def obj() -> str:
-    vertices = "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in VERTICES)
-    return vertices + "".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in FACES)
-
+# a 0.1 × 0.2 × 0.3 m box, centred: 12 outward-wound triangles
+BOX = box_triangles((0.1, 0.2, 0.3), low=(-0.05, -0.1, -0.15))
 
 DAE = """<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
@@ -71,81 +43,50 @@ DAE = """<?xml version="1.0" encoding="utf-8"?>
 """
 
 FILES: dict[str, bytes | str] = {
-    "box.stl": binary_stl(),
-    "box_ascii.stl": ascii_stl(),
-    "box.obj": obj(),
+    "box.stl": binary_stl(BOX),
+    "box_ascii.stl": ascii_stl(BOX),
+    "box.obj": obj(BOX),
     "box.dae": DAE,
     "empty.stl": b"",
     "short.stl": b"\0" * 60,
-    "padded.stl": binary_stl() + b"\0\0",
+    "padded.stl": binary_stl(BOX) + b"\0\0",
 }
 
 # --- robots ---------------------------------------------------------------------------------
 
 
-def inertial(mass="1", ixx="0.01", iyy="0.01", izz="0.01", ixy="0", ixz="0", iyz="0", rpy=None):
-    origin = "" if rpy is None else f'<origin rpy="{rpy}"/>'
-    return (
-        f'<inertial>{origin}<mass value="{mass}"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="{ixz}" '
-        f'iyy="{iyy}" iyz="{iyz}" izz="{izz}"/></inertial>'
-    )
-
-
-def collision(geometry: str, xyz: str = "0 0 0") -> str:
-    return f'<collision><origin xyz="{xyz}"/><geometry>{geometry}</geometry></collision>'
-
-
-def mesh(filename: str) -> str:
-    return collision(f'<mesh filename="{filename}"/>')
-
-
-def visual_mesh(filename: str) -> str:
-    return f'<visual><geometry><mesh filename="{filename}"/></geometry></visual>'
-
-
-def revolute(parent: str, child: str, kind: str = "revolute") -> str:
-    return (
-        f'<joint name="j_{child}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
-    )
-
-
 def fixed(parent: str, child: str, xyz: str = "0 0 0.1") -> str:
-    return (
-        f'<joint name="f_{child}" type="fixed"><parent link="{parent}"/><child link="{child}"/>'
-        f'<origin xyz="{xyz}"/></joint>'
-    )
-
-
-def link(name: str, *body: str) -> str:
-    return f'<link name="{name}">{"".join(body)}</link>'
+    """A weld, 0.1 m up unless told otherwise."""
+    return joint(parent, child, "fixed", xyz=xyz)
 
 
 def robot(*parts: str) -> str:
-    return '<robot name="r">\n' + "\n".join(parts) + "\n</robot>\n"
+    """One part a line, so that a parser error's line names one element."""
+    return urdf.robot(*parts, sep="\n")
 
 
 def arm(*body: str) -> str:
     """A fixed base and one moving link `arm` holding ``body``."""
-    return robot(link("base"), revolute("base", "arm"), link("arm", *body))
+    return robot(link("base"), joint("base", "arm"), link("arm", *body))
 
 
-BAD_TRIANGLE = dict(ixx="0.001", iyy="0.001", izz="0.01")
-NEGATIVE_EIGEN = dict(ixy="0.02")
-ZERO = dict(ixx="0", iyy="0", izz="0")
+UNIT = inertial(1, 0.01)  # 1 kg, 0.01 kg·m² about every axis
+BAD_TRIANGLE = inertial(1, 0.001, 0.001, 0.01)
+NEGATIVE_EIGEN = inertial(1, 0.01, ixy=0.02)
+ZERO = inertial(1, 0)
 
 # name -> (urdf, the verdict MuJoCo gives it: "loads" | "refuses", what the case is about)
 CASES: dict[str, tuple[str, str]] = {
     # clean
-    "clean-arm": (arm(inertial()), "loads"),
-    "clean-binary-stl": (arm(inertial(), mesh("box.stl")), "loads"),
-    "clean-obj": (arm(inertial(), mesh("box.obj")), "loads"),
-    "clean-uppercase-stl-extension": (arm(inertial(), mesh("BOX.STL")), "loads"),
-    "visual-dae-discarded": (arm(inertial(), visual_mesh("box.dae")), "loads"),
-    "visual-mesh-missing-discarded": (arm(inertial(), visual_mesh("nowhere.stl")), "loads"),
-    "triangle-exactly-on-bound": (arm(inertial(ixx="0.25", iyy="0.25", izz="0.5")), "loads"),
-    "mass-exactly-mjminval": (arm(inertial(mass="1e-15")), "loads"),
-    "eigenvalue-exactly-mjeps": (arm(inertial(ixx="1e-14")), "loads"),
+    "clean-arm": (arm(UNIT), "loads"),
+    "clean-binary-stl": (arm(UNIT, collision(mesh("box.stl"))), "loads"),
+    "clean-obj": (arm(UNIT, collision(mesh("box.obj"))), "loads"),
+    "clean-uppercase-stl-extension": (arm(UNIT, collision(mesh("BOX.STL"))), "loads"),
+    "visual-dae-discarded": (arm(UNIT, visual(mesh("box.dae"))), "loads"),
+    "visual-mesh-missing-discarded": (arm(UNIT, visual(mesh("nowhere.stl"))), "loads"),
+    "triangle-exactly-on-bound": (arm(inertial(1, 0.25, 0.25, 0.5)), "loads"),
+    "mass-exactly-mjminval": (arm(inertial("1e-15", 0.01)), "loads"),
+    "eigenvalue-exactly-mjeps": (arm(inertial(1, "1e-14", 0.01, 0.01)), "loads"),
     # the parser
     "no-mass-element": (
         arm('<inertial><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'),
@@ -159,85 +100,89 @@ CASES: dict[str, tuple[str, str]] = {
         ),
         "refuses",
     ),
-    "mass-not-a-number": (arm(inertial(mass="2kg")), "refuses"),
-    "mass-nan": (arm(inertial(mass="nan")), "refuses"),
+    "mass-not-a-number": (arm(inertial("2kg", 0.01)), "refuses"),
+    "mass-nan": (arm(inertial("nan", 0.01)), "refuses"),
     # meshes
-    "collision-dae": (arm(inertial(), mesh("box.dae")), "refuses"),
-    "collision-ascii-stl": (arm(inertial(), mesh("box_ascii.stl")), "refuses"),
-    "collision-empty-stl": (arm(inertial(), mesh("empty.stl")), "refuses"),
-    "collision-short-stl": (arm(inertial(), mesh("short.stl")), "refuses"),
-    "collision-padded-stl": (arm(inertial(), mesh("padded.stl")), "refuses"),
-    "collision-mesh-missing": (arm(inertial(), mesh("nowhere.stl")), "refuses"),
-    "collision-package-uri": (arm(inertial(), mesh("package://robot/meshes/box.stl")), "refuses"),
+    "collision-dae": (arm(UNIT, collision(mesh("box.dae"))), "refuses"),
+    "collision-ascii-stl": (arm(UNIT, collision(mesh("box_ascii.stl"))), "refuses"),
+    "collision-empty-stl": (arm(UNIT, collision(mesh("empty.stl"))), "refuses"),
+    "collision-short-stl": (arm(UNIT, collision(mesh("short.stl"))), "refuses"),
+    "collision-padded-stl": (arm(UNIT, collision(mesh("padded.stl"))), "refuses"),
+    "collision-mesh-missing": (arm(UNIT, collision(mesh("nowhere.stl"))), "refuses"),
+    "collision-package-uri": (
+        arm(UNIT, collision(mesh("package://robot/meshes/box.stl"))),
+        "refuses",
+    ),
     "mesh-before-body-errors": (
         robot(
             link("base"),
-            revolute("base", "a1"),
-            link("a1", inertial(**BAD_TRIANGLE)),
-            revolute("a1", "a2"),
-            link("a2", inertial(), mesh("box.dae")),
+            joint("base", "a1"),
+            link("a1", BAD_TRIANGLE),
+            joint("a1", "a2"),
+            link("a2", UNIT, collision(mesh("box.dae"))),
         ),
         "refuses",
     ),
     # bodies: mass and moments
-    "mass-below-mjminval": (arm(inertial(mass="1e-16")), "refuses"),
-    "mass-zero": (arm(inertial(mass="0")), "refuses"),
-    "mass-negative": (arm(inertial(mass="-1")), "refuses"),
-    "moment-below-mjeps": (arm(inertial(ixx="5e-15")), "refuses"),
-    "all-six-zero-on-moving-link": (arm(inertial(**ZERO)), "refuses"),
-    "negative-eigenvalue": (arm(inertial(**NEGATIVE_EIGEN)), "refuses"),
-    "negative-diagonal": (arm(inertial(ixx="-0.01")), "refuses"),
-    "triangle-broken": (arm(inertial(**BAD_TRIANGLE)), "refuses"),
+    "mass-below-mjminval": (arm(inertial("1e-16", 0.01)), "refuses"),
+    "mass-zero": (arm(inertial("0", 0.01)), "refuses"),
+    "mass-negative": (arm(inertial("-1", 0.01)), "refuses"),
+    "moment-below-mjeps": (arm(inertial(1, "5e-15", 0.01, 0.01)), "refuses"),
+    "all-six-zero-on-moving-link": (arm(ZERO), "refuses"),
+    "negative-eigenvalue": (arm(NEGATIVE_EIGEN), "refuses"),
+    "negative-diagonal": (arm(inertial(1, -0.01, 0.01, 0.01)), "refuses"),
+    "triangle-broken": (arm(BAD_TRIANGLE), "refuses"),
     # the diagonal satisfies A + B ≥ C, the principal moments (0.001, 0.001, 0.01) do not
     "triangle-broken-only-after-diagonalising": (
-        arm(inertial(ixx="0.001", iyy="0.0055", izz="0.0055", iyz="-0.0045")),
+        arm(inertial(1, 0.001, 0.0055, 0.0055, iyz=-0.0045)),
         "refuses",
     ),
-    "triangle-broken-rotated-axes": (arm(inertial(**BAD_TRIANGLE, rpy="0.3 0.2 0.1")), "refuses"),
-    "zero-collision-box": (arm(inertial(), collision('<box size="0.1 0 0.1"/>')), "refuses"),
+    "triangle-broken-rotated-axes": (
+        arm(inertial(1, 0.001, 0.001, 0.01, rpy="0.3 0.2 0.1")),
+        "refuses",
+    ),
+    "zero-collision-box": (arm(UNIT, collision(box(0.1, 0, 0.1))), "refuses"),
     "zero-cylinder-length": (
-        arm(inertial(), collision('<cylinder radius="0.1" length="0"/>')),
+        arm(UNIT, collision(cylinder(0.1, 0))),
         "refuses",
     ),
     "root-triangle-broken": (
-        robot(
-            link("base", inertial(**BAD_TRIANGLE)), revolute("base", "arm"), link("arm", inertial())
-        ),
+        robot(link("base", BAD_TRIANGLE), joint("base", "arm"), link("arm", UNIT)),
         "refuses",
     ),
     # no <inertial>: inertiafromgeom
     "no-inertial-no-geometry": (arm(), "refuses"),
     "no-inertial-visual-only": (
-        arm('<visual><geometry><box size="0.1 0.2 0.3"/></geometry></visual>'),
+        arm(visual(box(0.1, 0.2, 0.3))),
         "refuses",
     ),
-    "no-inertial-collision-box": (arm(collision('<box size="0.1 0.2 0.3"/>')), "loads"),
+    "no-inertial-collision-box": (arm(collision(box(0.1, 0.2, 0.3))), "loads"),
     "no-inertial-overlapping-boxes": (
         arm(
-            collision('<box size="0.1 0.1 0.1"/>'),
-            collision('<box size="0.1 0.1 0.1"/>', "0.05 0 0"),
+            collision(box(0.1, 0.1, 0.1)),
+            collision(box(0.1, 0.1, 0.1), xyz="0.05 0 0"),
         ),
         "loads",
     ),
-    "no-inertial-collision-stl": (arm(mesh("box.stl")), "loads"),
+    "no-inertial-collision-stl": (arm(collision(mesh("box.stl"))), "loads"),
     "no-inertial-primitives": (
         arm(
-            collision('<sphere radius="0.1"/>'),
-            collision('<cylinder radius="0.1" length="0.2"/>', "1 0 0"),
-            collision('<capsule radius="0.1" length="0.2"/>', "0 1 0"),
+            collision(sphere(0.1)),
+            collision(cylinder(0.1, 0.2), xyz="1 0 0"),
+            collision('<capsule radius="0.1" length="0.2"/>', xyz="0 1 0"),
         ),
         "loads",
     ),
     "no-inertial-mesh-in-mm": (
-        arm(collision('<mesh filename="box.stl" scale="0.001 0.001 0.001"/>')),
+        arm(collision(mesh("box.stl", scale="0.001 0.001 0.001"))),
         "refuses",
     ),
     # fusestatic
     "massless-sensor-on-fixed-joint": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            joint("base", "arm"),
+            link("arm", UNIT),
             fixed("arm", "tool"),
             link("tool"),
         ),
@@ -246,121 +191,121 @@ CASES: dict[str, tuple[str, str]] = {
     "massless-moving-link-with-welded-mass": (
         robot(
             link("base"),
-            revolute("base", "arm"),
+            joint("base", "arm"),
             link("arm"),
             fixed("arm", "tool"),
-            link("tool", inertial()),
+            link("tool", UNIT),
         ),
         "loads",
     ),
     "point-mass-welded-to-body": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            joint("base", "arm"),
+            link("arm", UNIT),
             fixed("arm", "imu"),
-            link("imu", inertial(mass="0.01", **ZERO)),
+            link("imu", inertial(0.01, 0)),
         ),
         "loads",
     ),
     "point-mass-welded-to-massless-link": (
         robot(
             link("base"),
-            revolute("base", "arm"),
+            joint("base", "arm"),
             link("arm"),
             fixed("arm", "tool"),
-            link("tool", inertial(**ZERO)),
+            link("tool", ZERO),
         ),
         "refuses",
     ),
     "two-point-masses-fused-in-turn": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial(**ZERO)),
+            joint("base", "arm"),
+            link("arm", ZERO),
             fixed("arm", "t1", "0 0 0.1"),
-            link("t1", inertial(**ZERO)),
+            link("t1", ZERO),
             fixed("arm", "t2", "0.1 0 0"),
-            link("t2", inertial(**ZERO)),
+            link("t2", ZERO),
         ),
         "refuses",
     ),
     "welded-link-triangle-broken": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            joint("base", "arm"),
+            link("arm", UNIT),
             fixed("arm", "tool"),
-            link("tool", inertial(**BAD_TRIANGLE)),
+            link("tool", BAD_TRIANGLE),
         ),
         "refuses",
     ),
     "welded-link-negative-mass": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            joint("base", "arm"),
+            link("arm", UNIT),
             fixed("arm", "tool"),
-            link("tool", inertial(mass="-0.5")),
+            link("tool", inertial("-0.5", 0.01)),
         ),
         "loads",
     ),
     "welded-link-no-inertial-collision": (
         robot(
             link("base"),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            joint("base", "arm"),
+            link("arm", UNIT),
             fixed("arm", "tool"),
-            link("tool", collision('<box size="0.1 0.1 0.1"/>')),
+            link("tool", collision(box(0.1, 0.1, 0.1))),
         ),
         "loads",
     ),
     "root-with-mass-dropped": (
-        robot(link("base", inertial(mass="5")), revolute("base", "arm"), link("arm", inertial())),
+        robot(link("base", inertial("5", 0.01)), joint("base", "arm"), link("arm", UNIT)),
         "loads",
     ),
     "world-link-fixed-base": (
         robot(
             link("world"),
             fixed("world", "base"),
-            link("base", inertial()),
-            revolute("base", "arm"),
-            link("arm", inertial()),
+            link("base", UNIT),
+            joint("base", "arm"),
+            link("arm", UNIT),
         ),
         "loads",
     ),
     "planar-joint-massless": (
-        robot(link("base"), revolute("base", "arm", "planar"), link("arm")),
+        robot(link("base"), joint("base", "arm", "planar"), link("arm")),
         "refuses",
     ),
     # the first error stops the load
     "first-of-two-refusals-in-tree-order": (
         robot(
             link("base"),
-            link("a2", inertial(**BAD_TRIANGLE)),
-            revolute("base", "a1"),
-            link("a1", inertial(**NEGATIVE_EIGEN)),
-            revolute("a1", "a2"),
+            link("a2", BAD_TRIANGLE),
+            joint("base", "a1"),
+            link("a1", NEGATIVE_EIGEN),
+            joint("a1", "a2"),
         ),
         "refuses",
     ),
     "body-errors-before-mjminval": (
         robot(
             link("base"),
-            revolute("base", "a1"),
-            link("a1", inertial(mass="0")),
-            revolute("a1", "a2"),
-            link("a2", inertial(**BAD_TRIANGLE)),
+            joint("base", "a1"),
+            link("a1", inertial("0", 0.01)),
+            joint("a1", "a2"),
+            link("a2", BAD_TRIANGLE),
         ),
         "refuses",
     ),
     "children-in-joint-order": (
         robot(
             link("base"),
-            revolute("base", "b"),
-            revolute("base", "a"),
-            link("a", inertial(**BAD_TRIANGLE)),
-            link("b", inertial(**NEGATIVE_EIGEN)),
+            joint("base", "b"),
+            joint("base", "a"),
+            link("a", BAD_TRIANGLE),
+            link("b", NEGATIVE_EIGEN),
         ),
         "refuses",
     ),

@@ -12,7 +12,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import REPO
-from test_plan import ARM, ARM_FILLED, MISSING_MESH, MISSING_MESH_FILLED, block, box, joint
+from kit.moments import solid_box
+from kit.urdf import filled_inertial, joint
+from test_plan import ARM, ARM_FILLED, MISSING_MESH, MISSING_MESH_FILLED
 
 from inertia_kit.cli.fill import fill_command
 from inertia_kit.fill.plan import plan_fill
@@ -79,7 +81,7 @@ def test_output_of_the_example_xacro_is_the_expanded_urdf_filled(tmp_path: Path)
     text = out.read_text()
     assert "xacro" not in text.replace("from robot.xacro", "")  # fully expanded
     # base_link: its collision box 0.4 × 0.4 × 0.1 m raised 0.05 m, at 500 kg/m³
-    m, ixx, iyy, izz = box((0.4, 0.4, 0.1), density=500)
+    m, ixx, iyy, izz = solid_box((0.4, 0.4, 0.1), density=500)
     com, mass, inertia = _inertial(out, "base_link")
     assert com == (0, 0, 0.05)
     assert mass == pytest.approx(m, rel=1e-6) and m == pytest.approx(8.0)
@@ -116,10 +118,10 @@ def test_output_fills_links_made_by_xacro_macros(tmp_path: Path):
     assert result.exit_code == 1, result.stderr
     assert path.read_text() == text
     assert stat.S_IMODE(out.stat().st_mode) == 0o640  # an existing OUT keeps its mode
-    m, ixx, iyy, izz = box((0.1, 0.1, 0.4), mass=2)
+    m, ixx, iyy, izz = solid_box((0.1, 0.1, 0.4), mass=2)
     assert out.read_text().endswith(
         '  <link name="arm">\n'
-        + block((m, ixx, iyy, izz), indent="    ")
+        + filled_inertial((m, ixx, iyy, izz), indent="    ")
         + "\n    <collision>\n      <geometry>\n"
         '        <box size="0.1 0.1 0.4"/>\n      </geometry>\n    </collision>\n  </link>\n'
         '  <joint name="j" type="revolute">\n'
@@ -145,7 +147,9 @@ def test_output_of_a_xacro_resolves_meshes_from_its_sources(tmp_path: Path):
         '    <link name="${name}"><collision><geometry><mesh filename="part.stl"/></geometry>'
         "</collision></link>\n"
         "  </xacro:macro>\n"
-        '  <link name="base"/>\n  <xacro:part name="arm"/>\n  ' + joint("arm") + "\n</robot>\n"
+        '  <link name="base"/>\n  <xacro:part name="arm"/>\n  '
+        + joint("base", "arm")
+        + "\n</robot>\n"
     )
     out = tmp_path / "elsewhere" / "robot.urdf"
     out.parent.mkdir()
@@ -153,6 +157,6 @@ def test_output_of_a_xacro_resolves_meshes_from_its_sources(tmp_path: Path):
     assert result.exit_code == 1, result.stderr
     assert "not filled" not in result.stderr
     _, mass, inertia = _inertial(out, "arm")
-    m, ixx, iyy, izz = box((0.1, 0.2, 0.3), density=1000)
+    m, ixx, iyy, izz = solid_box((0.1, 0.2, 0.3), density=1000)
     assert mass == pytest.approx(m, rel=1e-5)
     assert [inertia[k] for k in ("ixx", "iyy", "izz")] == pytest.approx([ixx, iyy, izz], rel=1e-5)

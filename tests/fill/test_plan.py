@@ -6,7 +6,6 @@ with six significant digits as the file format says.
 
 from __future__ import annotations
 
-import math
 import os
 import stat
 from dataclasses import dataclass, field
@@ -14,6 +13,8 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from kit.moments import solid_box, solid_cylinder, solid_sphere
+from kit.urdf import filled_inertial, joint
 
 from inertia_kit.cli.fill import fill_command
 from inertia_kit.fill.materials import MATERIALS
@@ -21,50 +22,7 @@ from inertia_kit.fill.plan import apply, plan_fill
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.formatting import xml_number
 
-# --- closed forms ------------------------------------------------------------------------------
-
-
-def box(size, *, density=None, mass=None):
-    """(mass, ixx, iyy, izz) of a solid box about its centre."""
-    a, b, c = size
-    m = mass if mass is not None else density * a * b * c
-    return m, m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12
-
-
-def cylinder(radius, length, *, density=None, mass=None):
-    """(mass, ixx, iyy, izz) of a solid cylinder along z about its centre."""
-    m = mass if mass is not None else density * math.pi * radius**2 * length
-    side = m * (3 * radius**2 + length**2) / 12
-    return m, side, side, m * radius**2 / 2
-
-
-def block(values, com=(0, 0, 0), indent="  ", unit="  ", nl="\n", first=True):
-    """The expected <inertial> text: ``first`` False leaves the first line unindented."""
-    m, ixx, iyy, izz = values
-    n = lambda v: xml_number(v, 6)  # noqa: E731
-    lines = [
-        "<inertial>",
-        f'{unit}<origin xyz="{" ".join(n(v) for v in com)}" rpy="0 0 0"/>',
-        f'{unit}<mass value="{n(m)}"/>',
-        f'{unit}<inertia ixx="{n(ixx)}" ixy="0" ixz="0" iyy="{n(iyy)}" iyz="0" izz="{n(izz)}"/>',
-        "</inertial>",
-    ]
-    return nl.join((indent if first or i else "") + line for i, line in enumerate(lines))
-
-
 # --- robots ------------------------------------------------------------------------------------
-
-JOINT = (
-    '<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
-    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
-)
-
-
-def joint(child, parent="base", kind="revolute"):
-    return JOINT.format(name=f"j_{child}", parent=parent, child=child).replace(
-        'type="revolute"', f'type="{kind}"'
-    )
-
 
 ARM = """<?xml version="1.0"?>
 <!-- an arm: comments, odd spacing and both quote styles stay as they are -->
@@ -80,18 +38,18 @@ ARM = """<?xml version="1.0"?>
     </collision>
   </link>
 </robot>
-""".replace("{joint}", joint("upper"))
+""".replace("{joint}", joint("base", "upper"))
 
 ARM_FILLED = ARM.replace(
     "name='upper'  >\n",
     "name='upper'  >\n"
-    + block(box((0.1, 0.1, 0.4), density=1000), com=(0, 0, 0.2), indent="    ")
+    + filled_inertial(solid_box((0.1, 0.1, 0.4), density=1000), com=(0, 0, 0.2), indent="    ")
     + "\n",
 )
 
 CRLF_TABS = (
     '<robot name="r">\r\n\t<link name="base"/>\r\n\t'
-    + joint("wheel", kind="continuous")
+    + joint("base", "wheel", "continuous")
     + '\r\n\t<link name="wheel">\r\n\t\t<collision>\r\n\t\t\t<geometry>'
     '<cylinder radius="0.1" length="0.05"/></geometry>\r\n\t\t</collision>\r\n\t</link>\r\n'
     "</robot>\r\n"
@@ -101,7 +59,9 @@ CRLF_TABS = (
 def crlf_filled(values):
     return CRLF_TABS.replace(
         '<link name="wheel">\r\n',
-        '<link name="wheel">\r\n' + block(values, indent="\t\t", unit="\t", nl="\r\n") + "\r\n",
+        '<link name="wheel">\r\n'
+        + filled_inertial(values, indent="\t\t", unit="\t", nl="\r\n")
+        + "\r\n",
     )
 
 
@@ -113,14 +73,14 @@ CROSS = """<robot name="r">
         <collision><geometry><box size="0.1 0.2 0.1"/></geometry></collision>
     </link>
 </robot>
-""".replace("{joint}", joint("cross"))
+""".replace("{joint}", joint("base", "cross"))
 
 
 def cross_values(density):
     """Two boxes overlapping in a 0.1 m cube: inclusion-exclusion of three boxes."""
-    a = box((0.2, 0.1, 0.1), density=density)
-    b = box((0.1, 0.2, 0.1), density=density)
-    c = box((0.1, 0.1, 0.1), density=density)
+    a = solid_box((0.2, 0.1, 0.1), density=density)
+    b = solid_box((0.1, 0.2, 0.1), density=density)
+    c = solid_box((0.1, 0.1, 0.1), density=density)
     return tuple(x + y - z for x, y, z in zip(a, b, c, strict=True))
 
 
@@ -140,11 +100,13 @@ IMPOSSIBLE = """<robot name="r">
     </collision>
   </link>
 </robot>
-""".replace("{joint}", joint("body"))
+""".replace("{joint}", joint("base", "body"))
 IMPOSSIBLE_OLD = IMPOSSIBLE[IMPOSSIBLE.index("<inertial>") : IMPOSSIBLE.index("</inertial>") + 11]
 IMPOSSIBLE_FIXED = IMPOSSIBLE.replace(
     IMPOSSIBLE_OLD,
-    block(box((0.3, 0.2, 0.1), mass=3.0), com=(0, 0, 0.1), indent="    ", first=False),
+    filled_inertial(
+        solid_box((0.3, 0.2, 0.1), mass=3.0), com=(0, 0, 0.1), indent="    ", first=False
+    ),
 )
 
 MISSING_MESH = """<robot name="r">
@@ -158,10 +120,12 @@ MISSING_MESH = """<robot name="r">
     <collision><geometry><cylinder radius="0.02" length="0.5"/></geometry></collision>
   </link>
 </robot>
-""".format(j1=joint("shell"), j2=joint("rod"))
+""".format(j1=joint("base", "shell"), j2=joint("base", "rod"))
 MISSING_MESH_FILLED = MISSING_MESH.replace(
     '<link name="rod">\n',
-    '<link name="rod">\n' + block(cylinder(0.02, 0.5, density=1000), indent="    ") + "\n",
+    '<link name="rod">\n'
+    + filled_inertial(solid_cylinder(0.02, 0.5, density=1000), indent="    ")
+    + "\n",
 )
 
 # a massless frame and a fixed visual-only part: --fix missing leaves both alone
@@ -178,14 +142,16 @@ FRAMES = """<robot name="r">
     <visual><geometry><box size="0.05 0.02 0.01"/></geometry></visual>
   </link>
 </robot>
-""".format(j1=joint("tool_frame", kind="fixed"), j2=joint("badge", kind="fixed"))
+""".format(j1=joint("base", "tool_frame", "fixed"), j2=joint("base", "badge", "fixed"))
 FRAMES_ALL = FRAMES.replace(
     '<link name="badge">\n',
-    '<link name="badge">\n' + block(box((0.05, 0.02, 0.01), density=1000), indent="    ") + "\n",
+    '<link name="badge">\n'
+    + filled_inertial(solid_box((0.05, 0.02, 0.01), density=1000), indent="    ")
+    + "\n",
 ).replace(
     FRAMES[FRAMES.index("<inertial>") : FRAMES.index("</inertial>") + 11],
     # the declared 2 kg is kept, its tensor recomputed for the 0.2 m cube
-    block(box((0.2, 0.2, 0.2), mass=2.0), indent="    ", first=False),
+    filled_inertial(solid_box((0.2, 0.2, 0.2), mass=2.0), indent="    ", first=False),
 )
 
 
@@ -206,54 +172,59 @@ class Case:
 # a byte-order mark and non-ASCII text before the link on its line: offsets are characters
 BOM = (
     "\ufeff<robot name='r'>\n  <link name='base'/>\n  "
-    + joint("ärm")
+    + joint("base", "ärm")
     + "\n  <!-- Oberarm, ä -->  <link name='ärm'>\n"
     "    <visual><geometry><box size='0.1 0.2 0.3'/></geometry></visual>\n"
     "  </link>\n</robot>\n"
 )
 BOM_FILLED = BOM.replace(
     "<link name='ärm'>\n",
-    "<link name='ärm'>\n" + block(box((0.1, 0.2, 0.3), density=1000), indent="    ") + "\n",
+    "<link name='ärm'>\n"
+    + filled_inertial(solid_box((0.1, 0.2, 0.3), density=1000), indent="    ")
+    + "\n",
 )
 
 # the link's content on its start tag's line
 ONE_LINE = (
     '<robot name="r">\n  <link name="base"/>\n  '
-    + joint("pin")
+    + joint("base", "pin")
     + '\n  <link name="pin"><collision><geometry><sphere radius="0.1"/></geometry></collision>'
     "</link>\n</robot>\n"
 )
 
 
-def sphere(radius, density):
-    m = density * 4 / 3 * math.pi * radius**3
-    return m, 0.4 * m * radius**2, 0.4 * m * radius**2, 0.4 * m * radius**2
-
-
 ONE_LINE_FILLED = ONE_LINE.replace(
     '<link name="pin">',
-    '<link name="pin">\n' + block(sphere(0.1, 1000), indent="    ") + "\n  ",
+    '<link name="pin">\n'
+    + filled_inertial(solid_sphere(0.1, density=1000), indent="    ")
+    + "\n  ",
 )
 
 
 CASES = [
     Case("missing-default-density", ARM, (), 1, ARM_FILLED),
-    Case("crlf-tabs", CRLF_TABS, (), 1, crlf_filled(cylinder(0.1, 0.05, density=1000))),
+    Case("crlf-tabs", CRLF_TABS, (), 1, crlf_filled(solid_cylinder(0.1, 0.05, density=1000))),
     Case(
         "density",
         CRLF_TABS,
         ("--density", "2700"),
         1,
-        crlf_filled(cylinder(0.1, 0.05, density=2700)),
+        crlf_filled(solid_cylinder(0.1, 0.05, density=2700)),
     ),
     Case(
         "material",
         CRLF_TABS,
         ("--material", "steel"),
         1,
-        crlf_filled(cylinder(0.1, 0.05, density=7850)),
+        crlf_filled(solid_cylinder(0.1, 0.05, density=7850)),
     ),
-    Case("mass", CRLF_TABS, ("--mass", "wheel=1.5"), 1, crlf_filled(cylinder(0.1, 0.05, mass=1.5))),
+    Case(
+        "mass",
+        CRLF_TABS,
+        ("--mass", "wheel=1.5"),
+        1,
+        crlf_filled(solid_cylinder(0.1, 0.05, mass=1.5)),
+    ),
     Case(
         "union-of-overlapping-collisions",
         CROSS,
@@ -262,7 +233,7 @@ CASES = [
         CROSS.replace(
             '<link name="cross">\n',
             '<link name="cross">\n'
-            + block(cross_values(1000), indent="        ", unit="    ")
+            + filled_inertial(cross_values(1000), indent="        ", unit="    ")
             + "\n",
         ),
     ),
@@ -335,7 +306,7 @@ def test_filled_and_refused_lines(tmp_path: Path):
     path.write_text(MISSING_MESH)
     result = CliRunner().invoke(fill_command, [str(path)])
     assert result.exit_code == 1
-    mass = xml_number(cylinder(0.02, 0.5, density=1000)[0], 6)
+    mass = xml_number(solid_cylinder(0.02, 0.5, density=1000)[0], 6)
     assert f"Filled 1 link in {path}: rod {mass} kg" in result.stderr
     assert f"{path}: link `shell` not filled: its collision mesh" in result.stderr
     assert "mesh not found" in result.stderr
@@ -386,7 +357,7 @@ def test_literal_link_in_xacro_is_filled(tmp_path: Path):
     expected = text.replace(
         "name='upper'  >\n",
         "name='upper'  >\n"
-        + block(box((0.1, 0.1, 0.4), density=1000), com=(0, 0, 0.2), indent="    ")
+        + filled_inertial(solid_box((0.1, 0.1, 0.4), density=1000), com=(0, 0, 0.2), indent="    ")
         + "\n",
     )
     assert path.read_text() == expected

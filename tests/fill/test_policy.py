@@ -17,8 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from kit import REPO, moving
-from test_plan import MISSING_MESH, block, box, cylinder, joint
+from kit import EXAMPLES
+from kit.moments import box_tensor, solid_box, solid_cylinder
+from kit.urdf import box, collision, filled_inertial, inertial, joint, moving
+from test_plan import MISSING_MESH
 
 from inertia_kit import load
 from inertia_kit.cli.fill import fill_command
@@ -33,31 +35,18 @@ MASS, SIZE, YAW = 12.0, (0.4, 0.3, 0.2), math.pi / 6
 COM = np.array([0.0, 0.0, 0.25])
 NAMES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 INDEX = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
-EXAMPLES = REPO / "examples"
 
 
 def turned_box() -> np.ndarray:
     """The box's tensor about its centre, in link axes (turned by YAW about z)."""
-    x, y, z = SIZE
-    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * MASS / 12
-    rotation = rpy_matrix([0.0, 0.0, YAW])
-    return rotation @ moments @ rotation.T
+    return box_tensor(MASS, SIZE, rpy_matrix([0.0, 0.0, YAW]))
 
 
 def plate(values: dict[str, float], mass: float = MASS) -> str:
-    attributes = " ".join(f'{k}="{v!r}"' for k, v in values.items())
-    xyz = " ".join(repr(float(v)) for v in COM)
-    return moving(
-        f"""
-    <inertial>
-      <origin xyz="{xyz}"/>
-      <mass value="{mass!r}"/>
-      <inertia {attributes}/>
-    </inertial>
-    <collision><origin xyz="{xyz}" rpy="0 0 {YAW!r}"/>
-      <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  """
-    )
+    """The turned box at COM, with these ``<inertia>`` values written."""
+    xyz = tuple(float(v) for v in COM)
+    written = inertial(mass, **values, xyz=xyz)
+    return moving(written + collision(box(*SIZE), xyz=xyz, rpy=f"0 0 {YAW!r}"), name="plate")
 
 
 def values_of(tensor: np.ndarray) -> dict[str, float]:
@@ -204,7 +193,9 @@ def test_millimetre_mesh_is_refused(tmp_path: Path):
     assert 'set scale="0.001 0.001 0.001" if that is its unit' in result.stderr
     expected = text.replace(
         '<link name="rod">\n',
-        '<link name="rod">\n' + block(cylinder(0.02, 0.5, density=1000), indent="    ") + "\n",
+        '<link name="rod">\n'
+        + filled_inertial(solid_cylinder(0.02, 0.5, density=1000), indent="    ")
+        + "\n",
     )
     assert path.read_text() == expected
 
@@ -225,19 +216,19 @@ TWO_LINKS = """<robot name="r">
     <collision><geometry><box size="0.1 0.1 0.2"/></geometry></collision>
   </link>
 </robot>
-""".format(j1=joint("upper"), j2=joint("lower", parent="upper"))
+""".format(j1=joint("base", "upper"), j2=joint("upper", "lower"))
 
 
 def filled_two_links(upper_mass: float, lower_mass: float) -> str:
     return TWO_LINKS.replace(
         '<link name="upper">\n',
         '<link name="upper">\n'
-        + block(box((0.1, 0.1, 0.4), mass=upper_mass), indent="    ")
+        + filled_inertial(solid_box((0.1, 0.1, 0.4), mass=upper_mass), indent="    ")
         + "\n",
     ).replace(
         '<link name="lower">\n',
         '<link name="lower">\n'
-        + block(box((0.1, 0.1, 0.2), mass=lower_mass), indent="    ")
+        + filled_inertial(solid_box((0.1, 0.1, 0.2), mass=lower_mass), indent="    ")
         + "\n",
     )
 

@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import REPO
-from test_plan import block, box, cylinder
+from kit.moments import solid_box, solid_cylinder
+from kit.urdf import filled_inertial, joint
 
 from inertia_kit.cli.fill import fill_command
 from inertia_kit.errors import InputError
@@ -30,14 +31,6 @@ CHECKED = ("IN001", "IN002", "IN003", "IN010", "IN011", "IN020", "IN022", "IN023
 
 def n(value: float) -> str:
     return xml_number(value, 6)
-
-
-def moving(child: str, parent: str = "base") -> str:
-    return (
-        f'<joint name="j_{child}" type="revolute"><parent link="{parent}"/>'
-        f'<child link="{child}"/><axis xyz="0 0 1"/>'
-        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
-    )
 
 
 @dataclass(frozen=True)
@@ -59,13 +52,13 @@ ONCE = f"""<robot name="r" {XACRO}>
   </xacro:macro>
   <link name="base"/>
   <xacro:part name="arm" size="0.1 0.2 0.4"/>
-  {moving("arm")}
+  {joint("base", "arm")}
 </robot>
 """
 ONCE_FILLED = ONCE.replace(
     '    <link name="${name}">\n',
     '    <link name="${name}">\n'
-    + block(box((0.1, 0.2, 0.4), density=1000), indent="      ")
+    + filled_inertial(solid_box((0.1, 0.2, 0.4), density=1000), indent="      ")
     + "\n",
 )
 
@@ -79,7 +72,7 @@ TWINS = f"""<robot name="r" {XACRO}>
         <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>
       </inertial>
     </link>
-    {moving("${side}_wheel")}
+    {joint("base", "${side}_wheel")}
   </xacro:macro>
   <link name="base"/>
   <xacro:wheel side="left"/>
@@ -88,7 +81,7 @@ TWINS = f"""<robot name="r" {XACRO}>
 """
 _TWINS_OLD = TWINS[TWINS.index("      <inertial>") + 6 : TWINS.index("</inertial>") + 11]
 TWINS_FILLED = TWINS.replace(
-    _TWINS_OLD, block(cylinder(0.1, 0.05, mass=2.0), indent="      ", first=False)
+    _TWINS_OLD, filled_inertial(solid_cylinder(0.1, 0.05, mass=2.0), indent="      ", first=False)
 )
 
 # --- a macro used with different values that takes them as parameters: the calls change ------
@@ -107,12 +100,12 @@ PARAMS = f"""<robot name="r" {XACRO}>
   <xacro:rod name="short" length="0.2" mass="1.5"
              ixx="1" iyy='1' />
   <xacro:rod name="long" length="0.8" mass="3" ixx="2" iyy="2" izz="0.5"/>
-  {moving("short")}
-  {moving("long")}
+  {joint("base", "short")}
+  {joint("base", "long")}
 </robot>
 """
-_S = cylinder(0.05, 0.2, mass=1.5)
-_L = cylinder(0.05, 0.8, mass=3.0)
+_S = solid_cylinder(0.05, 0.2, mass=1.5)
+_L = solid_cylinder(0.05, 0.8, mass=3.0)
 PARAMS_FILLED = PARAMS.replace(
     """name="short" length="0.2" mass="1.5"
              ixx="1" iyy='1' />""",
@@ -140,15 +133,19 @@ INERTIA_MACRO = f"""<robot name="r" {XACRO}>
     <collision><geometry><sphere radius="0.05"/></geometry></collision>
     <xacro:placeholder_inertial mass="0.5"/>
   </link>
-  {moving("arm")}
-  {moving("hand", "arm")}
+  {joint("base", "arm")}
+  {joint("arm", "hand")}
 </robot>
 """
 _HAND = (0.5, 0.4 * 0.5 * 0.05**2, 0.4 * 0.5 * 0.05**2, 0.4 * 0.5 * 0.05**2)
 INERTIA_MACRO_FILLED = INERTIA_MACRO.replace(
     '<xacro:placeholder_inertial mass="2"/>',
-    block(box((0.1, 0.1, 0.4), mass=2.0), com=(0, 0, 0.2), indent="    ", first=False),
-).replace('<xacro:placeholder_inertial mass="0.5"/>', block(_HAND, indent="    ", first=False))
+    filled_inertial(
+        solid_box((0.1, 0.1, 0.4), mass=2.0), com=(0, 0, 0.2), indent="    ", first=False
+    ),
+).replace(
+    '<xacro:placeholder_inertial mass="0.5"/>', filled_inertial(_HAND, indent="    ", first=False)
+)
 
 # --- refusals: shared bodies with different values and no parameters to carry them -----------
 SHARED = f"""<robot name="r" {XACRO}>
@@ -164,8 +161,8 @@ SHARED = f"""<robot name="r" {XACRO}>
   <link name="base"/>
   <xacro:part name="a" size="0.1 0.1 0.1"/>
   <xacro:part name="b" size="0.1 0.2 0.4"/>
-  {moving("a")}
-  {moving("b")}
+  {joint("base", "a")}
+  {joint("base", "b")}
 </robot>
 """
 SHARED_MISSING = SHARED.replace(
@@ -188,8 +185,8 @@ COM_PARAMETER = f"""<robot name="r" {XACRO}>
   <link name="base"/>
   <xacro:part name="a" xyz="0 0 0.5" mass="1" ixx="1" iyy="1" izz="1"/>
   <xacro:part name="b" xyz="0 0 0.6" mass="1" ixx="1" iyy="1" izz="1"/>
-  {moving("a")}
-  {moving("b")}
+  {joint("base", "a")}
+  {joint("base", "b")}
 </robot>
 """
 
@@ -235,7 +232,7 @@ CASES = [
             "is written once",
             "for 2 links (`a`, `b`) that need different values",
             f'<mass value="{n(1.0)}"/>',
-            f'ixx="{n(box((0.1, 0.2, 0.4), mass=1.0)[1])}"',
+            f'ixx="{n(solid_box((0.1, 0.2, 0.4), mass=1.0)[1])}"',
         ),
     ),
     Case(
@@ -330,11 +327,13 @@ def test_seed_wheeled_robot_base_is_filled_in_its_macro_body(tmp_path: Path):
     changed = {name for name in after if after[name] != before[name]}
     assert changed == {"urdf/base.xacro"}
     # robot.xacro sets base_size to 0.4 0.4 0.1; the box sits on z = 0.05
-    values = box((0.4, 0.4, 0.1), density=1000)
+    values = solid_box((0.4, 0.4, 0.1), density=1000)
     base = before["urdf/base.xacro"].decode()
     expected = base.replace(
         '    <link name="base_link">\n',
-        '    <link name="base_link">\n' + block(values, com=(0, 0, 0.05), indent="      ") + "\n",
+        '    <link name="base_link">\n'
+        + filled_inertial(values, com=(0, 0, 0.05), indent="      ")
+        + "\n",
     )
     assert after["urdf/base.xacro"].decode() == expected
     assert CliRunner().invoke(fill_command, [str(path)]).exit_code == 0
@@ -354,14 +353,17 @@ def test_seed_wheeled_robot_fill_all(tmp_path: Path):
     assert changed == {"urdf/base.xacro", "urdf/wheels.xacro", "urdf/sensors.xacro"}
     wheels = after["urdf/wheels.xacro"].decode()
     # the wheel is a cylinder r = 0.05, h = 0.02 turned onto y; the declared 0.3 kg is kept
-    _, side, _, axial = cylinder(0.05, 0.02, mass=0.3)
+    _, side, _, axial = solid_cylinder(0.05, 0.02, mass=0.3)
     assert (
         f'<inertia ixx="{n(side)}" ixy="0" ixz="0" iyy="{n(axial)}" iyz="0" izz="{n(side)}"/>'
         in wheels
     )
     assert wheels.count("<inertial>") == 2  # mul_wheel untouched, wheel filled once
-    lidar = cylinder(0.03, 0.02, density=1000)
-    assert block(lidar, com=(0, 0, 0.01), indent="      ") in after["urdf/sensors.xacro"].decode()
+    lidar = solid_cylinder(0.03, 0.02, density=1000)
+    assert (
+        filled_inertial(lidar, com=(0, 0, 0.01), indent="      ")
+        in after["urdf/sensors.xacro"].decode()
+    )
     assert "base_footprint" not in result.stderr
     assert CliRunner().invoke(fill_command, ["--fix", "all", str(path)]).exit_code == 0
     assert snapshot(folder) == after
@@ -382,7 +384,7 @@ def test_seed_mrm_arm_fill_all_edits_the_call_parameters(tmp_path: Path):
     for radius, length, mass in [(0.35, 0.4, 157.633), (0.15, 0.8, 57.906), (0.15, 0.25, 18.056)]:
         # the CAD masses are 1024 kg/m³ × the cylinder's volume to 0.3 % (kept as declared)
         assert math.isclose(mass, 1024 * math.pi * radius**2 * length, rel_tol=3e-3)
-        _, side, _, axial = cylinder(radius, length, mass=mass)
+        _, side, _, axial = solid_cylinder(radius, length, mass=mass)
         assert f'ixx="{n(side)}" ixy="0" ixz="0"\n' in text
         assert f'iyy="{n(side)}" iyz="0"\n              izz="{n(axial)}"' in text
     assert 'ixx="6.92928"' in text  # link_01: 6.929 about its COM (13.235 about its base)
@@ -407,7 +409,7 @@ def test_macro_files_outside_the_package_are_not_edited(tmp_path: Path):
     path.write_text(
         f'<robot name="r" {XACRO}>\n  <xacro:include filename="../library/parts.xacro"/>\n'
         f'  <link name="base"/>\n  <xacro:part name="arm" size="0.1 0.2 0.4"/>\n'
-        f"  {moving('arm')}\n</robot>\n"
+        f"  {joint('base', 'arm')}\n</robot>\n"
     )
     before = (library / "parts.xacro").read_text()
     result = CliRunner().invoke(fill_command, [str(path)])

@@ -9,7 +9,7 @@ from __future__ import annotations
 import types
 from pathlib import Path
 
-from kit import moving
+from kit.urdf import moving
 
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.options import Option

@@ -7,6 +7,7 @@ import types
 from pathlib import Path
 
 import pytest
+from kit.urdf import link_lines, robot_lines
 
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
@@ -40,18 +41,8 @@ def stubs(monkeypatch):
 
 
 def link(name: str, before: str = "", indent: str = "  ") -> str:
-    return (
-        f'{indent}{before}<link name="{name}">\n'
-        f"{indent}  <inertial>\n"
-        f'{indent}    <mass value="1"/>\n'
-        f'{indent}    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>\n'
-        f"{indent}  </inertial>\n"
-        f"{indent}</link>\n"
-    )
-
-
-def robot(*links: str, head: str = "") -> str:
-    return f'{head}<robot name="r">\n' + "".join(links) + "</robot>\n"
+    """A 1 kg link with a unit tensor, one element a line, ``before`` on its first line."""
+    return link_lines(name, 1, 1, indent=indent, before=before)
 
 
 def found(tmp_path: Path, text: str, name: str = "robot.urdf") -> set[tuple[str, str]]:
@@ -82,13 +73,13 @@ EVERYTHING = {("IN098", "a"), ("IN099", "a"), ("IN098", "b"), ("IN099", "b")}
     ],
 )
 def test_ignore_covers_the_next_element_and_its_inside(tmp_path, comment, left):
-    text = robot(f"  {comment}\n" + link("a"), link("b"))
+    text = robot_lines(f"  {comment}\n" + link("a"), link("b"))
     assert found(tmp_path, text) == left
 
 
 def test_what_an_ignore_covers_and_does_not(tmp_path):
     # on the element's own line, several comments in a row, a multi-line start tag
-    text = robot(
+    text = robot_lines(
         link("a", before="<!-- inertia-lint: ignore[IN099] -->"),
         "  <!-- inertia-lint: ignore[IN098] -->\n  <!-- a note -->\n"
         '  <!-- inertia-lint: ignore[IN099] -->\n  <link\n      name="b">\n'
@@ -101,7 +92,7 @@ def test_what_an_ignore_covers_and_does_not(tmp_path):
 
 
 def test_an_ignore_before_the_robot_covers_the_file_for_its_codes(tmp_path):
-    text = robot(
+    text = robot_lines(
         link("a"), link("b"), head="<?xml version='1.0'?>\n<!-- inertia-lint: ignore[IN099] -->\n"
     )
     assert found(tmp_path, text) == {("IN098", "a"), ("IN098", "b")}
@@ -110,7 +101,7 @@ def test_an_ignore_before_the_robot_covers_the_file_for_its_codes(tmp_path):
 @pytest.mark.parametrize("where", ["top", "inside", "end"])
 def test_disable_file_anywhere(tmp_path, where):
     directive = "<!-- inertia-lint: disable-file -->\n"
-    text = robot(link("a"), directive if where == "inside" else "", link("b"))
+    text = robot_lines(link("a"), directive if where == "inside" else "", link("b"))
     text = directive + text if where == "top" else text + (directive if where == "end" else "")
     path = tmp_path / "robot.urdf"
     path.write_text(text)
@@ -228,14 +219,14 @@ def test_directives_are_read_once_per_content(tmp_path, monkeypatch):
     from inertia_kit.description import xmlparse
 
     path = tmp_path / "robot.urdf"
-    path.write_text(robot(link("a", before="<!-- inertia-lint: ignore[IN098] -->")))
+    path.write_text(robot_lines(link("a", before="<!-- inertia-lint: ignore[IN098] -->")))
     parsed = []
     real = xmlparse.parse_xml
     monkeypatch.setattr(xmlparse, "parse_xml", lambda data, p: parsed.append(p) or real(data, p))
     first = directives(path)
     assert directives(path) is first
     assert parsed == [str(path)]
-    path.write_text(robot(link("a", before="<!-- inertia-lint: disable-file -->")))
+    path.write_text(robot_lines(link("a", before="<!-- inertia-lint: disable-file -->")))
     stat = path.stat()
     os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns + 1_000_000_000))
     assert directives(path).disabled
@@ -244,7 +235,7 @@ def test_directives_are_read_once_per_content(tmp_path, monkeypatch):
 
 def test_files_without_directives_or_unreadable_cover_nothing(tmp_path):
     plain = tmp_path / "plain.urdf"
-    plain.write_text(robot(link("a")))
+    plain.write_text(robot_lines(link("a")))
     broken = tmp_path / "broken.urdf"
     broken.write_text("<robot><!-- inertia-lint: disable-file --><link></robot>")
     for path in (plain, broken, tmp_path / "missing.urdf", tmp_path):

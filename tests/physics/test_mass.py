@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from kit import from_second_moment
+from kit.physics import from_second_moment
 
 from inertia_kit.physics.frames import rpy_matrix, transform
 from inertia_kit.physics.mass import MassProperties, shift_tensor

@@ -17,7 +17,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from kit import REPO, assert_same
+from kit import REPO
+from kit.meshes import box_triangles, write_ascii_stl, write_binary_stl
+from kit.physics import assert_same
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics import mesh_cache, mesh_cache_entries
@@ -73,39 +75,16 @@ def rotation(rpy) -> np.ndarray:
     return rz @ ry @ rx
 
 
-def box_triangles(size=(0.3, 0.2, 0.1), rpy=(0.3, -0.2, 0.5), offset=(0.12, -0.05, 0.2)):
+def tilted_box(size=(0.3, 0.2, 0.1), rpy=(0.3, -0.2, 0.5), offset=(0.12, -0.05, 0.2)):
     """(12, 3, 3) float32 closed box, tilted and off the origin: no zero product of inertia."""
-    corners = np.array([[i, j, k] for i in (0, 1) for j in (0, 1) for k in (0, 1)], float)
-    corners = (corners - 0.5) * size @ rotation(rpy).T + offset
-    faces = [
-        (0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-        (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3),
-    ]  # fmt: skip
-    return corners.astype(np.float32)[np.array(faces)]
-
-
-def write_binary_stl(path: Path, triangles) -> Path:
-    triangles = np.asarray(triangles, dtype="<f4")
-    records = np.zeros(len(triangles), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
-    records["v"] = triangles
-    path.write_bytes(bytes(80) + len(triangles).to_bytes(4, "little") + records.tobytes())
-    return path
-
-
-def write_ascii_stl(path: Path, triangles) -> Path:
-    lines = ["solid test"]
-    for triangle in np.asarray(triangles, dtype=np.float64).tolist():
-        lines += [" facet normal 0 0 0", "  outer loop"]
-        lines += [f"   vertex {x!r} {y!r} {z!r}" for x, y, z in triangle]
-        lines += ["  endloop", " endfacet"]
-    path.write_text("\n".join([*lines, "endsolid test", ""]))
-    return path
+    centred = box_triangles(size, low=np.multiply(size, -0.5))
+    return (centred @ rotation(rpy).T + offset).astype(np.float32)
 
 
 def write_dae(path: Path, unit: float | None) -> Path:
     import trimesh
 
-    triangles = box_triangles(size=(300.0, 200.0, 100.0), offset=(120.0, -50.0, 200.0))
+    triangles = tilted_box(size=(300.0, 200.0, 100.0), offset=(120.0, -50.0, 200.0))
     part = trimesh.Trimesh(triangles.reshape(-1, 3), np.arange(36).reshape(-1, 3))
     text = part.export(file_type="dae").decode()
     if unit is not None:
@@ -115,12 +94,12 @@ def write_dae(path: Path, unit: float | None) -> Path:
 
 
 MESHES = {
-    "binary-stl": lambda d: write_binary_stl(d / "box.stl", box_triangles()),
-    "ascii-stl": lambda d: write_ascii_stl(d / "box.stl", box_triangles()),
-    "inverted-stl": lambda d: write_binary_stl(d / "box.stl", box_triangles()[:, ::-1]),
-    "open-stl": lambda d: write_binary_stl(d / "box.stl", box_triangles()[:-1]),
+    "binary-stl": lambda d: write_binary_stl(d / "box.stl", tilted_box()),
+    "ascii-stl": lambda d: write_ascii_stl(d / "box.stl", tilted_box()),
+    "inverted-stl": lambda d: write_binary_stl(d / "box.stl", tilted_box()[:, ::-1]),
+    "open-stl": lambda d: write_binary_stl(d / "box.stl", tilted_box()[:-1]),
     "inconsistent-winding-stl": lambda d: write_binary_stl(
-        d / "box.stl", np.concatenate([box_triangles()[:-1], box_triangles()[-1:, ::-1]])
+        d / "box.stl", np.concatenate([tilted_box()[:-1], tilted_box()[-1:, ::-1]])
     ),
     "dae-millimetres": lambda d: write_dae(d / "box.dae", 0.001),
     "dae-inches": lambda d: write_dae(d / "box.dae", 0.0254),
@@ -185,10 +164,10 @@ def test_solids_from_one_entry_share_no_arrays(tmp_path: Path, cache: Path) -> N
 
 
 def test_rewrite_with_the_same_size_is_a_miss(tmp_path: Path, cache: Path, calls: list) -> None:
-    path = write_binary_stl(tmp_path / "part.stl", box_triangles())
+    path = write_binary_stl(tmp_path / "part.stl", tilted_box())
     before = cached_mesh_solid(path)
     size = path.stat().st_size
-    write_binary_stl(path, box_triangles(size=(0.5, 0.2, 0.1)))
+    write_binary_stl(path, tilted_box(size=(0.5, 0.2, 0.1)))
     assert path.stat().st_size == size  # binary STL: the size says only the triangle count
 
     after = cached_mesh_solid(path)
@@ -200,9 +179,9 @@ def test_rewrite_with_the_same_size_is_a_miss(tmp_path: Path, cache: Path, calls
 
 
 def test_size_change_is_a_miss(tmp_path: Path, cache: Path, calls: list) -> None:
-    path = write_binary_stl(tmp_path / "part.stl", box_triangles())
+    path = write_binary_stl(tmp_path / "part.stl", tilted_box())
     cached_mesh_solid(path)
-    write_binary_stl(path, box_triangles()[:-1])  # open now: convex hull
+    write_binary_stl(path, tilted_box()[:-1])  # open now: convex hull
 
     assert_identical(cached_mesh_solid(path), mesh_solid(path))
     assert len(calls) == 2
@@ -250,8 +229,8 @@ def test_code_key_names_what_the_numbers_depend_on() -> None:
 def test_symlinks_to_one_file_share_its_entry_and_a_retarget_is_a_miss(
     tmp_path: Path, cache: Path, calls: list
 ) -> None:
-    a = write_binary_stl(tmp_path / "a.stl", box_triangles())
-    b = write_binary_stl(tmp_path / "b.stl", box_triangles(size=(0.5, 0.2, 0.1)))
+    a = write_binary_stl(tmp_path / "a.stl", tilted_box())
+    b = write_binary_stl(tmp_path / "b.stl", tilted_box(size=(0.5, 0.2, 0.1)))
     first, second = tmp_path / "first.stl", tmp_path / "second.stl"
     first.symlink_to(a)
     second.symlink_to(a)

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from kit import assert_same
+from kit.physics import assert_same
 
 from inertia_kit.physics.mesh_cache_entries import UnscaledSolid, decode, encode, prune
 from inertia_kit.physics.volume_moments import VolumeMoments

@@ -17,7 +17,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-from kit import REPO, from_second_moment
+from kit import REPO
+from kit.meshes import square_triangles, write_ascii_stl
+from kit.physics import from_second_moment
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics import primitives
@@ -54,17 +56,6 @@ def linear_image(value: MassProperties, matrix) -> MassProperties:
     return from_second_moment(
         jacobian * value.mass, a @ value.com, jacobian * a @ value.second_moment @ a.T
     )
-
-
-def write_ascii_stl(path: Path, triangles) -> Path:
-    """ASCII STL with every float64 written in full (``repr``), so nothing is rounded."""
-    lines = ["solid test"]
-    for triangle in np.asarray(triangles, dtype=np.float64).tolist():
-        lines += [" facet normal 0 0 0", "  outer loop"]
-        lines += [f"   vertex {x!r} {y!r} {z!r}" for x, y, z in triangle]
-        lines += ["  endloop", " endfacet"]
-    path.write_text("\n".join([*lines, "endsolid test", ""]))
-    return path
 
 
 def export(mesh_or_scene, path: Path, file_type: str | None = None) -> Path:
@@ -424,11 +415,6 @@ def test_bad_scale_is_a_value_error(tmp_path: Path, scale) -> None:
 # --- errors --------------------------------------------------------------------------------------
 
 
-def flat_square() -> np.ndarray:
-    corners = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float64)
-    return corners[[[0, 1, 2], [0, 2, 3]]]
-
-
 def write(name: str, data: bytes | str | None):
     def make(tmp_path: Path) -> Path:
         path = tmp_path / name
@@ -452,12 +438,13 @@ BAD_FILES = {
     "points-only-obj": (write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), "empty"),
     "closed-flat-sheet": (
         lambda tmp_path: write_ascii_stl(
-            tmp_path / "sheet.stl", np.concatenate([flat_square(), flat_square()[:, ::-1]])
+            tmp_path / "sheet.stl",
+            np.concatenate([square_triangles(), square_triangles()[:, ::-1]]),
         ),
         "empty",
     ),
     "open-flat-sheet": (
-        lambda tmp_path: write_ascii_stl(tmp_path / "sheet.stl", flat_square()),
+        lambda tmp_path: write_ascii_stl(tmp_path / "sheet.stl", square_triangles()),
         "empty",
     ),
 }

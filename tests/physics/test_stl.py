@@ -11,40 +11,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from kit.meshes import box_triangles, write_ascii_stl, write_binary_stl
+from kit.moments import box_tensor
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics import polyhedra, stl
 from inertia_kit.physics.polyhedra import integrate
-from inertia_kit.physics.stl import RECORD, binary_triangle_count, read_stl
+from inertia_kit.physics.stl import binary_triangle_count, read_stl
 
 DENSITY = 1000.0
-
-
-def write_binary(path: Path, triangles, header: bytes = b"binary STL written by a test") -> Path:
-    """The 80-byte header, the uint32 count and one 50-byte record per triangle."""
-    records = np.zeros(len(triangles), dtype=RECORD)
-    records["vertices"] = triangles
-    records["attribute"] = 0x1234
-    path.write_bytes(
-        header.ljust(80, b" ")[:80] + np.uint32(len(triangles)).tobytes() + records.tobytes()
-    )
-    return path
-
-
-def write_ascii(path: Path, triangles) -> Path:
-    """ASCII STL with every coordinate written exactly (repr of the float32 value)."""
-    lines = ["solid test"]
-    for triangle in np.asarray(triangles, dtype=np.float32):
-        lines += ["  facet normal 0 0 0", "    outer loop"]
-        lines += [f"      vertex {x!r} {y!r} {z!r}" for x, y, z in triangle.tolist()]
-        lines += ["    endloop", "  endfacet"]
-    lines.append("endsolid test")
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
-def box(size=(0.5, 0.25, 2.0), low=(0.25, -0.5, 1.0)) -> np.ndarray:
-    return trimesh.creation.box(extents=size).triangles + np.add(low, np.multiply(size, 0.5))
+SIZE, LOW = (0.5, 0.25, 2.0), (0.25, -0.5, 1.0)  # dyadic: every vertex exact in float32
 
 
 def sphere(subdivisions=4) -> np.ndarray:
@@ -54,15 +30,14 @@ def sphere(subdivisions=4) -> np.ndarray:
 
 def test_binary_box_matches_the_closed_form(tmp_path):
     size = (0.5, 0.25, 2.0)
-    integrator = read_stl(write_binary(tmp_path / "box.stl", box(size)))
+    integrator = read_stl(write_binary_stl(tmp_path / "box.stl", box_triangles(size, LOW)))
     assert integrator.count == 12
     assert integrator.closed
     properties = integrator.moments.mass_properties(density=DENSITY)
     mass = DENSITY * math.prod(size)
     assert properties.mass == pytest.approx(mass, rel=1e-12)
     np.testing.assert_allclose(properties.com, (0.5, -0.375, 2.0), atol=1e-12)
-    x, y, z = np.square(size)
-    expected = mass / 12 * np.diag([y + z, x + z, x + y])
+    expected = box_tensor(mass, size)
     np.testing.assert_allclose(properties.inertia, expected, atol=1e-12 * mass)
     np.testing.assert_array_equal(integrator.bounds, [[0.25, -0.5, 1.0], [0.75, -0.25, 3.0]])
 
@@ -70,7 +45,7 @@ def test_binary_box_matches_the_closed_form(tmp_path):
 def test_binary_equals_integrating_its_triangles(tmp_path, monkeypatch):
     triangles = sphere(5).astype(np.float32)  # 20480 triangles
     monkeypatch.setattr(polyhedra, "CHUNK", 1000)  # chunks end mid-file
-    integrator = read_stl(write_binary(tmp_path / "sphere.stl", triangles))
+    integrator = read_stl(write_binary_stl(tmp_path / "sphere.stl", triangles))
     assert integrator.count == len(triangles)
     assert integrator.closed
     expected = integrate(triangles)
@@ -83,7 +58,7 @@ def test_binary_equals_integrating_its_triangles(tmp_path, monkeypatch):
 
 
 def test_binary_matches_trimesh(tmp_path):
-    path = write_binary(tmp_path / "sphere.stl", sphere(5))
+    path = write_binary_stl(tmp_path / "sphere.stl", sphere(5))
     mine = read_stl(path).moments.mass_properties(density=DENSITY)
     reference = trimesh.load(path).mass_properties
     assert mine.mass == pytest.approx(DENSITY * reference.volume, rel=1e-9)
@@ -93,7 +68,9 @@ def test_binary_matches_trimesh(tmp_path):
 
 
 def test_binary_header_starting_with_solid_is_still_binary(tmp_path):
-    path = write_binary(tmp_path / "solidworks.stl", box(), header=b"solid part exported")
+    path = write_binary_stl(
+        tmp_path / "solidworks.stl", box_triangles(SIZE, LOW), header=b"solid part exported"
+    )
     assert binary_triangle_count(path) == 12
     integrator = read_stl(path)
     assert integrator.count == 12 and integrator.closed
@@ -101,8 +78,8 @@ def test_binary_header_starting_with_solid_is_still_binary(tmp_path):
 
 def test_ascii_equals_binary(tmp_path):
     triangles = sphere(3).astype(np.float32)
-    ascii_ = read_stl(write_ascii(tmp_path / "ascii.stl", triangles))
-    binary = read_stl(write_binary(tmp_path / "binary.stl", triangles))
+    ascii_ = read_stl(write_ascii_stl(tmp_path / "ascii.stl", triangles))
+    binary = read_stl(write_binary_stl(tmp_path / "binary.stl", triangles))
     assert binary_triangle_count(tmp_path / "ascii.stl") is None
     assert ascii_.count == binary.count == len(triangles)
     assert ascii_.closed and binary.closed
@@ -113,13 +90,13 @@ def test_ascii_equals_binary(tmp_path):
 
 
 def test_open_surface_is_not_closed(tmp_path):
-    integrator = read_stl(write_binary(tmp_path / "open.stl", sphere(3)[1:]))
+    integrator = read_stl(write_binary_stl(tmp_path / "open.stl", sphere(3)[1:]))
     assert not integrator.closed
 
 
 def test_ascii_with_signed_zeros_is_closed(tmp_path):
-    triangles = box((1.0, 2.0, 4.0), (-1.0, 0.0, -2.0))
-    text = write_ascii(tmp_path / "zeros.stl", triangles).read_text()
+    triangles = box_triangles((1.0, 2.0, 4.0), (-1.0, 0.0, -2.0))
+    text = write_ascii_stl(tmp_path / "zeros.stl", triangles).read_text()
     lines = text.splitlines()
     # every other vertex line writes its zeros as -0.0
     lines = [
@@ -148,21 +125,21 @@ def assert_mesh_error(path: Path, kind: str, match: str) -> MeshError:
 
 
 def test_truncated_binary(tmp_path):
-    path = write_binary(tmp_path / "cut.stl", box())
+    path = write_binary_stl(tmp_path / "cut.stl", box_triangles(SIZE, LOW))
     path.write_bytes(path.read_bytes()[:-30])
     assert binary_triangle_count(path) is None
     assert_mesh_error(path, "unreadable", r"not a binary STL \(its header's count of 12 triangles")
 
 
 def test_truncated_binary_with_solid_header(tmp_path):
-    path = write_binary(tmp_path / "cut.stl", box(), header=b"solid part")
+    path = write_binary_stl(tmp_path / "cut.stl", box_triangles(SIZE, LOW), header=b"solid part")
     path.write_bytes(path.read_bytes()[:-30])
     assert_mesh_error(path, "unreadable", "needs 684 bytes, the file has 654")
 
 
 def test_binary_cut_short_while_being_read(tmp_path, monkeypatch):
     # the size was right when the count was read, and is not by the time the records are
-    path = write_binary(tmp_path / "shrinking.stl", box())
+    path = write_binary_stl(tmp_path / "shrinking.stl", box_triangles(SIZE, LOW))
     monkeypatch.setattr(stl, "binary_triangle_count", lambda path: 13)
     assert_mesh_error(path, "unreadable", "changed while it was being read|cut short")
 
@@ -183,7 +160,9 @@ def test_empty_file(tmp_path):
 
 
 def test_binary_without_triangles(tmp_path):
-    assert_mesh_error(write_binary(tmp_path / "none.stl", np.zeros((0, 3, 3))), "empty", "no tri")
+    assert_mesh_error(
+        write_binary_stl(tmp_path / "none.stl", np.zeros((0, 3, 3))), "empty", "no tri"
+    )
 
 
 def test_ascii_without_triangles(tmp_path):
@@ -193,10 +172,12 @@ def test_ascii_without_triangles(tmp_path):
 
 
 def test_nan_coordinates(tmp_path):
-    triangles = box()
+    triangles = box_triangles(SIZE, LOW)
     triangles[3, 1, 2] = np.nan
-    assert_mesh_error(write_binary(tmp_path / "nan.stl", triangles), "unreadable", "non-finite")
-    assert_mesh_error(write_ascii(tmp_path / "nan_ascii.stl", triangles), "unreadable", "non-fin")
+    assert_mesh_error(write_binary_stl(tmp_path / "nan.stl", triangles), "unreadable", "non-finite")
+    assert_mesh_error(
+        write_ascii_stl(tmp_path / "nan_ascii.stl", triangles), "unreadable", "non-fin"
+    )
 
 
 def test_malformed_ascii(tmp_path):

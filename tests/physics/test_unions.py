@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 import trimesh
-from kit import from_second_moment
+from kit.physics import from_second_moment
 
 from inertia_kit.physics import primitives
 from inertia_kit.physics.frames import transform

@@ -3,31 +3,13 @@
 from __future__ import annotations
 
 import pytest
+from kit.moments import box_moments
+from kit.urdf import LIMIT, box, collision, inertial, joint, link, robot, visual
 
 from inertia_kit.physics.formatting import fmt
 
-LIMIT = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
-BOX = '<collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>'
-MASS = (
-    '<inertial><mass value="3"/>'
-    '<inertia ixx="0.025" ixy="0" ixz="0" iyy="0.025" iyz="0" izz="0.005"/></inertial>'
-)
-
-
-def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str = "") -> str:
-    limit = LIMIT if kind in ("revolute", "prismatic") else ""
-    return (
-        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-        f'<axis xyz="0 0 1"/>{limit}{extra}</joint>'
-    )
-
-
-def robot(*parts: str) -> str:
-    return '<robot name="r">' + "".join(parts) + "</robot>"
-
-
-def link(name: str, body: str = "") -> str:
-    return f'<link name="{name}">{body}</link>'
+BOX = collision(box(0.1, 0.1, 0.3))
+MASS = inertial(3, 0.025, 0.025, 0.005)
 
 
 def in001(lint, text: str, **options):
@@ -36,13 +18,12 @@ def in001(lint, text: str, **options):
 
 
 def test_moving_link_without_inertial_gives_geometry_values(lint):
-    findings = in001(lint, robot(link("base"), joint("j", "base", "arm"), link("arm", BOX)))
+    findings = in001(lint, robot(link("base"), joint("base", "arm", name="j"), link("arm", BOX)))
     assert [f.link for f in findings] == ["arm"]
     (finding,) = findings
     volume = 0.1 * 0.1 * 0.3
     mass = 1000.0 * volume
-    ixx = mass * (0.1**2 + 0.3**2) / 12
-    izz = mass * (0.1**2 + 0.1**2) / 12
+    ixx, _, izz = box_moments(mass, (0.1, 0.1, 0.3))
     message = finding.message
     assert "revolute joint `j`" in message and "`<inertial>`" in message
     assert f"{fmt(mass, 4)} kg at 1000 kg/m³" in message
@@ -58,22 +39,25 @@ def test_moving_link_without_inertial_gives_geometry_values(lint):
 
 
 def test_without_collision_mujoco_refuses(lint):
-    (finding,) = in001(lint, robot(link("base"), joint("j", "base", "arm"), link("arm")))
+    (finding,) = in001(lint, robot(link("base"), joint("base", "arm", name="j"), link("arm")))
     assert "mjMINVAL" in finding.message and finding.expected is None
 
 
 @pytest.mark.parametrize("kind", ["continuous", "prismatic", "floating", "planar"])
 def test_every_moving_joint_type(lint, kind):
-    findings = in001(lint, robot(link("base"), joint("j", "base", "arm", kind), link("arm", BOX)))
+    findings = in001(
+        lint, robot(link("base"), joint("base", "arm", kind, name="j"), link("arm", BOX))
+    )
     assert [f.link for f in findings] == ["arm"]
 
 
 def test_mimic_joint_moves(lint):
     text = robot(
         link("base"),
-        joint("j", "base", "a"),
+        joint("base", "a", name="j"),
         link("a", MASS + BOX),
-        joint("m", "base", "b", extra='<mimic joint="j" multiplier="1" offset="0"/>'),
+        '<joint name="m" type="revolute"><parent link="base"/><child link="b"/>'
+        f'<axis xyz="0 0 1"/>{LIMIT}<mimic joint="j" multiplier="1" offset="0"/></joint>',
         link("b", BOX),
     )
     assert [f.link for f in in001(lint, text)] == ["b"]
@@ -82,12 +66,12 @@ def test_mimic_joint_moves(lint):
 def test_massless_frames_on_fixed_joints_are_fine(lint):
     text = robot(
         link("base"),
-        joint("j", "base", "arm"),
+        joint("base", "arm", name="j"),
         link("arm", MASS + BOX),
-        joint("tool", "arm", "tool0", "fixed"),
+        joint("arm", "tool0", "fixed", name="tool"),
         link("tool0"),
-        joint("cam", "arm", "camera", "fixed"),
-        link("camera", '<visual><geometry><box size="0.02 0.02 0.02"/></geometry></visual>'),
+        joint("arm", "camera", "fixed", name="cam"),
+        link("camera", visual(box(0.02, 0.02, 0.02))),
     )
     assert in001(lint, text) == []
 
@@ -95,9 +79,9 @@ def test_massless_frames_on_fixed_joints_are_fine(lint):
 def test_massless_moving_link_welded_to_a_link_with_mass_is_lumped(lint):
     text = robot(
         link("base"),
-        joint("j", "base", "motor"),
+        joint("base", "motor", name="j"),
         link("motor"),
-        joint("w", "motor", "arm", "fixed"),
+        joint("motor", "arm", "fixed", name="w"),
         link("arm", MASS + BOX),
     )
     assert in001(lint, text) == []
@@ -106,9 +90,9 @@ def test_massless_moving_link_welded_to_a_link_with_mass_is_lumped(lint):
 def test_the_inertial_belongs_where_the_geometry_is(lint):
     text = robot(
         link("base"),
-        joint("j", "base", "motor"),
+        joint("base", "motor", name="j"),
         link("motor"),
-        joint("w", "motor", "shell", "fixed"),
+        joint("motor", "shell", "fixed", name="w"),
         link("shell", BOX),
     )
     (finding,) = in001(lint, text)
@@ -118,14 +102,14 @@ def test_the_inertial_belongs_where_the_geometry_is(lint):
 
 
 def test_root_frame_is_a_fixed_base_unless_told_otherwise(lint):
-    text = robot(link("base"), joint("j", "base", "arm"), link("arm", MASS + BOX))
+    text = robot(link("base"), joint("base", "arm", name="j"), link("arm", MASS + BOX))
     assert in001(lint, text) == []
     (finding,) = in001(lint, text, floating_base=True)
     assert finding.link == "base" and "carries moving links" in finding.message
 
 
 def test_root_with_collision_geometry_needs_mass(lint):
-    text = robot(link("base", BOX), joint("j", "base", "arm"), link("arm", MASS + BOX))
+    text = robot(link("base", BOX), joint("base", "arm", name="j"), link("arm", MASS + BOX))
     (finding,) = in001(lint, text)
     assert finding.link == "base" and "root" in finding.message
     assert "Gazebo drops it and the whole model" in finding.message
@@ -134,31 +118,31 @@ def test_root_with_collision_geometry_needs_mass(lint):
 def test_root_welded_to_a_world_link_is_static(lint):
     text = robot(
         link("world"),
-        joint("anchor", "world", "base", "fixed"),
+        joint("world", "base", "fixed", name="anchor"),
         link("base", BOX),
-        joint("j", "base", "arm"),
+        joint("base", "arm", name="j"),
         link("arm", MASS + BOX),
     )
     assert in001(lint, text) == []
 
 
 def test_visual_only_root_alone_is_not_simulated(lint):
-    text = robot(link("deco", '<visual><geometry><box size="1 1 1"/></geometry></visual>'))
+    text = robot(link("deco", visual(box(1, 1, 1))))
     assert in001(lint, text) == []
 
 
 def test_a_broken_inertial_is_left_to_other_rules(lint):
-    zero = '<inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>'
-    text = robot(link("base"), joint("j", "base", "arm"), link("arm", zero + "</inertial>" + BOX))
+    zero = inertial(0, 0)
+    text = robot(link("base"), joint("base", "arm", name="j"), link("arm", zero + BOX))
     assert in001(lint, text) == []
 
 
 def test_one_finding_per_body(lint):
     text = robot(
         link("base"),
-        joint("j", "base", "arm"),
+        joint("base", "arm", name="j"),
         link("arm", BOX),
-        joint("w", "arm", "cover", "fixed"),
+        joint("arm", "cover", "fixed", name="w"),
         link("cover", BOX),
     )
     (finding,) = in001(lint, text)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import pytest
+from kit.moments import box_moments
+from kit.urdf import box, collision
 
 from inertia_kit.physics.formatting import fmt
 
@@ -12,7 +14,8 @@ HEAD = (
     '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>\n'
     '<link name="arm">\n'
 )
-BOX = '<collision><geometry><box size="0.1 0.2 0.3"/></geometry></collision>\n'
+SIZE = (0.1, 0.2, 0.3)
+BOX = collision(box(*SIZE)) + "\n"
 SIX = 'ixx="0.0325" ixy="0" ixz="0" iyy="0.025" iyz="0" izz="0.0125"'
 
 
@@ -22,10 +25,6 @@ def robot(inertial: str, geometry: str = BOX) -> str:
 
 def in003(lint, text):
     return [f for f in lint(text, "IN003") if f.code == "IN003"]
-
-
-def box_moments(mass, a=0.1, b=0.2, c=0.3):
-    return mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12
 
 
 def test_complete_inertial_is_quiet(lint):
@@ -41,7 +40,7 @@ def test_missing_diagonal_value(lint):
     assert "without `izz`" in finding.message
     assert "PyBullet refuse the file" in finding.message
     assert "Drake reads izz as 0" in finding.message and "yourdfpy izz as 1.0" in finding.message
-    _, _, izz = box_moments(3.0)
+    _, _, izz = box_moments(3.0, SIZE)
     assert f"izz = {fmt(izz, 4)}" in finding.message
     assert finding.expected["izz"] == pytest.approx(izz)
     # reported on the <inertia> element, the most specific one
@@ -63,7 +62,7 @@ def test_missing_mass_uses_1000_kg_per_m3(lint):
     (finding,) = in003(lint, text)
     assert "no `<mass>`" in finding.message and "Drake reads mass 0" in finding.message
     mass = 1000.0 * 0.1 * 0.2 * 0.3
-    _, iyy, _ = box_moments(mass)
+    _, iyy, _ = box_moments(mass, SIZE)
     assert f"holds {fmt(mass, 4)} kg" in finding.message
     assert finding.expected["mass"] == pytest.approx(mass)
     assert finding.expected["density"] == 1000.0
@@ -81,7 +80,7 @@ def test_mass_without_value(lint):
 def test_missing_inertia_element(lint):
     (finding,) = in003(lint, robot('<inertial><mass value="3"/></inertial>\n'))
     assert "no `<inertia>`" in finding.message and "Drake reads a zero tensor" in finding.message
-    ixx, iyy, _ = box_moments(3.0)
+    ixx, iyy, _ = box_moments(3.0, SIZE)
     assert f"ixx = {fmt(ixx, 4)}" in finding.message
     assert f"iyy = {fmt(iyy, 4)}" in finding.message
 
@@ -100,7 +99,7 @@ def test_values_in_the_written_axes(lint):
     # the inertia axes turned 90° about z: the geometry's ixx and iyy swap
     inertial = '<inertial><origin rpy="0 0 1.5707963267948966"/><mass value="3"/></inertial>\n'
     (finding,) = in003(lint, robot(inertial))
-    ixx, iyy, _ = box_moments(3.0)
+    ixx, iyy, _ = box_moments(3.0, SIZE)
     assert finding.expected["ixx"] == pytest.approx(iyy)
     assert finding.expected["iyy"] == pytest.approx(ixx)
     assert "axes of its `<inertial><origin rpy>`" in finding.message

@@ -4,22 +4,18 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, moving
 
 from inertia_kit.lint.rules.in011_inertia_triangle_inequality import half_unit
 from inertia_kit.physics.formatting import fmt
 
-PLATE = '<collision><geometry><box size="0.3 0.3 0.01"/></geometry></collision>'
+PLATE = collision(box(0.3, 0.3, 0.01))
 
 
-def robot(ixx, iyy, izz, mass="0.9", geometry=PLATE, ixy=0) -> str:
-    return (
-        '<robot name="r"><link name="base"/>'
-        '<joint name="j" type="revolute"><parent link="base"/><child link="plate"/>'
-        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
-        f'<link name="plate"><inertial><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="{ixy}" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/>'
-        f"</inertial>{geometry}</link></robot>"
-    )
+def plate(ixx, iyy, izz, mass="0.9", geometry=PLATE) -> str:
+    """A moving link `plate` of ``mass`` with these moments and ``geometry``."""
+    return moving(inertial(mass, ixx, iyy, izz) + geometry, name="plate")
 
 
 def in011(lint, text, **options):
@@ -28,29 +24,29 @@ def in011(lint, text, **options):
 
 
 def test_violation_with_numbers(lint):
-    geometry = '<collision><geometry><box size="0.3 0.3 0.012"/></geometry></collision>'
-    (finding,) = in011(lint, robot(0.006, 0.006, 0.0135, geometry=geometry))
+    geometry = collision(box(0.3, 0.3, 0.012))
+    (finding,) = in011(lint, plate(0.006, 0.006, 0.0135, geometry=geometry))
     short = (0.0135 - 0.012) / 0.0135
     assert f"{fmt(0.006, 4)} + {fmt(0.006, 4)} = {fmt(0.012, 4)} < {fmt(0.0135, 4)}" in (
         finding.message
     )
     assert f"{fmt(100 * short, 3)} % short" in finding.message
     # the plate's own tensor: m(b² + c²)/12 and m(a² + b²)/12
-    ixx = 0.9 * (0.09 + 0.012**2) / 12
+    ixx, _, izz = box_moments(0.9, (0.3, 0.3, 0.012))
     assert finding.expected["ixx"] == pytest.approx(ixx)
-    assert finding.expected["izz"] == pytest.approx(0.9 * 0.18 / 12)
+    assert finding.expected["izz"] == pytest.approx(izz)
     assert f"ixx = {fmt(ixx, 4)}" in finding.message
 
 
 def test_a_disk_sits_on_the_bound(lint):
     r, m = 0.1, 2.0
     a, c = m * r * r / 4, m * r * r / 2
-    assert in011(lint, robot(a, a, c, mass=str(m), geometry="")) == []
+    assert in011(lint, plate(a, a, c, mass=str(m), geometry="")) == []
 
 
 def test_a_disk_rounded_to_3_digits_passes(lint):
     # true a = 0.0012345, c = 0.002469: rounded, a + b = 0.00246 < c = 0.00247 (0.4 % short)
-    text = robot("0.00123", "0.00123", "0.00247", geometry="")
+    text = plate("0.00123", "0.00123", "0.00247", geometry="")
     assert in011(lint, text) == []
     # MuJoCo applies no tolerance: rtol = 0 reports it
     assert len(in011(lint, text, rtol=0.0)) == 1
@@ -58,25 +54,25 @@ def test_a_disk_rounded_to_3_digits_passes(lint):
 
 def test_precise_values_get_no_rounding_excuse(lint):
     # the same 0.4 % shortfall written with 12 digits is not rounding
-    text = robot("0.00123000001", "0.00123000002", "0.00247000003", geometry="")
+    text = plate("0.00123000001", "0.00123000002", "0.00247000003", geometry="")
     assert len(in011(lint, text)) == 1
     assert in011(lint, text, digits_aware=False) == []
 
 
 def test_rtol_caps_the_excuse_for_placeholders(lint):
     # 1-digit placeholders: rounding could explain anything, rtol = 1 % does not
-    assert len(in011(lint, robot("0.001", "0.001", "0.01", geometry=""))) == 1
-    assert in011(lint, robot("0.001", "0.001", "0.01", geometry=""), rtol=0.9) == []
+    assert len(in011(lint, plate("0.001", "0.001", "0.01", geometry=""))) == 1
+    assert in011(lint, plate("0.001", "0.001", "0.01", geometry=""), rtol=0.9) == []
 
 
 def test_negative_moment_is_in010s(lint):
-    assert in011(lint, robot(-0.001, 0.001, 0.01, geometry="")) == []
+    assert in011(lint, plate(-0.001, 0.001, 0.01, geometry="")) == []
 
 
 def test_products_count(lint):
     # diagonal (0.01, 0.01, 0.019) passes; ixz = 0.004 couples x and z and breaks the bound
-    assert in011(lint, robot(0.01, 0.01, 0.019, geometry="")) == []
-    text = robot(0.01, 0.01, 0.019, geometry="").replace('ixz="0"', 'ixz="0.004"')
+    assert in011(lint, plate(0.01, 0.01, 0.019, geometry="")) == []
+    text = plate(0.01, 0.01, 0.019, geometry="").replace('ixz="0"', 'ixz="0.004"')
     a, b, c = np.linalg.eigvalsh([[0.01, 0, 0.004], [0, 0.01, 0], [0.004, 0, 0.019]])
     assert a + b < c
     (finding,) = in011(lint, text)

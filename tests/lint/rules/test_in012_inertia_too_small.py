@@ -5,26 +5,10 @@ from __future__ import annotations
 import math
 
 import pytest
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, joint, link, moving
 
 from inertia_kit.physics.formatting import fmt
-
-
-def inertial(mass, ixx, iyy=None, izz=None) -> str:
-    iyy = ixx if iyy is None else iyy
-    izz = ixx if izz is None else izz
-    return (
-        f'<inertial><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
-    )
-
-
-def robot(body: str, kind: str = "revolute", root: str = "base", extra: str = "") -> str:
-    limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' if kind == "revolute" else ""
-    return (
-        f'<robot name="r"><link name="{root}"/>'
-        f'<joint name="j" type="{kind}"><parent link="{root}"/><child link="part"/>'
-        f'<axis xyz="0 0 1"/>{limit}</joint><link name="part">{body}</link>{extra}</robot>'
-    )
 
 
 def in012(lint, text, **options):
@@ -33,7 +17,7 @@ def in012(lint, text, **options):
 
 
 def test_below_both_floors(lint):
-    (finding,) = in012(lint, robot(inertial(0.3, 1e-10)))
+    (finding,) = in012(lint, moving(inertial(0.3, 1e-10)))
     radius_mm = math.sqrt(1e-10 / 0.3) * 1000
     assert f"smallest principal moment {fmt(1e-10, 3)} kg·m²" in finding.message
     assert f"radius of gyration {fmt(radius_mm, 3)} mm for 0.3 kg" in finding.message
@@ -45,14 +29,14 @@ def test_below_both_floors(lint):
 
 def test_heavy_link_with_a_placeholder(lint):
     # 2 kg with 1e-6 kg·m²: above 1e-9 but a 0.71 mm radius of gyration
-    (finding,) = in012(lint, robot(inertial(2, 1e-6, 1e-3, 1e-3)))
+    (finding,) = in012(lint, moving(inertial(2, 1e-6, 1e-3, 1e-3)))
     assert f"radius of gyration {fmt(math.sqrt(1e-6 / 2) * 1000, 3)} mm" in finding.message
-    assert in012(lint, robot(inertial(2, 1e-6, 1e-3, 1e-3)), min_radius=0.0005) == []
+    assert in012(lint, moving(inertial(2, 1e-6, 1e-3, 1e-3)), min_radius=0.0005) == []
 
 
 def test_light_part_against_the_absolute_floor(lint):
     # 1 g with 5e-9 kg·m²: a 2.2 mm radius of gyration, above both default floors
-    text = robot(inertial(0.001, 5e-9))
+    text = moving(inertial(0.001, 5e-9))
     assert in012(lint, text) == []
     (finding,) = in012(lint, text, min_moment=1e-8)
     assert f"below the floor of {fmt(1e-8)} kg·m²" in finding.message
@@ -61,32 +45,28 @@ def test_light_part_against_the_absolute_floor(lint):
 def test_a_real_gripper_finger_is_quiet(lint):
     # a 5 g finger, a 4 × 1 × 1 cm box: its smallest moment m(b² + c²)/12 is 8.3e-8 kg·m²
     m, a, b, c = 0.005, 0.04, 0.01, 0.01
-    moments = (m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12)
-    assert in012(lint, robot(inertial(m, *moments))) == []
+    moments = box_moments(m, (a, b, c))
+    assert in012(lint, moving(inertial(m, *moments))) == []
 
 
 def test_geometry_values_when_there_is_geometry(lint):
-    box = '<collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>'
-    (finding,) = in012(lint, robot(inertial(3, 1e-9) + box))
-    moments = sorted((3 * 0.02 / 12, 3 * 0.1 / 12, 3 * 0.1 / 12))
+    (finding,) = in012(lint, moving(inertial(3, 1e-9) + collision(box(0.1, 0.1, 0.3))))
+    moments = sorted(box_moments(3, (0.1, 0.1, 0.3)))
     assert finding.expected["geometry_principal_moments"] == pytest.approx(moments)
 
 
 def test_welded_to_a_body_that_carries_the_inertia(lint):
-    extra = (
-        '<joint name="w" type="fixed"><parent link="part"/><child link="screw"/></joint>'
-        f'<link name="screw">{inertial(0.002, 1e-12)}</link>'
-    )
-    assert in012(lint, robot(inertial(3, 0.02, 0.02, 0.01), extra=extra)) == []
+    extra = joint("arm", "screw", "fixed") + link("screw", inertial(0.002, 1e-12))
+    assert in012(lint, moving(inertial(3, 0.02, 0.02, 0.01), extra=extra)) == []
 
 
 def test_welded_to_nothing_bigger(lint):
-    assert len(in012(lint, robot(inertial(0.3, 1e-10), kind="fixed"))) == 1
+    assert len(in012(lint, moving(inertial(0.3, 1e-10), kind="fixed"))) == 1
 
 
 def test_welded_to_world_is_static(lint):
-    assert in012(lint, robot(inertial(0.3, 1e-10), kind="fixed", root="world")) == []
+    assert in012(lint, moving(inertial(0.3, 1e-10), kind="fixed", root="world")) == []
 
 
 def test_zero_moment_is_in010s(lint):
-    assert in012(lint, robot(inertial(0.3, 0))) == []
+    assert in012(lint, moving(inertial(0.3, 0))) == []

@@ -6,40 +6,28 @@ import math
 
 import numpy as np
 import pytest
+from kit.moments import box_moments
+from kit.urdf import (
+    box,
+    collision,
+    inertial,
+    joint,
+    link,
+    moving,
+    robot,
+    sphere,
+)
 
 from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.physics.formatting import fmt
 
 
-def box(a, b, c) -> str:
-    return f'<collision><geometry><box size="{a} {b} {c}"/></geometry></collision>'
-
-
-def sphere(r) -> str:
-    return f'<collision><geometry><sphere radius="{r}"/></geometry></collision>'
-
-
-def inertial(mass, ixx, iyy=None, izz=None, rpy="0 0 0") -> str:
-    iyy = ixx if iyy is None else iyy
-    izz = ixx if izz is None else izz
-    return (
-        f'<inertial><origin rpy="{rpy}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
-    )
-
-
-def robot(*links: tuple[str, str, str]) -> str:
-    """``(name, body, joint type)`` links, each hanging from a massless root frame."""
-    parts = ['<robot name="r"><link name="base"/>']
-    for name, body, kind in links:
-        limit = (
-            '<limit lower="-1" upper="1" effort="9" velocity="1"/>' if kind == "revolute" else ""
-        )
-        parts.append(
-            f'<joint name="j_{name}" type="{kind}"><parent link="base"/><child link="{name}"/>'
-            f'<axis xyz="0 0 1"/>{limit}</joint><link name="{name}">{body}</link>'
-        )
-    return "".join(parts) + "</robot>"
+def on_base(**bodies: str) -> str:
+    """Each link (``name=body``) on a revolute joint of its own from a massless base."""
+    parts = [link("base")]
+    for name, body in bodies.items():
+        parts += [joint("base", name), link(name, body)]
+    return robot(*parts)
 
 
 def in013(lint, text, **options):
@@ -47,15 +35,9 @@ def in013(lint, text, **options):
     return [f for f in lint(text, "IN013", **kw) if f.code == "IN013"]
 
 
-def box_moments(m, a, b, c):
-    return m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12
-
-
 def test_isotropic_tensor_on_a_long_box(lint):
-    (finding,) = in013(
-        lint, robot(("arm", inertial(1.8, 0.0045) + box(0.1, 0.1, 0.18), "revolute"))
-    )
-    ixx, iyy, izz = box_moments(1.8, 0.1, 0.1, 0.18)
+    (finding,) = in013(lint, moving(inertial(1.8, 0.0045) + collision(box(0.1, 0.1, 0.18))))
+    ixx, iyy, izz = box_moments(1.8, (0.1, 0.1, 0.18))
     assert "ixx = iyy = izz = 0.0045 kg·m²" in finding.message
     assert f"1 : {fmt(iyy / izz, 3)} : {fmt(ixx / izz, 3)}" in finding.message
     assert f"ixx = {fmt(ixx, 4)}, iyy = {fmt(iyy, 4)}, izz = {fmt(izz, 4)}" in finding.message
@@ -67,38 +49,38 @@ def test_isotropic_tensor_on_a_long_box(lint):
 
 @pytest.mark.parametrize(
     "geometry",
-    [sphere(0.05), box(0.1, 0.1, 0.1), box(0.1, 0.1, 0.14)],
+    [collision(sphere(0.05)), collision(box(0.1, 0.1, 0.1)), collision(box(0.1, 0.1, 0.14))],
     ids=["sphere", "cube", "near-cube"],
 )
 def test_isotropic_tensor_on_a_round_shape_is_right(lint, geometry):
-    assert in013(lint, robot(("ball", inertial(1.0, 0.001) + geometry, "revolute"))) == []
+    assert in013(lint, moving(inertial(1.0, 0.001) + geometry, name="ball")) == []
 
 
 def test_anisotropy_option(lint):
-    text = robot(("arm", inertial(1.8, 0.0045) + box(0.1, 0.1, 0.18), "revolute"))
-    ixx, _, izz = box_moments(1.8, 0.1, 0.1, 0.18)
+    text = moving(inertial(1.8, 0.0045) + collision(box(0.1, 0.1, 0.18)))
+    ixx, _, izz = box_moments(1.8, (0.1, 0.1, 0.18))
     assert in013(lint, text, anisotropy=ixx / izz + 0.01) == []
     assert len(in013(lint, text, anisotropy=ixx / izz - 0.01)) == 1
 
 
 def test_expected_values_in_the_written_axes(lint):
     # the inertia axes turned 90° about y: the box's x and z moments swap
-    body = inertial(1.8, 0.0045, rpy=f"0 {math.pi / 2} 0") + box(0.1, 0.1, 0.18)
-    (finding,) = in013(lint, robot(("arm", body, "revolute")))
-    ixx, _, izz = box_moments(1.8, 0.1, 0.1, 0.18)
+    body = inertial(1.8, 0.0045, rpy=f"0 {math.pi / 2} 0") + collision(box(0.1, 0.1, 0.18))
+    (finding,) = in013(lint, moving(body))
+    ixx, _, izz = box_moments(1.8, (0.1, 0.1, 0.18))
     assert finding.expected["ixx"] == pytest.approx(izz)
     assert finding.expected["izz"] == pytest.approx(ixx)
 
 
 def test_copied_tensor_flags_the_copy_not_the_original(lint):
-    moments = box_moments(2.0, 0.1, 0.1, 0.3)
-    text = robot(
-        ("upper", inertial(2.0, *moments) + box(0.1, 0.1, 0.3), "revolute"),
-        ("hand", inertial(2.0, *moments) + box(0.06, 0.06, 0.06), "revolute"),
+    moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    text = on_base(
+        upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        hand=inertial(2.0, *moments) + collision(box(0.06, 0.06, 0.06)),
     )
     (finding,) = in013(lint, text)
     assert finding.link == "hand" and "those of link `upper`" in finding.message
-    cube = 2.0 * (0.06**2 + 0.06**2) / 12
+    cube, _, _ = box_moments(2.0, (0.06, 0.06, 0.06))
     spread = max(moments) / cube
     assert f"differ by a factor of {fmt(spread, 3)}" in finding.message
     assert finding.expected["ixx"] == pytest.approx(cube)
@@ -106,37 +88,33 @@ def test_copied_tensor_flags_the_copy_not_the_original(lint):
 
 
 def test_identical_and_turned_parts_share_a_tensor(lint):
-    moments = box_moments(2.0, 0.1, 0.1, 0.3)
-    turned = (
-        '<collision><origin rpy="0 0 1.5707963267948966"/>'
-        '<geometry><box size="0.1 0.1 0.3"/></geometry></collision>'
-    )
-    text = robot(
-        ("left", inertial(2.0, *moments) + box(0.1, 0.1, 0.3), "revolute"),
-        ("right", inertial(2.0, *moments) + turned, "revolute"),
-        ("spare", inertial(2.0, *moments) + box(0.1, 0.1, 0.3), "revolute"),
+    moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    turned = collision(box(0.1, 0.1, 0.3), rpy="0 0 1.5707963267948966")
+    text = on_base(
+        left=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        right=inertial(2.0, *moments) + turned,
+        spare=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
     )
     assert in013(lint, text) == []
 
 
 def test_copy_factor_option(lint):
-    moments = box_moments(2.0, 0.1, 0.1, 0.3)
-    text = robot(
-        ("upper", inertial(2.0, *moments) + box(0.1, 0.1, 0.3), "revolute"),
-        ("lower", inertial(2.0, *moments) + box(0.1, 0.1, 0.2), "revolute"),
+    moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    text = on_base(
+        upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        lower=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.2)),
     )
-    spread = moments[0] / box_moments(2.0, 0.1, 0.1, 0.2)[0]
+    spread = moments[0] / box_moments(2.0, (0.1, 0.1, 0.2))[0]
     assert in013(lint, text) == []  # 1.8 apart: within the default 2
     assert [f.link for f in in013(lint, text, copy_factor=spread - 0.05)] == ["lower"]
 
 
 def test_placeholder_on_a_negligible_welded_frame(lint):
-    body = inertial(5.0, *box_moments(5.0, 0.2, 0.2, 0.5)) + box(0.2, 0.2, 0.5)
-    frame = (
-        '<joint name="w" type="fixed"><parent link="torso"/><child link="cam"/></joint>'
-        f'<link name="cam">{inertial(0.001, 1e-8)}{box(0.01, 0.01, 0.1)}</link>'
+    body = inertial(5.0, *box_moments(5.0, (0.2, 0.2, 0.5))) + collision(box(0.2, 0.2, 0.5))
+    frame = joint("torso", "cam", "fixed") + link(
+        "cam", inertial(0.001, 1e-8), collision(box(0.01, 0.01, 0.1))
     )
-    text = robot(("torso", body, "revolute")).replace("</robot>", frame + "</robot>")
+    text = moving(body, name="torso", extra=frame)
     assert in013(lint, text) == []
 
 

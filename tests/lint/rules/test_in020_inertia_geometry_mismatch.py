@@ -5,54 +5,32 @@ from __future__ import annotations
 import math
 
 import pytest
-from kit import REPO, moving
+from kit import EXAMPLES
+from kit.meshes import box_triangles, write_ascii_stl
+from kit.moments import box_moments, cylinder_moments
+from kit.urdf import box, collision, cylinder, inertial, mesh, moving, visual
 
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.runner import Selection, lint_file
 
-EXAMPLES = REPO / "examples"
-
-
-def arm(body: str, extra: str = "") -> str:
-    """A robot whose moving link `arm` holds ``body``."""
-    return moving(body, name="arm", extra=extra)
-
-
-def inertial(mass, ixx, iyy, izz, xyz="0 0 0", rpy="0 0 0", ixy=0.0, ixz=0.0, iyz=0.0):
-    return (
-        f'<inertial><origin xyz="{xyz}" rpy="{rpy}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="{ixy}" ixz="{ixz}" iyy="{iyy}" iyz="{iyz}" izz="{izz}"/>'
-        "</inertial>"
-    )
-
-
-def box_moments(mass, x, y, z):
-    return (mass * (y * y + z * z) / 12, mass * (x * x + z * z) / 12, mass * (x * x + y * y) / 12)
-
-
-def cylinder_moments(mass, radius, length):
-    transverse = mass * (3 * radius**2 + length**2) / 12
-    return transverse, transverse, mass * radius**2 / 2
-
-
-BOX = '<collision><geometry><box size="0.4 0.2 0.1"/></geometry></collision>'
+BOX = collision(box(0.4, 0.2, 0.1))
 
 
 def test_uniform_tensor_is_quiet(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
-    assert lint(arm(BOX + inertial(2.0, ixx, iyy, izz)), "IN020") == []
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    assert lint(moving(BOX + inertial(2.0, ixx, iyy, izz)), "IN020") == []
 
 
 def test_within_the_factors_is_quiet(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
     # a hollow-ish part (×2) and a dense core (×0.25) are within the defaults 2.5 and 5
-    assert lint(arm(BOX + inertial(2.0, 2 * ixx, 2 * iyy, 2 * izz)), "IN020") == []
-    assert lint(arm(BOX + inertial(2.0, ixx / 4, iyy / 4, izz / 4)), "IN020") == []
+    assert lint(moving(BOX + inertial(2.0, 2 * ixx, 2 * iyy, 2 * izz)), "IN020") == []
+    assert lint(moving(BOX + inertial(2.0, ixx / 4, iyy / 4, izz / 4)), "IN020") == []
 
 
 def test_tensor_three_times_too_large_fires_with_the_expected_value(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
-    findings = lint(arm(BOX + inertial(2.0, ixx, 3 * iyy, izz)), "IN020")
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    findings = lint(moving(BOX + inertial(2.0, ixx, 3 * iyy, izz)), "IN020")
     assert [f.code for f in findings] == ["IN020"]
     finding = findings[0]
     assert finding.severity == Severity.WARNING  # within the hard bound (3 × uniform for a box)
@@ -64,17 +42,17 @@ def test_tensor_three_times_too_large_fires_with_the_expected_value(lint):
 
 
 def test_tensor_far_too_small_fires(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
-    findings = lint(arm(BOX + inertial(2.0, ixx / 10, iyy, izz)), "IN020")
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    findings = lint(moving(BOX + inertial(2.0, ixx / 10, iyy, izz)), "IN020")
     assert len(findings) == 1 and "1/10 of that" in findings[0].message
 
 
 def test_factor_options(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
-    text = arm(BOX + inertial(2.0, 2 * ixx, iyy, izz))
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    text = moving(BOX + inertial(2.0, 2 * ixx, iyy, izz))
     assert lint(text, "IN020") == []
     assert len(lint(text, "IN020", options={"IN020": {"factor": 1.5}})) == 1
-    small = arm(BOX + inertial(2.0, ixx / 3, iyy, izz))
+    small = moving(BOX + inertial(2.0, ixx / 3, iyy, izz))
     assert lint(small, "IN020") == []
     assert len(lint(small, "IN020", options={"IN020": {"factor_below": 2.0}})) == 1
 
@@ -83,12 +61,11 @@ def test_rotated_cylinder_with_a_tensor_for_z_fires_in_link_axes(lint):
     """The seed simple arm: a cylinder along x, the tensor written for a cylinder along z."""
     mass, radius, length = 1.0, 0.02, 0.3
     transverse, _, axial = cylinder_moments(mass, radius, length)
-    body = (
-        f'<collision><origin xyz="{length / 2} 0 0" rpy="0 {math.pi / 2} 0"/>'
-        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
-        + inertial(mass, transverse, transverse, axial, xyz=f"{length / 2} 0 0")
+    along_x = collision(cylinder(radius, length), xyz=f"{length / 2} 0 0", rpy=f"0 {math.pi / 2} 0")
+    body = along_x + inertial(
+        mass, transverse, transverse, axial, xyz=f"{length / 2} 0 0", rpy="0 0 0"
     )
-    findings = lint(arm(body), "IN020")
+    findings = lint(moving(body), "IN020")
     assert len(findings) == 1
     finding = findings[0]
     assert "other axes" in finding.message
@@ -100,7 +77,7 @@ def test_rotated_cylinder_with_a_tensor_for_z_fires_in_link_axes(lint):
         f'<origin xyz="{length / 2} 0 0" rpy="0 0 0"/>',
         f'<origin xyz="{length / 2} 0 0" rpy="0 {math.pi / 2} 0"/>',
     )
-    assert lint(arm(fixed), "IN020") == []
+    assert lint(moving(fixed), "IN020") == []
 
 
 def test_tensor_about_the_link_origin_is_recognised_below_the_factor(lint):
@@ -108,12 +85,10 @@ def test_tensor_about_the_link_origin_is_recognised_below_the_factor(lint):
     mass, radius, length = 157.633, 0.35, 0.4
     transverse, _, axial = cylinder_moments(mass, radius, length)
     shifted = transverse + mass * 0.2**2
-    body = (
-        '<collision><origin xyz="0 0 0.2"/>'
-        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
-        + inertial(mass, shifted, shifted, axial, xyz="0 0 0.2")
+    body = collision(cylinder(radius, length), xyz="0 0 0.2") + inertial(
+        mass, shifted, shifted, axial, xyz="0 0 0.2"
     )
-    findings = lint(arm(body), "IN020")
+    findings = lint(moving(body), "IN020")
     assert len(findings) == 1
     assert "about the link origin" in findings[0].message
     assert findings[0].expected["ixx"] == pytest.approx(transverse)
@@ -123,75 +98,56 @@ def test_tensor_about_the_link_origin_is_recognised_below_the_factor(lint):
 def test_error_when_also_beyond_the_hard_bound(lint):
     # ixx of a cylinder about its own axis can reach m r² at most (a ring at the rim)
     mass, radius, length = 1.0, 0.05, 0.05
-    body = (
-        f'<collision><geometry><cylinder radius="{radius}" length="{length}"/></geometry>'
-        "</collision>" + inertial(mass, 1.0, 1.0, 1.0)
-    )
-    findings = lint(arm(body), "IN020")
+    body = collision(cylinder(radius, length)) + inertial(mass, 1.0, 1.0, 1.0)
+    findings = lint(moving(body), "IN020")
     assert len(findings) == 1 and findings[0].severity == Severity.ERROR
     assert "IN023" in findings[0].message
 
 
 def test_overlapping_collision_shapes_are_a_union(lint):
     """Two boxes overlapping by half count the shared volume once: 0.6 × 0.2 × 0.1 overall."""
-    shapes = (
-        '<collision><origin xyz="-0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry>'
-        "</collision>"
-        '<collision><origin xyz="0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry>'
-        "</collision>"
+    shapes = collision(box(0.4, 0.2, 0.1), xyz="-0.1 0 0") + collision(
+        box(0.4, 0.2, 0.1), xyz="0.1 0 0"
     )
-    ixx, iyy, izz = box_moments(3.0, 0.6, 0.2, 0.1)
-    assert lint(arm(shapes + inertial(3.0, ixx, iyy, izz)), "IN020") == []
-    findings = lint(arm(shapes + inertial(3.0, ixx, 3 * iyy, izz)), "IN020")
+    ixx, iyy, izz = box_moments(3.0, (0.6, 0.2, 0.1))
+    assert lint(moving(shapes + inertial(3.0, ixx, iyy, izz)), "IN020") == []
+    findings = lint(moving(shapes + inertial(3.0, ixx, 3 * iyy, izz)), "IN020")
     assert len(findings) == 1 and findings[0].expected["iyy"] == pytest.approx(iyy, rel=1e-4)
     assert "2 collision shapes" in findings[0].message
 
 
 def test_a_tensor_matching_the_visual_geometry_is_quiet(lint):
     """A crude collision sphere around a box-shaped visual: the visual basis clears it."""
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
     body = (
-        '<visual><geometry><box size="0.4 0.2 0.1"/></geometry></visual>'
-        '<collision><geometry><cylinder radius="0.02" length="0.1"/></geometry></collision>'
-        + inertial(2.0, ixx, iyy, izz)
+        visual(box(0.4, 0.2, 0.1)) + collision(cylinder(0.02, 0.1)) + inertial(2.0, ixx, iyy, izz)
     )
-    assert lint(arm(body), "IN020") == []
+    assert lint(moving(body), "IN020") == []
 
 
 def test_visual_only_link_uses_the_visual_geometry(lint):
-    ixx, iyy, izz = box_moments(2.0, 0.4, 0.2, 0.1)
-    body = '<visual><geometry><box size="0.4 0.2 0.1"/></geometry></visual>'
-    findings = lint(arm(body + inertial(2.0, ixx, iyy, 4 * izz)), "IN020")
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    body = visual(box(0.4, 0.2, 0.1))
+    findings = lint(moving(body + inertial(2.0, ixx, iyy, 4 * izz)), "IN020")
     assert len(findings) == 1 and "its visual box" in findings[0].message
 
 
 def test_mesh_with_scale(lint, tmp_path):
     """A 100 mm cube in millimetres, scaled by 0.001: the tensor of a 0.1 m cube."""
-    stl = tmp_path / "cube.stl"
-    facets = []
-    corners = [(x, y, z) for x in (0, 100) for y in (0, 100) for z in (0, 100)]
-    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
-             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]  # fmt: skip
-    for a, b, c in faces:
-        vertices = "".join(f"vertex {' '.join(map(str, corners[i]))}\n" for i in (a, b, c))
-        facets.append(f"facet normal 0 0 0\nouter loop\n{vertices}endloop\nendfacet\n")
-    stl.write_text("solid cube\n" + "".join(facets) + "endsolid cube\n")
-    moment = 1.0 * (0.1**2 + 0.1**2) / 12
-    mesh = (
-        '<collision><geometry><mesh filename="cube.stl" scale="0.001 0.001 0.001"/>'
-        "</geometry></collision>"
-    )
+    write_ascii_stl(tmp_path / "cube.stl", box_triangles((100, 100, 100)))
+    moment, _, _ = box_moments(1.0, (0.1, 0.1, 0.1))
+    cube = collision(mesh("cube.stl", scale="0.001 0.001 0.001"))
     good = inertial(1.0, moment, moment, moment, xyz="0.05 0.05 0.05")
-    assert lint(arm(mesh + good), "IN020") == []
+    assert lint(moving(cube + good), "IN020") == []
     bad = inertial(1.0, 3 * moment, moment, moment, xyz="0.05 0.05 0.05")
-    findings = lint(arm(mesh + bad), "IN020")
+    findings = lint(moving(cube + bad), "IN020")
     assert len(findings) == 1 and findings[0].expected["ixx"] == pytest.approx(moment)
 
 
 def test_links_without_inertial_or_geometry_are_not_its_business(lint):
-    assert lint(arm(BOX), "IN020") == []
-    assert lint(arm(inertial(1.0, 1.0, 1.0, 1.0)), "IN020") == []
-    broken = arm(BOX + inertial(1.0, 1.0, 1.0, -1.0))  # not positive definite: IN010's
+    assert lint(moving(BOX), "IN020") == []
+    assert lint(moving(inertial(1.0, 1.0, 1.0, 1.0)), "IN020") == []
+    broken = moving(BOX + inertial(1.0, 1.0, 1.0, -1.0))  # not positive definite: IN010's
     assert lint(broken, "IN020") == []
 
 

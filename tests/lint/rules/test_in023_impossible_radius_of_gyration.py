@@ -5,31 +5,19 @@ from __future__ import annotations
 import math
 
 import pytest
-from kit import moving
+from kit.moments import box_moments, cylinder_moments
+from kit.urdf import box, collision, cylinder, inertial, mesh, moving, sphere, visual
 
 from inertia_kit.analysis.bounds import RIM_SIDES
 from inertia_kit.lint.findings import Severity
 
 RIM = 1.0 / math.cos(math.pi / RIM_SIDES)
-
-
-def arm(body: str) -> str:
-    return moving(body, name="arm")
-
-
-def inertial(mass, ixx, iyy, izz, xyz="0 0 0", rpy="0 0 0"):
-    return (
-        f'<inertial><origin xyz="{xyz}" rpy="{rpy}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
-    )
-
-
-CYLINDER = '<collision><geometry><cylinder radius="0.05" length="0.05"/></geometry></collision>'
+CYLINDER = collision(cylinder(0.05, 0.05))
 
 
 def test_unit_placeholder_on_a_small_wheel_is_impossible(lint):
     """robot1's wheels: 1 kg·m² on a 1 kg wheel of radius 5 cm."""
-    findings = lint(arm(CYLINDER + inertial(1.0, 1.0, 1.0, 1.0)), "IN023")
+    findings = lint(moving(CYLINDER + inertial(1.0, 1.0, 1.0, 1.0)), "IN023")
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.ERROR
@@ -43,79 +31,65 @@ def test_ring_at_the_rim_is_the_limit_and_passes(lint):
     """A thin ring of radius r has izz = m r², ixx = iyy = m r²/2: possible, never flagged."""
     mass, radius = 2.0, 0.05
     ring = inertial(mass, mass * radius**2 / 2, mass * radius**2 / 2, mass * radius**2)
-    assert lint(arm(CYLINDER + ring), "IN023") == []
+    assert lint(moving(CYLINDER + ring), "IN023") == []
     over = inertial(mass, mass * radius**2 / 2, mass * radius**2 / 2, 1.05 * mass * radius**2)
-    findings = lint(arm(CYLINDER + over), "IN023")
+    findings = lint(moving(CYLINDER + over), "IN023")
     assert len(findings) == 1 and "izz" in findings[0].message
     assert findings[0].expected["max"] == pytest.approx(mass * (radius * RIM) ** 2)
 
 
 def test_rtol_option(lint):
     mass, radius = 2.0, 0.05
-    text = arm(CYLINDER + inertial(mass, 1e-3, 1e-3, 1.03 * mass * radius**2))
+    text = moving(CYLINDER + inertial(mass, 1e-3, 1e-3, 1.03 * mass * radius**2))
     assert len(lint(text, "IN023")) == 1
     assert lint(text, "IN023", options={"IN023": {"rtol": 0.05}}) == []
 
 
 def test_dumbbell_bound_is_close_to_the_uniform_value(lint):
     """Two balls far apart: the uniform value is nearly the most possible (IN020 quiet)."""
-    body = (
-        '<collision><origin xyz="0 0.25 0"/><geometry><sphere radius="0.05"/></geometry>'
-        '</collision><collision><origin xyz="0 -0.25 0"/><geometry><sphere radius="0.05"/>'
-        "</geometry></collision>"
-    )
+    body = collision(sphere(0.05), xyz="0 0.25 0") + collision(sphere(0.05), xyz="0 -0.25 0")
     mass = 2.0
     uniform_x = mass * (0.25**2 + 2 * 0.05**2 / 5)  # two balls at ±0.25 about x
     bound_x = mass * (0.25 + 0.05) ** 2  # Bhatia–Davis along y; a ball's support is exact
-    assert lint(arm(body + inertial(mass, uniform_x, 0.002, uniform_x)), "IN023") == []
-    findings = lint(arm(body + inertial(mass, 1.5 * uniform_x, 0.002, uniform_x)), "IN023")
+    assert lint(moving(body + inertial(mass, uniform_x, 0.002, uniform_x)), "IN023") == []
+    findings = lint(moving(body + inertial(mass, 1.5 * uniform_x, 0.002, uniform_x)), "IN023")
     assert len(findings) == 1
     assert findings[0].expected["max"] == pytest.approx(bound_x)
-    assert lint(arm(body + inertial(mass, 1.5 * uniform_x, 0.002, uniform_x)), "IN020") == []
+    assert lint(moving(body + inertial(mass, 1.5 * uniform_x, 0.002, uniform_x)), "IN020") == []
 
 
 def test_rotated_cylinder_is_bounded_in_link_axes(lint):
     """Cylinder along x: about x at most m r²; a tensor written for z breaks that."""
     mass, radius, length = 1.0, 0.02, 0.3
-    transverse = mass * (3 * radius**2 + length**2) / 12
-    body = (
-        '<collision><origin rpy="0 1.5707963267948966 0"/>'
-        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
-    )
-    findings = lint(
-        arm(body + inertial(mass, transverse, transverse, mass * radius**2 / 2)), "IN023"
-    )
+    transverse, _, axial = cylinder_moments(mass, radius, length)
+    body = collision(cylinder(radius, length), rpy="0 1.5707963267948966 0")
+    findings = lint(moving(body + inertial(mass, transverse, transverse, axial)), "IN023")
     assert len(findings) == 1 and "ixx" in findings[0].message
     assert findings[0].expected["max"] == pytest.approx(mass * (radius * RIM) ** 2)
     # rotating the same values into link axes makes them right
-    right = inertial(
-        mass, transverse, transverse, mass * radius**2 / 2, rpy="0 1.5707963267948966 0"
-    )
-    assert lint(arm(body + right), "IN023") == []
+    right = inertial(mass, transverse, transverse, axial, rpy="0 1.5707963267948966 0")
+    assert lint(moving(body + right), "IN023") == []
 
 
 def test_an_off_centre_com_shrinks_the_bound(lint):
     """A 1 m rod with its COM 0.45 m off centre: about y at most m (0.05 × 0.95 + 0.05²)."""
-    body = '<collision><geometry><box size="1 0.1 0.1"/></geometry></collision>'
+    body = collision(box(1, 0.1, 0.1))
     mass = 1.0
-    uniform = mass * (1 + 0.01) / 12
-    findings = lint(arm(body + inertial(mass, 0.002, uniform, uniform, xyz="0.45 0 0")), "IN023")
+    _, uniform, _ = box_moments(mass, (1, 0.1, 0.1))
+    findings = lint(moving(body + inertial(mass, 0.002, uniform, uniform, xyz="0.45 0 0")), "IN023")
     assert len(findings) == 1
     assert findings[0].expected["max"] == pytest.approx(mass * (0.05 * 0.95 + 0.05**2))
 
 
 def test_visual_geometry_widens_the_envelope(lint):
     """A small collision sphere inside a large visual box: the box bounds what is possible."""
-    body = (
-        '<visual><geometry><box size="0.4 0.4 0.4"/></geometry></visual>'
-        '<collision><geometry><sphere radius="0.05"/></geometry></collision>'
-    )
+    body = visual(box(0.4, 0.4, 0.4)) + collision(sphere(0.05))
     mass = 1.0
     possible = mass * 0.2**2  # a ring at 0.2 m, inside the visual box
-    assert lint(arm(body + inertial(mass, possible, possible, possible)), "IN023") == []
+    assert lint(moving(body + inertial(mass, possible, possible, possible)), "IN023") == []
 
 
 def test_missing_mesh_or_inertial_is_not_its_business(lint):
-    body = '<visual><geometry><mesh filename="missing.stl"/></geometry></visual>' + CYLINDER
-    assert lint(arm(body + inertial(1.0, 1.0, 1.0, 1.0)), "IN023") == []
-    assert lint(arm(CYLINDER), "IN023") == []
+    body = visual(mesh("missing.stl")) + CYLINDER
+    assert lint(moving(body + inertial(1.0, 1.0, 1.0, 1.0)), "IN023") == []
+    assert lint(moving(CYLINDER), "IN023") == []

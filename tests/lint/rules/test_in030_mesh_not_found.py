@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 
 import pytest
-import trimesh
+from kit.meshes import write_box_stl
 
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.runner import Selection, lint_file
@@ -15,6 +15,9 @@ from inertia_kit.lint.runner import Selection, lint_file
 def no_ros_environment(monkeypatch):
     monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
     monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+
+
+CUBE = (0.1, 0.1, 0.1)
 
 
 def robot(visual: str, collision: str | None = None) -> str:
@@ -27,13 +30,8 @@ def robot(visual: str, collision: str | None = None) -> str:
 </robot>"""
 
 
-def box(path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    trimesh.creation.box(extents=(0.1, 0.1, 0.1)).export(path)
-
-
 def test_existing_mesh_is_quiet(lint, tmp_path):
-    box(tmp_path / "meshes" / "part.stl")
+    write_box_stl(tmp_path / "meshes" / "part.stl", CUBE)
     assert lint(robot("meshes/part.stl"), "IN030") == []
 
 
@@ -50,13 +48,13 @@ def test_missing_relative_path_names_the_shape_and_the_file(lint, tmp_path):
 
 
 def test_similar_name_in_the_folder_is_suggested(lint, tmp_path):
-    box(tmp_path / "meshes" / "bracket.stl")
+    write_box_stl(tmp_path / "meshes" / "bracket.stl", CUBE)
     findings = lint(robot("meshes/bracket_v2.stl"), "IN030")
     assert findings and all("did you mean" in f.help and "bracket.stl" in f.help for f in findings)
 
 
 def test_name_differing_in_case(lint, tmp_path):
-    box(tmp_path / "meshes" / "Part.STL")
+    write_box_stl(tmp_path / "meshes" / "Part.STL", CUBE)
     if (tmp_path / "meshes" / "part.stl").exists():
         pytest.skip("case-insensitive file system")
     findings = lint(robot("meshes/part.stl"), "IN030")
@@ -72,7 +70,7 @@ def test_unknown_package_says_to_pass_package_path(lint):
 
 
 def test_package_folder_next_to_the_file_is_found_with_package_path(tmp_path):
-    box(tmp_path / "my_robot" / "meshes" / "part.stl")
+    write_box_stl(tmp_path / "my_robot" / "meshes" / "part.stl", CUBE)
     path = tmp_path / "robot.urdf"
     path.write_text(robot("package://my_robot/meshes/part.stl"))
     findings = lint_file(path, Selection(select=("IN030",))).findings
@@ -84,7 +82,7 @@ def test_package_folder_next_to_the_file_is_found_with_package_path(tmp_path):
 
 def test_folder_named_after_the_package_with_another_package_xml(tmp_path):
     package = tmp_path / "example-robot-data"
-    box(package / "robots" / "meshes" / "part.stl")
+    write_box_stl(package / "robots" / "meshes" / "part.stl", CUBE)
     (package / "package.xml").write_text(
         '<package format="3"><name>example_robot_descriptions</name></package>'
     )

@@ -5,26 +5,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import trimesh
+from kit.urdf import collision, inertial, mesh, moving, visual
 
 from inertia_kit.lint.findings import Severity
 
-INERTIAL = (
-    '<inertial><mass value="1"/>'
-    '<inertia ixx="0.00167" ixy="0" ixz="0" iyy="0.00167" iyz="0" izz="0.00167"/></inertial>'
-)
+INERTIAL = inertial(1, 0.00167)
 
 
-def robot(body: str, joint: str = "revolute") -> str:
-    limit = '<limit lower="-1" upper="1" effort="1" velocity="1"/>' if joint == "revolute" else ""
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="j" type="{joint}"><parent link="base"/><child link="part"/>{limit}</joint>
-  <link name="part">{body}</link>
-</robot>"""
-
-
-def mesh(kind: str, name: str) -> str:
-    return f'<{kind}><geometry><mesh filename="{name}"/></geometry></{kind}>'
+def part(body: str, kind: str = "revolute") -> str:
+    return moving(body, name="part", kind=kind)
 
 
 @pytest.fixture
@@ -42,11 +31,11 @@ def meshes(tmp_path):
 
 
 def test_closed_collision_mesh_is_quiet(lint, meshes):
-    assert lint(robot(mesh("collision", "closed.stl") + INERTIAL), "IN032") == []
+    assert lint(part(collision(mesh("closed.stl")) + INERTIAL), "IN032") == []
 
 
 def test_open_collision_mesh_warns_with_method_and_error_bound(lint, meshes):
-    findings = lint(robot(mesh("collision", "open.stl") + INERTIAL), "IN032")
+    findings = lint(part(collision(mesh("open.stl")) + INERTIAL), "IN032")
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.WARNING and finding.link == "part"
@@ -59,31 +48,31 @@ def test_open_collision_mesh_warns_with_method_and_error_bound(lint, meshes):
 
 
 def test_open_visual_next_to_collision_geometry_is_quiet(lint, meshes):
-    body = mesh("visual", "open.stl") + mesh("collision", "closed.stl") + INERTIAL
-    assert lint(robot(body), "IN032") == []
+    body = visual(mesh("open.stl")) + collision(mesh("closed.stl")) + INERTIAL
+    assert lint(part(body), "IN032") == []
 
 
 def test_open_visual_mass_comes_from_warns(lint, meshes):
-    findings = lint(robot(mesh("visual", "open.stl") + INERTIAL), "IN032")
+    findings = lint(part(visual(mesh("open.stl")) + INERTIAL), "IN032")
     assert len(findings) == 1 and "visual mesh `open.stl`" in findings[0].message
 
 
 def test_open_visual_of_a_massless_fixed_link_is_quiet(lint, meshes):
-    assert lint(robot(mesh("visual", "open.stl"), joint="fixed"), "IN032") == []
+    assert lint(part(visual(mesh("open.stl")), kind="fixed"), "IN032") == []
 
 
 def test_tolerance_option(lint, meshes):
-    text = robot(mesh("collision", "open.stl") + INERTIAL)
+    text = part(collision(mesh("open.stl")) + INERTIAL)
     assert lint(text, "IN032", options={"IN032": {"tolerance": 0.2}}) == []
 
 
 def test_inconsistent_winding_warns(lint, meshes):
-    findings = lint(robot(mesh("collision", "flipped.stl") + INERTIAL), "IN032")
+    findings = lint(part(collision(mesh("flipped.stl")) + INERTIAL), "IN032")
     assert len(findings) == 1
     assert "wound inconsistently" in findings[0].message
     assert findings[0].expected["method"] == "repaired"
 
 
 def test_repaired_option(lint, meshes):
-    text = robot(mesh("collision", "flipped.stl") + INERTIAL)
+    text = part(collision(mesh("flipped.stl")) + INERTIAL)
     assert lint(text, "IN032", options={"IN032": {"repaired": False}}) == []

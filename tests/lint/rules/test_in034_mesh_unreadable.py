@@ -4,22 +4,21 @@ from __future__ import annotations
 
 import struct
 
+from kit.urdf import collision, link, mesh, robot
+
 from inertia_kit.lint.findings import Severity
 
 
-def robot(name: str) -> str:
-    return f"""<robot name="r">
-  <link name="part">
-    <collision><geometry><mesh filename="{name}"/></geometry></collision>
-  </link>
-</robot>"""
+def part(name: str) -> str:
+    """A lone link `part` colliding as the mesh file ``name``."""
+    return robot(link("part", collision(mesh(name))))
 
 
 def test_truncated_binary_stl_is_an_error(lint, tmp_path):
     # a header announcing 100 triangles, and only one
     data = b"\0" * 80 + struct.pack("<I", 100) + b"\0" * 50
     (tmp_path / "cut.stl").write_bytes(data)
-    findings = lint(robot("cut.stl"), "IN034")
+    findings = lint(part("cut.stl"), "IN034")
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.ERROR and finding.link == "part"
@@ -29,13 +28,13 @@ def test_truncated_binary_stl_is_an_error(lint, tmp_path):
 
 def test_non_finite_obj_is_an_error(lint, tmp_path):
     (tmp_path / "nan.obj").write_text("v nan nan nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n")
-    findings = lint(robot("nan.obj"), "IN034")
+    findings = lint(part("nan.obj"), "IN034")
     assert len(findings) == 1 and "non-finite" in findings[0].message
 
 
 def test_unsupported_format_is_a_warning(lint, tmp_path):
     (tmp_path / "part.vtk").write_text("# vtk DataFile Version 3.0\n")
-    findings = lint(robot("part.vtk"), "IN034")
+    findings = lint(part("part.vtk"), "IN034")
     assert len(findings) == 1
     assert findings[0].severity == Severity.WARNING
     assert "in a format inertia-kit does not read (`.vtk`" in findings[0].message
@@ -45,10 +44,10 @@ def test_readable_mesh_is_quiet(lint, tmp_path):
     (tmp_path / "ok.obj").write_text(
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
     )
-    assert lint(robot("ok.obj"), "IN034") == []
+    assert lint(part("ok.obj"), "IN034") == []
 
 
 def test_missing_and_empty_meshes_belong_to_other_rules(lint, tmp_path):
     (tmp_path / "empty.stl").write_bytes(b"")
-    assert lint(robot("empty.stl"), "IN034") == []  # IN026
-    assert lint(robot("missing.stl"), "IN034") == []  # IN030
+    assert lint(part("empty.stl"), "IN034") == []  # IN026
+    assert lint(part("missing.stl"), "IN034") == []  # IN030

@@ -3,30 +3,15 @@
 from __future__ import annotations
 
 import pytest
+from kit.urdf import joint, link, robot
 
 from inertia_kit.lint.findings import Severity
 
-LIMIT = '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>'
-
-
-def joint(name: str, parent: str, child: str, kind: str = "revolute") -> str:
-    extra = LIMIT if kind == "revolute" else ""
-    return (
-        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/>'
-        f'<child link="{child}"/>{extra}</joint>'
-    )
-
-
-def robot(*elements: str) -> str:
-    return '<robot name="r">' + "".join(elements) + "</robot>"
-
-
-def link(name: str) -> str:
-    return f'<link name="{name}"/>'
-
 
 def test_a_tree_is_quiet(lint):
-    text = robot(link("a"), link("b"), link("c"), joint("ab", "a", "b"), joint("bc", "b", "c"))
+    text = robot(
+        link("a"), link("b"), link("c"), joint("a", "b", name="ab"), joint("b", "c", name="bc")
+    )
     assert lint(text, "IN040") == []
 
 
@@ -35,7 +20,7 @@ def test_single_link_is_quiet(lint):
 
 
 def test_unknown_child_with_suggestion_and_second_root(lint):
-    findings = lint(robot(link("base"), link("arm"), joint("j", "base", "amr")), "IN040")
+    findings = lint(robot(link("base"), link("arm"), joint("base", "amr", name="j")), "IN040")
     messages = [f.message for f in findings]
     assert any(
         "child link `amr`, which does not exist (did you mean `arm`?)" in m for m in messages
@@ -47,7 +32,11 @@ def test_unknown_child_with_suggestion_and_second_root(lint):
 
 def test_duplicate_names(lint):
     text = robot(
-        link("a"), link("b"), link("b"), joint("j", "a", "b"), joint("j", "a", "b", "fixed")
+        link("a"),
+        link("b"),
+        link("b"),
+        joint("a", "b", name="j"),
+        joint("a", "b", "fixed", name="j"),
     )
     messages = [f.message for f in lint(text, "IN040")]
     assert any("link `b` is defined twice (first at line 1)" in m for m in messages)
@@ -69,7 +58,7 @@ def test_missing_parent_element(lint):
 
 
 def test_joint_to_itself(lint):
-    findings = lint(robot(link("a"), joint("j", "a", "a", "fixed")), "IN040")
+    findings = lint(robot(link("a"), joint("a", "a", "fixed", name="j")), "IN040")
     messages = [f.message for f in findings]
     assert "joint `j` joins link `a` to itself" in messages
     # urdfdom's view as well: `a` is a child, so there is no root
@@ -78,8 +67,8 @@ def test_joint_to_itself(lint):
 
 def test_link_with_two_parents(lint):
     text = robot(
-        link("a"), link("b"), link("c"), joint("ab", "a", "b"), joint("ac", "a", "c"),
-        joint("cb", "c", "b"),
+        link("a"), link("b"), link("c"), joint("a", "b", name="ab"), joint("a", "c", name="ac"),
+        joint("c", "b", name="cb"),
     )  # fmt: skip
     findings = lint(text, "IN040")
     assert len(findings) == 1
@@ -90,7 +79,7 @@ def test_link_with_two_parents(lint):
 def test_several_roots_name_the_largest_tree(lint):
     text = robot(
         link("lonely"), link("a"), link("b"), link("c"), link("d"), link("e"),
-        joint("ab", "a", "b"), joint("bc", "b", "c"), joint("de", "d", "e"),
+        joint("a", "b", name="ab"), joint("b", "c", name="bc"), joint("d", "e", name="de"),
     )  # fmt: skip
     findings = lint(text, "IN040")
     messages = sorted(f.message for f in findings)
@@ -103,20 +92,20 @@ def test_several_roots_name_the_largest_tree(lint):
 def test_cycle(lint):
     text = robot(
         link("root"), link("a"), link("b"), link("c"),
-        joint("ra", "root", "a"), joint("ab", "a", "b"), joint("bc", "b", "c"),
-        joint("ca", "c", "a"),
+        joint("root", "a", name="ra"), joint("a", "b", name="ab"), joint("b", "c", name="bc"),
+        joint("c", "a", name="ca"),
     )  # fmt: skip
     messages = [f.message for f in lint(text, "IN040")]
     assert any("link `a` has two parent joints" in m for m in messages)
     text = robot(
-        link("root"), link("a"), link("b"), joint("ab", "a", "b"), joint("ba", "b", "a"),
+        link("root"), link("a"), link("b"), joint("a", "b", name="ab"), joint("b", "a", name="ba"),
     )  # fmt: skip
     messages = [f.message for f in lint(text, "IN040")]
     assert any("form a cycle" in m and "`ab`" in m and "`ba`" in m for m in messages)
 
 
 def test_everything_in_a_cycle_has_no_root(lint):
-    text = robot(link("a"), link("b"), joint("ab", "a", "b"), joint("ba", "b", "a"))
+    text = robot(link("a"), link("b"), joint("a", "b", name="ab"), joint("b", "a", name="ba"))
     messages = [f.message for f in lint(text, "IN040")]
     assert any(m.startswith("no root link") for m in messages)
     assert any("form a cycle: `a` → `b` → `a`" in m or "`b` → `a` → `b`" in m for m in messages)

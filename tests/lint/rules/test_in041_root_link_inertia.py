@@ -2,21 +2,16 @@
 
 from __future__ import annotations
 
+from kit.urdf import inertial, joint, link, robot
+
 from inertia_kit.lint.findings import Severity
 
-INERTIAL = (
-    '<inertial><mass value="10"/>'
-    '<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>'
-)
-JOINT = (
-    '<joint name="j" type="revolute"><parent link="base_link"/><child link="arm"/>'
-    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
-    f'<link name="arm">{INERTIAL}</link>'
-)
+INERTIAL = inertial(10, 0.1)
+JOINT = joint("base_link", "arm", name="j") + link("arm", INERTIAL)
 
 
 def test_root_with_inertial_warns_with_kdl_message_and_dummy_root(lint):
-    text = f'<robot name="r"><link name="base_link">{INERTIAL}</link>{JOINT}</robot>'
+    text = robot(link("base_link", INERTIAL), JOINT)
     findings = lint(text, "IN041")
     assert len(findings) == 1
     finding = findings[0]
@@ -31,34 +26,28 @@ def test_root_with_inertial_warns_with_kdl_message_and_dummy_root(lint):
 
 
 def test_massless_dummy_root_is_quiet(lint):
-    text = (
-        '<robot name="r"><link name="base_footprint"/>'
-        '<joint name="f" type="fixed"><parent link="base_footprint"/>'
-        f'<child link="base_link"/></joint><link name="base_link">{INERTIAL}</link>{JOINT}'
-        "</robot>"
+    text = robot(
+        link("base_footprint"),
+        joint("base_footprint", "base_link", "fixed", name="f"),
+        link("base_link", INERTIAL),
+        JOINT,
     )
     assert lint(text, "IN041") == []
 
 
 def test_single_rigid_object_is_quiet_unless_asked(lint):
-    text = f'<robot name="cube"><link name="cube">{INERTIAL}</link></robot>'
+    text = robot(link("cube", INERTIAL), name="cube")
     assert lint(text, "IN041") == []
     findings = lint(text, "IN041", options={"IN041": {"single_link": True}})
     assert len(findings) == 1 and findings[0].link == "cube"
 
 
 def test_several_roots_are_left_to_in040(lint):
-    text = (
-        f'<robot name="r"><link name="base_link">{INERTIAL}</link>{JOINT}'
-        f'<link name="other">{INERTIAL}</link></robot>'
-    )
+    text = robot(link("base_link", INERTIAL), JOINT, link("other", INERTIAL))
     assert lint(text, "IN041") == []
 
 
 def test_inertial_without_mass_still_counts(lint):
-    text = (
-        '<robot name="r"><link name="base_link"><inertial><origin xyz="0 0 0"/></inertial>'
-        f"</link>{JOINT}</robot>"
-    )
+    text = robot(link("base_link", '<inertial><origin xyz="0 0 0"/></inertial>'), JOINT)
     findings = lint(text, "IN041")
     assert len(findings) == 1 and "kg)" not in findings[0].message

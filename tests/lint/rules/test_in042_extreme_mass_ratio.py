@@ -2,34 +2,30 @@
 
 from __future__ import annotations
 
+from kit.urdf import inertial, joint, link, robot
+
 from inertia_kit.lint.findings import Severity
 
 
-def inertial(mass: float) -> str:
-    return (
-        f'<inertial><mass value="{mass}"/>'
-        '<inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial>'
-    )
-
-
-def robot(body: float, tip: float, kind: str = "continuous", welded: float | None = None) -> str:
+def chain(body: float, tip: float, kind: str = "continuous", welded: float | None = None) -> str:
+    """base → (yaw) → `body` [welded to `plate`] → (``kind`` `tip_joint`) → `tip`, by mass."""
     weld = (
-        ""
+        ()
         if welded is None
-        else '<joint name="w" type="fixed"><parent link="body"/><child link="plate"/></joint>'
-        f'<link name="plate">{inertial(welded)}</link>'
+        else (joint("body", "plate", "fixed", name="w"), link("plate", inertial(welded, 1e-4)))
     )
-    return f"""<robot name="r">
-  <link name="base"/>
-  <joint name="yaw" type="continuous"><parent link="base"/><child link="body"/></joint>
-  <link name="body">{inertial(body)}</link>{weld}
-  <joint name="tip_joint" type="{kind}"><parent link="body"/><child link="tip"/></joint>
-  <link name="tip">{inertial(tip)}</link>
-</robot>"""
+    return robot(
+        link("base"),
+        joint("base", "body", "continuous", name="yaw"),
+        link("body", inertial(body, 1e-4)),
+        *weld,
+        joint("body", "tip", kind, name="tip_joint"),
+        link("tip", inertial(tip, 1e-4)),
+    )
 
 
 def test_ratio_beyond_default_warns(lint):
-    findings = lint(robot(20.0, 0.005), "IN042")
+    findings = lint(chain(20.0, 0.005), "IN042")
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.WARNING
@@ -39,30 +35,30 @@ def test_ratio_beyond_default_warns(lint):
 
 
 def test_ratio_within_default_is_quiet(lint):
-    assert lint(robot(20.0, 0.05), "IN042") == []
+    assert lint(chain(20.0, 0.05), "IN042") == []
 
 
 def test_fixed_joint_is_not_compared(lint):
-    assert lint(robot(20.0, 0.001, kind="fixed"), "IN042") == []
+    assert lint(chain(20.0, 0.001, kind="fixed"), "IN042") == []
 
 
 def test_welded_links_count_as_one_body(lint):
     # 0.5 + 19.5 kg welded: the tip compares with 20 kg
-    findings = lint(robot(0.5, 0.005, welded=19.5), "IN042")
+    findings = lint(chain(0.5, 0.005, welded=19.5), "IN042")
     assert len(findings) == 1
     assert "`body` (with 1 welded link) at 20 kg" in findings[0].message
 
 
 def test_massless_side_is_skipped(lint):
     # the yaw joint joins a massless base to the body: IN001's business, not a ratio
-    assert lint(robot(2000.0, 1000.0), "IN042") == []
+    assert lint(chain(2000.0, 1000.0), "IN042") == []
 
 
 def test_heavier_child_is_reported_too(lint):
-    findings = lint(robot(0.01, 20.0), "IN042")
+    findings = lint(chain(0.01, 20.0), "IN042")
     assert len(findings) == 1 and "`body` weighs 0.01 kg" in findings[0].message
 
 
 def test_max_ratio_option(lint):
-    assert lint(robot(20.0, 0.05), "IN042", options={"IN042": {"max_ratio": 100.0}}) != []
-    assert lint(robot(20.0, 0.005), "IN042", options={"IN042": {"max_ratio": 1e4}}) == []
+    assert lint(chain(20.0, 0.05), "IN042", options={"IN042": {"max_ratio": 100.0}}) != []
+    assert lint(chain(20.0, 0.005), "IN042", options={"IN042": {"max_ratio": 1e4}}) == []

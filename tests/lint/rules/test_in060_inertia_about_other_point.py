@@ -3,47 +3,30 @@
 from __future__ import annotations
 
 import pytest
-from kit import REPO, moving
+from kit import EXAMPLES
+from kit.moments import cylinder_moments
+from kit.urdf import collision, cylinder, inertial, joint, link, moving
 
 from inertia_kit.lint.findings import Severity
 from inertia_kit.lint.runner import Selection, lint_file
 
-EXAMPLES = REPO / "examples"
-
-
-def arm(body: str) -> str:
-    return moving(body, name="arm")
-
-
-def inertial(mass, ixx, iyy, izz, xyz="0 0 0"):
-    return (
-        f'<inertial><origin xyz="{xyz}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{iyy}" iyz="0" izz="{izz}"/></inertial>'
-    )
-
-
-def cylinder_moments(mass, radius, length):
-    transverse = mass * (3 * radius**2 + length**2) / 12
-    return transverse, mass * radius**2 / 2
-
 
 def drum(mass=2.0, radius=0.1, length=0.1, about_origin=True):
-    transverse, axial = cylinder_moments(mass, radius, length)
+    """A cylinder standing on the link origin, its tensor about that origin or its centre."""
+    transverse, _, axial = cylinder_moments(mass, radius, length)
     centre = length / 2
     if about_origin:
         transverse += mass * centre**2
-    return (
-        f'<collision><origin xyz="0 0 {centre}"/>'
-        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
-        + inertial(mass, transverse, transverse, axial, xyz=f"0 0 {centre}")
+    return collision(cylinder(radius, length), xyz=f"0 0 {centre}") + inertial(
+        mass, transverse, transverse, axial, xyz=f"0 0 {centre}"
     )
 
 
 def test_tensor_about_the_link_origin_fires_with_the_corrected_tensor(lint):
-    findings = lint(arm(drum()))
+    findings = lint(moving(drum()))
     assert [f.code for f in findings] == ["IN060"]
     finding = findings[0]
-    transverse, axial = cylinder_moments(2.0, 0.1, 0.1)
+    transverse, _, axial = cylinder_moments(2.0, 0.1, 0.1)
     assert finding.severity == Severity.WARNING and finding.link == "arm"
     assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.05)" in finding.message
     assert "2 kg × (0.05 m)²" in finding.message
@@ -58,12 +41,12 @@ def test_tensor_about_the_link_origin_fires_with_the_corrected_tensor(lint):
 
 
 def test_the_right_tensor_is_quiet(lint):
-    assert lint(arm(drum(about_origin=False))) == []
+    assert lint(moving(drum(about_origin=False))) == []
 
 
 def test_it_replaces_in020_only_while_enabled(lint):
     # a rod about its end: ×4 across, beyond what any mass inside it has (IN023 too)
-    text = arm(drum(mass=2.0, radius=0.05, length=0.4))
+    text = moving(drum(mass=2.0, radius=0.05, length=0.4))
     findings = lint(text)
     assert [f.code for f in findings] == ["IN060"]
     assert findings[0].severity == Severity.ERROR  # it stands for IN023's error
@@ -75,23 +58,20 @@ def test_it_replaces_in020_only_while_enabled(lint):
 
 
 def test_severity_is_configurable(lint):
-    findings = lint(arm(drum()), "IN060", severities={"IN060": Severity.INFO})
+    findings = lint(moving(drum()), "IN060", severities={"IN060": Severity.INFO})
     assert [f.severity for f in findings] == [Severity.INFO]
 
 
 def test_a_child_joint_origin_is_named(lint):
     """The tensor taken about the joint at the far end (z = 0.4) of a link whose COM is at 0.1."""
     mass, radius, length = 3.0, 0.05, 0.2
-    transverse, axial = cylinder_moments(mass, radius, length)
+    transverse, _, axial = cylinder_moments(mass, radius, length)
     shifted = transverse + mass * 0.3**2
-    body = (
-        '<collision><origin xyz="0 0 0.1"/>'
-        f'<geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>'
-        + inertial(mass, shifted, shifted, axial, xyz="0 0 0.1")
+    body = collision(cylinder(radius, length), xyz="0 0 0.1") + inertial(
+        mass, shifted, shifted, axial, xyz="0 0 0.1"
     )
-    extra = """<joint name="tip" type="fixed"><origin xyz="0 0 0.4"/>
-    <parent link="arm"/><child link="tool"/></joint><link name="tool"/>"""
-    findings = lint(arm(body).replace("</robot>", extra + "</robot>"), "IN060")
+    tip = joint("arm", "tool", "fixed", name="tip", xyz="0 0 0.4") + link("tool")
+    findings = lint(moving(body, tip), "IN060")
     assert len(findings) == 1
     assert "about the origin of joint `tip` (0, 0, 0.4)" in findings[0].message
     assert findings[0].expected["ixx"] == pytest.approx(transverse)

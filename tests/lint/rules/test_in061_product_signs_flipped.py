@@ -6,29 +6,23 @@ import math
 
 import numpy as np
 import pytest
-from kit import moving
+from kit.moments import box_tensor
+from kit.urdf import box, collision, inertial, moving
 
 from inertia_kit.physics.frames import rpy_matrix
 
+MASS, SIZE = 2.0, (0.4, 0.2, 0.1)
+
 
 def plate(ixy, ixz, iyz, diag, rpy):
+    """The box turned by ``rpy``, its moments ``diag`` and these products written."""
     ixx, iyy, izz, ixy, ixz, iyz = (float(v) for v in (*diag, ixy, ixz, iyz))
-    return moving(
-        f"""
-    <inertial><mass value="2"/>
-      <inertia ixx="{ixx!r}" ixy="{ixy!r}" ixz="{ixz!r}" iyy="{iyy!r}" iyz="{iyz!r}" izz="{izz!r}"/>
-    </inertial>
-    <collision><origin rpy="{" ".join(map(repr, rpy))}"/>
-      <geometry><box size="0.4 0.2 0.1"/></geometry></collision>
-  """
-    )
+    written = inertial(MASS, ixx, iyy, izz, ixy=ixy, ixz=ixz, iyz=iyz)
+    return moving(written + collision(box(*SIZE), rpy=rpy), name="plate")
 
 
-def turned_box(rpy, mass=2.0, size=(0.4, 0.2, 0.1)):
-    x, y, z = size
-    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * mass / 12
-    rotation = rpy_matrix(rpy)
-    return rotation @ moments @ rotation.T
+def turned_box(rpy):
+    return box_tensor(MASS, SIZE, rpy_matrix(rpy))
 
 
 @pytest.mark.parametrize(

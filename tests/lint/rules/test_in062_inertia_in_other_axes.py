@@ -6,32 +6,21 @@ import math
 
 import numpy as np
 import pytest
-from kit import REPO, moving
+from kit import EXAMPLES
+from kit.moments import cylinder_moments
+from kit.urdf import collision, cylinder, inertial, moving
 
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.frames import rpy_matrix
 
-EXAMPLES = REPO / "examples"
-
 
 def rod(inertial_rpy="0 0 0", shape_rpy=f"0 {math.pi / 2} 0"):
+    """A 0.3 m rod along the link's x (``shape_rpy``), its tensor written in ``inertial_rpy``."""
     mass, radius, length = 1.0, 0.02, 0.3
-    transverse = mass * (3 * radius**2 + length**2) / 12
-    axial = mass * radius**2 / 2
-    return (
-        moving(
-            f"""
-    <inertial><origin xyz="0.15 0 0" rpy="{inertial_rpy}"/><mass value="{mass}"/>
-      <inertia ixx="{transverse}" ixy="0" ixz="0" iyy="{transverse}" iyz="0" izz="{axial}"/>
-    </inertial>
-    <collision><origin xyz="0.15 0 0" rpy="{shape_rpy}"/>
-      <geometry><cylinder radius="{radius}" length="{length}"/></geometry></collision>
-  """,
-            name="arm",
-        ),
-        transverse,
-        axial,
-    )
+    transverse, _, axial = cylinder_moments(mass, radius, length)
+    written = inertial(mass, transverse, transverse, axial, xyz="0.15 0 0", rpy=inertial_rpy)
+    shape = collision(cylinder(radius, length), xyz="0.15 0 0", rpy=shape_rpy)
+    return moving(written + shape), transverse, axial
 
 
 def test_cylinder_formula_for_z_on_a_rod_along_x(lint):
@@ -71,8 +60,8 @@ def test_seed_simple_arm_links_are_written_for_other_axes_and_the_base_is_quiet(
     assert not [f for f in result.findings if f.code == "IN020"]
     base = {f.code for f in result.findings if f.link == "base_link"}
     assert not base & {"IN020", "IN060", "IN061", "IN062", "IN063", "IN064"}
-    mass, radius, length = 1.0, 0.02, 0.3
+    transverse, _, axial = cylinder_moments(1.0, 0.02, 0.3)
     for finding in forensic:
-        assert finding.expected["ixx"] == pytest.approx(mass * radius**2 / 2)
-        assert finding.expected["izz"] == pytest.approx(mass * (3 * radius**2 + length**2) / 12)
+        assert finding.expected["ixx"] == pytest.approx(axial)
+        assert finding.expected["izz"] == pytest.approx(transverse)
         assert "written for other axes" in finding.message

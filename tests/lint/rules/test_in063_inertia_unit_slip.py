@@ -3,32 +3,23 @@
 from __future__ import annotations
 
 import pytest
-from kit import moving
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, moving
 
 from inertia_kit.lint.findings import Severity
 
 MASS, SIZE = 2.0, (0.4, 0.2, 0.1)
 
 
-def box_moments(mass):
-    x, y, z = SIZE
-    return mass * (y * y + z * z) / 12, mass * (x * x + z * z) / 12, mass * (x * x + y * y) / 12
-
-
 def plate(mass, ixx, iyy, izz):
-    return moving(
-        f"""
-    <inertial><mass value="{mass}"/>
-      <inertia ixx="{ixx:.6g}" ixy="0" ixz="0" iyy="{iyy:.6g}" iyz="0" izz="{izz:.6g}"/>
-    </inertial>
-    <collision><geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  """
-    )
+    """The box, with this mass and these moments written to six significant digits."""
+    moments = (f"{m:.6g}" for m in (ixx, iyy, izz))
+    return moving(inertial(mass, *moments) + collision(box(*SIZE)), name="plate")
 
 
 @pytest.mark.parametrize(("factor", "unit"), [(1e6, "kg·mm²"), (1e9, "g·mm²"), (1e7, "g·cm²")])
 def test_tensor_in_another_unit(lint, factor, unit):
-    moments = box_moments(MASS)
+    moments = box_moments(MASS, SIZE)
     findings = lint(plate(MASS, *(m * factor for m in moments)))
     assert [f.code for f in findings] == ["IN063"]  # IN020 and IN023 replaced
     finding = findings[0]
@@ -40,7 +31,7 @@ def test_tensor_in_another_unit(lint, factor, unit):
 
 
 def test_tensor_divided_once_too_often(lint):
-    moments = box_moments(MASS)
+    moments = box_moments(MASS, SIZE)
     findings = lint(plate(MASS, *(m / 1e6 for m in moments)))
     assert "IN063" in [f.code for f in findings]
     finding = next(f for f in findings if f.code == "IN063")
@@ -50,18 +41,18 @@ def test_tensor_divided_once_too_often(lint):
 
 def test_mass_in_grams_replaces_the_density_finding(lint):
     """2000 g written as kg: 25 000 kg/m³ over the box; the tensor is right for 2 kg."""
-    findings = lint(plate(1000 * MASS, *box_moments(MASS)))
+    findings = lint(plate(1000 * MASS, *box_moments(MASS, SIZE)))
     assert [f.code for f in findings] == ["IN063"]  # IN020, IN022 replaced
     finding = findings[0]
     assert "the mass 2000 is in grams" in finding.message
     assert finding.expected["mass"] == pytest.approx(MASS)
     assert finding.expected["mass_factor"] == 1000
-    assert finding.expected["ixx"] == pytest.approx(box_moments(MASS)[0])
+    assert finding.expected["ixx"] == pytest.approx(box_moments(MASS, SIZE)[0])
     assert "write the mass in kg (2)" in finding.help
 
 
 def test_a_right_tensor_and_a_tensor_off_by_other_factors_are_not_unit_slips(lint):
-    moments = box_moments(MASS)
+    moments = box_moments(MASS, SIZE)
     assert lint(plate(MASS, *moments)) == []
     findings = lint(plate(MASS, *(m * 50 for m in moments)), "IN06")
     assert findings == []

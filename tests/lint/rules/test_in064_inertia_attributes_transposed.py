@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
-from kit import moving
+from kit.moments import box_tensor
+from kit.urdf import box, collision, inertial, moving
 
 from inertia_kit.physics.frames import rpy_matrix
 
@@ -14,21 +14,13 @@ MASS, SIZE, YAW = 12.0, (0.4, 0.3, 0.2), math.pi / 6
 
 
 def turned_box():
-    x, y, z = SIZE
-    moments = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * MASS / 12
-    rotation = rpy_matrix([0.0, 0.0, YAW])
-    return rotation @ moments @ rotation.T
+    return box_tensor(MASS, SIZE, rpy_matrix([0.0, 0.0, YAW]))
 
 
 def plate(**values):
-    attributes = " ".join(f'{k}="{float(v)!r}"' for k, v in values.items())
-    return moving(
-        f"""
-    <inertial><mass value="{MASS}"/><inertia {attributes}/></inertial>
-    <collision><origin rpy="0 0 {YAW!r}"/>
-      <geometry><box size="{" ".join(map(str, SIZE))}"/></geometry></collision>
-  """
-    )
+    """The turned box with these ``<inertia>`` values written."""
+    written = inertial(MASS, **{name: float(v) for name, v in values.items()})
+    return moving(written + collision(box(*SIZE), rpy=f"0 0 {YAW!r}"), name="plate")
 
 
 def test_swapped_products(lint):

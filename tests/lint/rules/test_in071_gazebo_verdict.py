@@ -2,23 +2,21 @@
 
 from __future__ import annotations
 
-LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
-BOX = (
-    '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
-    'izz="0.01"/></inertial>'
-)
+from kit.urdf import LIMIT, inertial, link, robot
+
+BOX = inertial(1, 0.01)
 
 
 def run(lint, body):
-    return lint(f'<robot name="r">{body}</robot>', select="IN071", engines=("gazebo",))
+    return lint(robot(body), select="IN071", engines=("gazebo",))
 
 
 def test_loads_unchanged_gives_nothing(lint):
-    assert run(lint, f'<link name="a">{BOX}</link>') == []
+    assert run(lint, link("a", BOX)) == []
 
 
 def test_runs_only_with_its_engine(lint):
-    text = '<robot name="r"><link name="a"/></robot>'
+    text = robot(link("a"))
     assert lint(text, select="IN071") == []
 
 

@@ -3,18 +3,15 @@
 from __future__ import annotations
 
 import pytest
+from kit.urdf import LIMIT, inertial, robot
 
 from inertia_kit.engines.drake import plausible_sphere
 
-LIMIT = '<limit lower="-1" upper="1" effort="1" velocity="1"/>'
-BOX = (
-    '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
-    'izz="0.01"/></inertial>'
-)
+BOX = inertial(1, 0.01)
 
 
 def run(lint, body):
-    return lint(f'<robot name="r">{body}</robot>', select="IN072", engines=("drake",))
+    return lint(robot(body), select="IN072", engines=("drake",))
 
 
 def test_loads_unchanged_gives_nothing(lint):

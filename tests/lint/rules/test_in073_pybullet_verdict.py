@@ -3,22 +3,19 @@
 from __future__ import annotations
 
 import pytest
+from kit.urdf import box, collision, inertial, link, robot
 
 
 def run(lint, body, **options):
     return lint(
-        f'<robot name="r">{body}</robot>',
+        robot(body),
         select="IN073",
         engines=("pybullet",),
         options={"IN073": options} if options else {},
     )
 
 
-BOX = (
-    '<link name="a"><inertial><mass value="6"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.2" '
-    'iyz="0" izz="0.3"/></inertial><collision><geometry><box size="0.6 0.4 0.2"/></geometry>'
-    "</collision></link>"
-)
+BOX = link("a", inertial(6, 0.1, 0.2, 0.3), collision(box(0.6, 0.4, 0.2)))
 
 
 def test_declared_tensor_equal_to_the_computed_one_gives_nothing(lint):

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-BOX = (
-    '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
-    'izz="0.01"/></inertial>'
-)
+from kit.urdf import inertial, link, robot
+
+BOX = inertial(1, 0.01)
 
 
 def run(lint, body):
-    return lint(f'<robot name="r">{body}</robot>', select="IN074", engines=("kdl",))
+    return lint(robot(body), select="IN074", engines=("kdl",))
 
 
 def test_massless_root_gives_nothing(lint):
@@ -20,7 +19,7 @@ def test_massless_root_gives_nothing(lint):
 
 
 def test_root_inertia_ignored_with_kdl_message(lint):
-    (finding,) = run(lint, f'<link name="a">{BOX}</link>')
+    (finding,) = run(lint, link("a", BOX))
     assert finding.expected["engine_message"].startswith(
         "The root link a has an inertia specified in the URDF, but KDL does not support"
     )
