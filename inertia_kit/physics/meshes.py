@@ -117,6 +117,11 @@ class MeshSolid:
         return self.moments.mass_properties(density=density, mass=mass)
 
 
+def _solid_field(name: str, doc: str | None = None) -> property:
+    """A read-only attribute of :class:`MeshMassProperties` that is its solid's ``name``."""
+    return property(lambda self: getattr(self.solid, name), doc=doc)
+
+
 @dataclass(frozen=True, eq=False)
 class MeshMassProperties:
     """
@@ -134,51 +139,18 @@ class MeshMassProperties:
     mass_properties: MassProperties
     solid: MeshSolid
 
-    @property
-    def path(self) -> str:
-        return self.solid.path
-
-    @property
-    def scale(self) -> tuple[float, float, float]:
-        return self.solid.scale
-
-    @property
-    def method(self) -> Method:
-        return self.solid.method
-
-    @property
-    def inverted(self) -> bool:
-        return self.solid.inverted
-
-    @property
-    def closed(self) -> bool:
-        return self.solid.closed
-
-    @property
-    def volume(self) -> float:
-        """m³"""
-        return self.solid.volume
-
-    @property
-    def volume_error(self) -> float:
-        return self.solid.volume_error
-
-    @property
-    def bounds(self) -> NDArray[np.float64]:
-        """(2, 3) m"""
-        return self.solid.bounds
-
-    @property
-    def triangle_count(self) -> int:
-        return self.solid.triangle_count
-
-    @property
-    def unit_scale(self) -> float:
-        return self.solid.unit_scale
-
-    @property
-    def summary(self) -> str:
-        return self.solid.summary
+    # the solid's geometry and diagnostics, reachable directly (see MeshSolid for each)
+    path = _solid_field("path")
+    scale = _solid_field("scale")
+    method = _solid_field("method")
+    inverted = _solid_field("inverted")
+    closed = _solid_field("closed")
+    volume = _solid_field("volume", "m³")
+    volume_error = _solid_field("volume_error")
+    bounds = _solid_field("bounds", "(2, 3) m")
+    triangle_count = _solid_field("triangle_count")
+    unit_scale = _solid_field("unit_scale")
+    summary = _solid_field("summary")
 
 
 def mesh(

@@ -55,6 +55,7 @@ from dataclasses import dataclass, field
 from types import ModuleType
 from typing import Any
 
+from inertia_kit.analysis.forensics.links import Explanation
 from inertia_kit.description.model import Source
 from inertia_kit.engines.vocabulary import Event
 from inertia_kit.lint.findings import Finding, Fix, Severity, severity_of
@@ -129,4 +130,18 @@ class RuleContext:
             expected=event.expected,
             help=help,
             severity=severity_of(event.verdict),
+        )
+
+    def explanation_finding(self, why: Explanation) -> Finding:
+        """
+        A forensic rule's finding (IN06x) for a link its hypothesis explains: an error when the
+        declared value is beyond the geometry's hard bound (it then replaces IN023's error).
+        """
+        return self.finding(
+            why.message,
+            why.source,
+            link=why.link,
+            expected=why.expected,
+            help=why.help,
+            severity=Severity.ERROR if why.impossible else None,
         )

@@ -25,9 +25,5 @@ SUPERSEDES = ("IN020", "IN023")
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     why = explain(link, OtherAxes)
-    if why is None:
-        return
-    level = Severity.ERROR if why.impossible else None  # beyond the hard bound: IN023's error
-    yield ctx.finding(
-        why.message, why.source, link=why.link, expected=why.expected, help=why.help, severity=level
-    )
+    if why is not None:
+        yield ctx.explanation_finding(why)
