@@ -1,1 +1,12 @@
-"""description"""
+"""
+description: robot descriptions in and out: files to the frozen model with source locations,
+and text edits back on the original bytes.
+
+- ``loader``: ``load(path)`` (``xmlparse`` reads the bytes as the URDF parsers do, ``safexml``
+  bounds and secures the parse, ``builder`` makes the model); ``xacro_expand`` (with
+  ``xacro_source_map`` and ``xacro_errors``): xacro through the real package, with a source map;
+  ``packages``: ``$(find)`` and ``package://`` without ROS.
+- ``model``: the frozen dataclasses (Robot, Link, Joint, Inertial, ... each with its ``Source``).
+- ``inertial_xml``: an ``<inertial>`` block as text; ``xmlspan``: where an element stands in the
+  original text; ``edits``: text edits on the original bytes, and atomic writes.
+"""

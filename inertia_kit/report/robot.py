@@ -35,8 +35,8 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 "file": source.path,
                 "line": source.line,
                 "call_site": None
-                if not source.calls
-                else {"file": source.calls[0].path, "line": source.calls[0].line},
+                if source.call_site is source
+                else {"file": source.call_site.path, "line": source.call_site.line},
             }
         )
     return rows
