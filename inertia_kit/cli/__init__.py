@@ -14,25 +14,49 @@ import os
 # set before numpy is first imported, unless the user chose
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+import importlib
+from typing import Any
+
 import click
 
-from inertia_kit.cli.fill import fill_command
-from inertia_kit.cli.lint import lint_command
-from inertia_kit.cli.mass import mass_group
 from inertia_kit.cli.options import HELP
-from inertia_kit.cli.report import report_command
 from inertia_kit.version import __version__
 
+#: command name -> "module:attribute", imported only when that command runs (or --help lists
+#: it): ``inertia-lint`` on every commit pays for the lint command alone
+COMMANDS = {
+    "fill": "inertia_kit.cli.fill:fill_command",
+    "lint": "inertia_kit.cli.lint:lint_command",
+    "mass": "inertia_kit.cli.mass:mass_group",
+    "report": "inertia_kit.cli.report:report_command",
+}
 
-@click.group(context_settings=HELP)
+
+def _command(name: str) -> click.Command:
+    module, attribute = COMMANDS[name].split(":")
+    return getattr(importlib.import_module(module), attribute)
+
+
+class _LazyGroup(click.Group):
+    """A group whose sub-commands are imported when used (click's lazy-loading pattern)."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        return _command(cmd_name) if cmd_name in COMMANDS else None
+
+
+@click.group(cls=_LazyGroup, context_settings=HELP)
 @click.version_option(__version__, prog_name="inertia-kit")
 def main() -> None:
     """inertia-kit: physically right <inertial> blocks for URDF and xacro robot descriptions."""
 
 
-for _command in (mass_group, report_command, lint_command, fill_command):
-    main.add_command(_command)
-
-# the console scripts of pyproject.toml's [project.scripts]
-lint_main = lint_command
-fill_main = fill_command
+def __getattr__(name: str) -> Any:
+    """The console scripts of pyproject.toml's [project.scripts]: each imports its command only."""
+    if name == "lint_main":
+        return _command("lint")
+    if name == "fill_main":
+        return _command("fill")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

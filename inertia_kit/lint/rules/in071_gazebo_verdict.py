@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
-from inertia_kit.engines import gazebo
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -29,5 +28,8 @@ HELP = {
 
 
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    # imported here: the engine model loads only when its engine is chosen (start-up)
+    from inertia_kit.engines import gazebo
+
     for event in gazebo.events(robot):
         yield ctx.engine_finding(event, HELP[event.kind])

@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
-from inertia_kit.engines import pybullet
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -34,6 +33,9 @@ HELP = {
 
 
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    # imported here: the engine model loads only when its engine is chosen (start-up)
+    from inertia_kit.engines import pybullet
+
     factor = float(ctx.option("factor"))
     from_file = bool(ctx.option("use_inertia_from_file"))
     for event in pybullet.events(robot, factor=factor, inertia_from_file=from_file):
