@@ -9,7 +9,6 @@ import codecs
 import contextlib
 import os
 import re
-import tempfile
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -137,6 +136,8 @@ def write_atomic(
     current, mode = _state(target, create)
     if not _may_write(target, current, mode, data, expected):
         return False
+    import tempfile  # here: its imports (shutil, random, bz2, lzma) cost start-up on every lint
+
     try:
         handle, temporary = tempfile.mkstemp(
             prefix=f".{target.name}.", suffix=".tmp", dir=target.parent

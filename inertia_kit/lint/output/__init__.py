@@ -21,8 +21,6 @@ from collections.abc import Sequence
 
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding
-from inertia_kit.lint.output import concise, full, github, sarif
-from inertia_kit.lint.output import json as json_array
 from inertia_kit.lint.output.common import Style, plain
 
 FORMATS = ("full", "concise", "json", "github", "sarif")
@@ -40,15 +38,26 @@ def render(
     and ``sarif``, which always give a document). ``errors`` (unreadable files) go into SARIF's
     invocation; the other formats leave them to the caller's error stream.
     """
+    # each format is imported when chosen: a lint run pays for its own format only
     style = style or plain
     if output_format == "full":
+        from inertia_kit.lint.output import full
+
         return full.render(findings, style)
     if output_format == "concise":
+        from inertia_kit.lint.output import concise
+
         return concise.render(findings, style)
     if output_format == "json":
+        from inertia_kit.lint.output import json as json_array
+
         return json_array.render(findings)
     if output_format == "github":
+        from inertia_kit.lint.output import github
+
         return github.render(findings)
     if output_format == "sarif":
+        from inertia_kit.lint.output import sarif
+
         return sarif.render(findings, errors)
     raise ValueError(f"unknown output format {output_format!r}; known: {', '.join(FORMATS)}")
