@@ -210,14 +210,16 @@ class Builder:
             return model.Capsule(self.number(shape, "radius"), self.number(shape, "length"), source)
         if tag == "mesh":
             filename = shape.get("filename", "")
-            resolved, problem = self.resolver.resolve_uri(filename, Path(source.path).parent)
+            found = self.resolver.resolve(filename, Path(source.path).parent)
             return model.Mesh(
                 filename,
                 # only an existing file: a path that names nothing is in ``problem``
-                None if resolved is None or problem is not None else str(resolved),
+                None if found.path is None or found.problem is not None else str(found.path),
                 self.vector(shape, "scale", (1.0, 1.0, 1.0)),
                 source,
-                problem,
+                found.problem,
+                found.rule,
+                found.searched,
             )
         return model.Unknown(tag, source)
 

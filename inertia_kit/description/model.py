@@ -92,7 +92,9 @@ class Capsule:
 class Mesh:
     """
     A ``<mesh filename scale>``. ``path`` is the resolved file, or ``None`` when the URI did not
-    resolve (``problem`` then says why).
+    resolve (``problem`` then says why). ``rule`` names the package resolution rule that found
+    it (:data:`~inertia_kit.description.packages.RULES`); ``searched`` lists the places looked
+    at before (all of them when nothing was found).
     """
 
     filename: str
@@ -100,6 +102,8 @@ class Mesh:
     scale: Vector
     source: Source
     problem: str | None = None
+    rule: str | None = None
+    searched: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -22,11 +22,14 @@ _PACKAGE_HINT = "pass --package-path DIR with the package folder or a folder tha
 class PackageNotFound(LookupError):
     """``$(find pkg)`` named a package that no search found."""
 
-    def __init__(self, package: str, near: str):
+    def __init__(self, package: str, near: str, searched: tuple[str, ...] = ()):
         self.package = package
+        places = "; ".join(searched) or (
+            f"--package-path, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the folders above {near}"
+        )
         super().__init__(
-            f"package `{package}` not found for $(find {package}) (searched --package-path, "
-            f"ROS_PACKAGE_PATH, AMENT_PREFIX_PATH and the folders above {near}): {_PACKAGE_HINT}"
+            f"package `{package}` not found for $(find {package}) (searched {places}): "
+            f"{_PACKAGE_HINT}"
         )
 
 

@@ -11,7 +11,9 @@ replaced for the duration of the call:
 - ``xacro.handle_macro_call``: elements a macro produced get the call site appended to their
   stamp's ``calls`` (outer calls are prepended later, so ``calls`` reads outermost first);
 - ``xacro.substitution_args._eval_find``: ``$(find pkg)`` goes to a
-  :class:`~inertia_kit.description.packages.PackageResolver` instead of ``ament_index_python``.
+  :class:`~inertia_kit.description.packages.PackageResolver` instead of ``ament_index_python``;
+  ``xacro.eval_text`` is wrapped to see the path that follows it (``$(find pkg)/urdf/arm.xacro``),
+  so that, as for a mesh, the candidate folder holding that path wins.
 
 xacro keeps its state in module globals, so expansions are serialised by a lock; everything is
 restored afterwards, also on error. What xacro prints to stderr from the expanding thread is
@@ -184,6 +186,7 @@ class _Session:
         self.files: list[str] = []
         self.stderr = io.StringIO()
         self.includes_start = 0
+        self.texts: list[str] = []  # the texts xacro is evaluating, innermost last
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -246,16 +249,28 @@ class _Session:
 
         return hook
 
+    def eval_text(self, original):
+        def hook(text, symbols):
+            self.texts.append(text)
+            try:
+                return original(text, symbols)
+            finally:
+                self.texts.pop()
+
+        return hook
+
     def find(self, package: str) -> str:
         """Replaces ``substitution_args._eval_find``."""
         import xacro
 
         near = (xacro.filestack or [None])[-1] or self.path
-        folder = self.resolver.find(package, near)
+        rest = _path_after_find(package, self.texts)
+        folder = self.resolver.find(package, near, rest)
         if folder is None and near != self.path:
-            folder = self.resolver.find(package, self.path)
+            folder = self.resolver.find(package, self.path, rest)
         if folder is None:
-            raise PackageNotFound(package, str(Path(near).parent))
+            places = self.resolver.lookup(package, near).places
+            raise PackageNotFound(package, str(Path(near).parent), tuple(map(str, places)))
         # absolute, as ROS gives it: xacro joins a relative include to the including file's folder
         return str(folder.absolute())
 
@@ -304,6 +319,7 @@ def _patched(xacro, session: _Session, stamping: bool = True) -> Iterator[None]:
 
     patches: list[tuple[Any, str, Any]] = [
         (substitution_args, "_eval_find", session.find),
+        (xacro, "eval_text", session.eval_text(xacro.eval_text)),
     ]
     if stamping:
         patches += [
@@ -360,6 +376,16 @@ class _ThreadRoutedStream:
 
     def __getattr__(self, name: str):
         return getattr(self._stream, name)
+
+
+def _path_after_find(package: str, texts: list[str]) -> str:
+    """The path written right after ``$(find package)`` in the innermost text holding it."""
+    pattern = re.compile(r"\$\(find\s+" + re.escape(package) + r"\s*\)([^\s\"'$()<>]*)")
+    for text in reversed(texts):
+        match = pattern.search(text) if isinstance(text, str) else None
+        if match:
+            return match.group(1)
+    return ""
 
 
 # --- reading and parsing --------------------------------------------------------------------

@@ -32,6 +32,7 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 if link.inertial is None
                 else ("complete" if properties else "incomplete"),
                 "geometry": geometry_summary(link),
+                "meshes": _meshes(link),
                 "file": source.path,
                 "line": source.line,
                 "call_site": None
@@ -40,6 +41,28 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
             }
         )
     return rows
+
+
+def _meshes(link: model.Link) -> list[dict[str, Any]]:
+    """The link's meshes: URI, resolved file, the package resolution rule that found it."""
+    return [
+        {
+            "kind": shape.kind,
+            "filename": shape.geometry.filename,
+            "path": shape.geometry.path,
+            "rule": shape.geometry.rule,
+            "problem": shape.geometry.problem,
+            **({"searched": list(shape.geometry.searched)} if shape.geometry.path is None else {}),
+        }
+        for shape in (*link.collisions, *link.visuals)
+        if isinstance(shape.geometry, model.Mesh)
+    ]
+
+
+def _found_by(meshes: list[dict[str, Any]]) -> str:
+    """The report's ``mesh found by`` cell: each rule once, in order; ``not found``; ``-``."""
+    rules = dict.fromkeys(m["rule"] or "not found" for m in meshes)
+    return ", ".join(rules) or "-"
 
 
 def total_mass(rows: list[dict[str, Any]]) -> float:
@@ -66,6 +89,7 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
         "COM m",
         "principal moments kg·m²",
         "geometry",
+        "mesh found by",
         "source",
     ]
     table = [header]
@@ -85,6 +109,7 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
                 if row["principal_moments"] is None
                 else ", ".join(fmt(x, 4) for x in row["principal_moments"]),
                 row["geometry"],
+                _found_by(row["meshes"]),
                 where,
             ]
         )

@@ -49,6 +49,44 @@ def test_markdown_report_with_meshes():
     assert "mesh pan.stl ×0.001" in result.output
 
 
+def test_mesh_found_by_column_names_the_resolution_rule(tmp_path, monkeypatch):
+    monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
+    monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
+    from kit.meshes import write_box_stl
+
+    write_box_stl(tmp_path / "urdf" / "meshes" / "a.stl", (0.1, 0.1, 0.1))
+    write_box_stl(tmp_path / "data" / "parts" / "b.stl", (0.1, 0.1, 0.1))
+    path = tmp_path / "urdf" / "r.urdf"
+    path.write_text(
+        '<robot name="r"><link name="a"><collision><geometry><mesh filename="meshes/a.stl"/>'
+        '</geometry></collision><visual><geometry><mesh filename="parts/b.stl"/></geometry>'
+        '</visual></link><link name="gone"><collision><geometry><mesh filename="x.stl"/>'
+        "</geometry></collision></link></robot>"
+    )
+    result = report(str(path), "--package-path", str(tmp_path / "data"))
+    assert result.exit_code == 0, result.output
+    header, _, first, second = result.output.splitlines()[:4]
+    column = header.index("mesh found by")
+    assert first[column:].startswith("next-to-file, search-path  ")
+    assert second[column:].startswith("not found  ")
+    data = json.loads(
+        report(str(path), "--format", "json", "--package-path", str(tmp_path / "data")).output
+    )
+    a, gone = data["links"]
+    assert [(m["kind"], m["rule"]) for m in a["meshes"]] == [
+        ("collision", "next-to-file"),
+        ("visual", "search-path"),
+    ]
+    assert a["meshes"][1]["path"] == str(tmp_path / "data" / "parts" / "b.stl")
+    (missing,) = gone["meshes"]
+    assert (
+        missing["rule"] is None
+        and missing["path"] is None
+        and "does not exist" in missing["problem"]
+    )
+    assert missing["searched"][0] == f"next to the file: {tmp_path / 'urdf' / 'x.stl'}"
+
+
 # --- report --lumped -----------------------------------------------------------------------
 
 

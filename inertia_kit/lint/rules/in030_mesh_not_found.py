@@ -30,13 +30,16 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             continue
         reason, advice = _split(mesh.problem or "the URI names no file")
         hint = _hint(mesh)
+        searched = f"; searched {'; '.join(mesh.searched)}" if mesh.searched else ""
+        expected = {"filename": mesh.filename, "kind": shape.kind, "searched": list(mesh.searched)}
+        if hint:
+            expected["found"] = hint[1]
         yield ctx.finding(
-            f"link `{link.name}`: {shape.kind} mesh `{mesh.filename}` not found: {reason}",
+            f"link `{link.name}`: {shape.kind} mesh `{mesh.filename}` not found: {reason}"
+            f"{searched}",
             mesh.source,
             link=link.name,
-            expected={"filename": mesh.filename, "kind": shape.kind, "found": hint[1]}
-            if hint
-            else None,
+            expected=expected,
             help=hint[0] if hint else advice,
         )
 

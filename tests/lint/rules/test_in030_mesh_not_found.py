@@ -69,9 +69,18 @@ def test_unknown_package_says_to_pass_package_path(lint):
     assert findings[0].help.startswith("pass --package-path DIR")
 
 
-def test_package_folder_next_to_the_file_is_found_with_package_path(tmp_path):
+def test_package_folder_next_to_the_file_resolves_as_pybullet_reads_it(tmp_path):
+    # PyBullet strips package:// and looks next to the URDF
     write_box_stl(tmp_path / "my_robot" / "meshes" / "part.stl", CUBE)
     path = tmp_path / "robot.urdf"
+    path.write_text(robot("package://my_robot/meshes/part.stl"))
+    assert lint_file(path, Selection(select=("IN030",))).findings == []
+
+
+def test_package_folder_beside_an_ancestor_is_found_with_package_path(tmp_path):
+    write_box_stl(tmp_path / "my_robot" / "meshes" / "part.stl", CUBE)
+    path = tmp_path / "urdf" / "robot.urdf"
+    path.parent.mkdir()
     path.write_text(robot("package://my_robot/meshes/part.stl"))
     findings = lint_file(path, Selection(select=("IN030",))).findings
     assert len(findings) == 2
@@ -80,17 +89,44 @@ def test_package_folder_next_to_the_file_is_found_with_package_path(tmp_path):
     assert resolved.findings == []
 
 
-def test_folder_named_after_the_package_with_another_package_xml(tmp_path):
+def test_folder_named_after_the_package_elsewhere_with_another_package_xml(tmp_path):
     package = tmp_path / "example-robot-data"
     write_box_stl(package / "robots" / "meshes" / "part.stl", CUBE)
     (package / "package.xml").write_text(
         '<package format="3"><name>example_robot_descriptions</name></package>'
     )
-    path = package / "robots" / "robot.urdf"
+    path = tmp_path / "other" / "robot.urdf"
+    path.parent.mkdir()
     path.write_text(robot("package://example-robot-data/robots/meshes/part.stl"))
     findings = lint_file(path, Selection(select=("IN030",))).findings
     assert findings
     assert "package.xml names the package `example_robot_descriptions`" in findings[0].help
+
+
+def test_the_message_names_every_place_searched(tmp_path):
+    (tmp_path / "pkgs").mkdir()
+    path = tmp_path / "robot" / "urdf" / "robot.urdf"
+    path.parent.mkdir(parents=True)
+    path.write_text(robot("package://nowhere_description/meshes/part.stl", "meshes/part.stl"))
+    result = lint_file(path, Selection(select=("IN030",)), package_paths=[tmp_path / "pkgs"])
+    by_kind = {f.expected["kind"]: f for f in result.findings}
+    visual, collision = by_kind["visual"], by_kind["collision"]
+    searched = visual.expected["searched"]
+    assert searched[:2] == [
+        f"--package-path {tmp_path / 'pkgs'}: no `nowhere_description`",
+        "ROS_PACKAGE_PATH: not set",
+    ]
+    assert searched[2].startswith("ament index: ")
+    assert searched[3].startswith("enclosing package: no `nowhere_description` above ")
+    stripped = os.path.join("nowhere_description", "meshes", "part.stl")
+    assert searched[4] == f"next to the file: {path.parent / stripped}"
+    assert f"search path (--package-path): {tmp_path / 'pkgs' / stripped}" in searched
+    assert "; searched " + "; ".join(searched) in visual.message
+    # a relative path: next to the file, then the search path
+    assert collision.expected["searched"][:2] == [
+        f"next to the file: {path.parent / 'meshes' / 'part.stl'}",
+        f"search path (--package-path): {tmp_path / 'pkgs' / 'meshes' / 'part.stl'}",
+    ]
 
 
 def test_three_slashes_name_an_empty_package(lint):
