@@ -27,7 +27,8 @@ package_path_option = click.option(
     "package_paths",
     multiple=True,
     type=click.Path(file_okay=False),
-    help="Folder searched first for $(find pkg) and package://pkg (repeatable).",
+    help="Folder searched first for $(find pkg) and package://pkg, and for relative mesh paths "
+    "after the file's own folder (PyBullet's search path); repeatable.",
 )
 xacro_arg_option = click.option(
     "--xacro-arg",

@@ -104,7 +104,7 @@ def package_name(folder: Path) -> str | None:
 
     manifest = folder / "package.xml"
     try:
-        if not manifest.is_file() or manifest.stat().st_size > MAX_PACKAGE_XML_BYTES:
+        if not is_file(manifest) or manifest.stat().st_size > MAX_PACKAGE_XML_BYTES:
             return None
         data = manifest.read_bytes()
     except OSError:
@@ -228,7 +228,7 @@ class PackageResolver:
         chosen = found[0]
         rest = rest.strip("/")
         if rest:
-            chosen = next((c for c in found if (c.folder / rest).exists()), chosen)
+            chosen = next((c for c in found if exists(c.folder / rest)), chosen)
         self._finds.setdefault(_normal(chosen.folder.absolute()), lookup)
         return chosen.folder
 
@@ -300,17 +300,17 @@ class PackageResolver:
             yield Candidate(found, rule, f"package.xml names it, in {entry}")
         # the fallback for descriptions published without package.xml
         for folder in (entry, entry / name):
-            if folder.name == name and folder.is_dir() and self._name(folder) is None:
+            if folder.name == name and is_dir(folder) and self._name(folder) is None:
                 yield Candidate(folder, rule, "folder named like the package, no package.xml")
 
     def _ament(self, name: str, origins: tuple[Path, ...]) -> Iterator[Candidate]:
         for prefix, where in self._ament_prefixes(origins):
             share = prefix / "share" / name
-            if (prefix / AMENT_INDEX / name).is_file() and share.is_dir():
+            if is_file(prefix / AMENT_INDEX / name) and is_dir(share):
                 yield Candidate(
                     share, "ament", f"registered in the ament index of {where} {prefix}"
                 )
-            elif where == "AMENT_PREFIX_PATH" and share.is_dir():
+            elif where == "AMENT_PREFIX_PATH" and is_dir(share):
                 yield Candidate(share, "ament", f"share folder of AMENT_PREFIX_PATH {prefix}")
 
     def _ament_prefixes(self, origins: tuple[Path, ...]) -> tuple[tuple[Path, str], ...]:
@@ -319,13 +319,13 @@ class PackageResolver:
         if key not in self._prefixes:
             prefixes = [(p, "AMENT_PREFIX_PATH") for p in self.ament_prefix_path]
             for entry in self.package_paths:
-                if (entry / AMENT_INDEX).is_dir():
+                if is_dir(entry / AMENT_INDEX):
                     prefixes.append((entry, "the prefix given"))
-                elif entry.name == "share" and (entry.parent / AMENT_INDEX).is_dir():
+                elif entry.name == "share" and is_dir(entry.parent / AMENT_INDEX):
                     prefixes.append((entry.parent, "the prefix given"))
             for origin in origins:
                 for ancestor in (origin.absolute(), *origin.absolute().parents):
-                    if (ancestor / AMENT_INDEX).is_dir():
+                    if is_dir(ancestor / AMENT_INDEX):
                         prefixes.append((ancestor, "the prefix above the file"))
             unique: dict[Path, tuple[Path, str]] = {}
             for prefix, where in prefixes:
@@ -347,7 +347,7 @@ class PackageResolver:
             if self._name(ancestor / name) == name:
                 yield Candidate(ancestor / name, "enclosing-package", f"a package in {ancestor}")
             src = ancestor / "src"
-            if src.is_dir():
+            if is_dir(src):
                 found = self._index(src).get(name)
                 if found is not None:
                     yield Candidate(found, "enclosing-package", f"in the workspace {src}")
@@ -451,7 +451,7 @@ class PackageResolver:
                 searched.append(place)
                 continue
             path = _normal(place.folder / rest)
-            if path.is_file():
+            if is_file(path):
                 how = f"package `{package}` is {place.folder} ({place.how})"
                 return Resolution(path, None, place.rule, how, tuple(searched))
             first = first or (path, place)
@@ -473,7 +473,7 @@ class PackageResolver:
                 searched=tuple(searched),
             )
         path, candidate = first
-        what = "is not a file" if path.exists() else "does not exist"
+        what = "is not a file" if exists(path) else "does not exist"
         return Resolution(
             path,
             f"{path} {what} (package `{package}` is {candidate.folder}, {candidate.describe()})",
@@ -495,11 +495,11 @@ class PackageResolver:
         first: Path | None = None
         for folder, rule, label in places:
             path = _normal(folder / text)
-            if path.is_file():
+            if is_file(path):
                 return Resolution(path, None, rule, f"{how}{label}", tuple(searched))
             first = first or path
             searched.append(f"{label}: {path}")
-        what = "is not a file" if first.exists() else "does not exist"
+        what = "is not a file" if exists(first) else "does not exist"
         return Resolution(first, f"{first} {what}", searched=tuple(searched))
 
     def _absolute(self, path: Path) -> Resolution:
@@ -511,13 +511,13 @@ class PackageResolver:
                 rest = path.relative_to(folder)
                 for candidate in lookup.candidates:
                     found = _normal(candidate.folder.absolute() / rest)
-                    if found.is_file():
+                    if is_file(found):
                         how = f"$(find {lookup.name}) is {candidate.folder} ({candidate.how})"
                         return Resolution(found, None, candidate.rule, how)
                 break
-        if path.is_file():
+        if is_file(path):
             return Resolution(path, None, "absolute", "absolute path")
-        what = "is not a file" if path.exists() else "does not exist"
+        what = "is not a file" if exists(path) else "does not exist"
         return Resolution(path, f"{path} {what}", searched=(f"absolute path: {path}",))
 
 
@@ -528,6 +528,28 @@ def resolve_uri(
     if resolver is None:
         resolver = PackageResolver(start=base_dir)
     return resolver.resolve_uri(uri, base_dir)
+
+
+def _check(test: str, path: Path) -> bool:
+    try:
+        return getattr(path, test)()
+    except (OSError, ValueError):  # a name too long for the file system, a NUL byte
+        return False
+
+
+def is_file(path: Path) -> bool:
+    """``path.is_file()``, ``False`` for a path the file system refuses (never raises)."""
+    return _check("is_file", path)
+
+
+def is_dir(path: Path) -> bool:
+    """``path.is_dir()``, ``False`` for a path the file system refuses (never raises)."""
+    return _check("is_dir", path)
+
+
+def exists(path: Path) -> bool:
+    """``path.exists()``, ``False`` for a path the file system refuses (never raises)."""
+    return _check("exists", path)
 
 
 def _normal(path: Path) -> Path:
@@ -545,7 +567,7 @@ def _walk(root: Path) -> Iterator[Path]:
             if visited > MAX_FOLDERS:
                 return
             yield folder
-            if depth == MAX_DEPTH or (folder / "package.xml").is_file():
+            if depth == MAX_DEPTH or is_file(folder / "package.xml"):
                 continue
             try:
                 children = sorted(os.scandir(folder), key=lambda e: e.name)
@@ -559,7 +581,7 @@ def _walk(root: Path) -> Iterator[Path]:
                 ):
                     continue
                 path = Path(child.path)
-                if any((path / marker).exists() for marker in _IGNORE_MARKERS):
+                if any(exists(path / marker) for marker in _IGNORE_MARKERS):
                     continue
                 following.append(path)
         level = following
@@ -572,4 +594,4 @@ def _split_path(value: str) -> tuple[Path, ...]:
 
 
 def _folder_of(path: Path) -> Path:
-    return path if path.is_dir() else path.parent
+    return path if is_dir(path) else path.parent

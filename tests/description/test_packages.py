@@ -215,6 +215,11 @@ def test_resolve_file_uris_and_paths(meshes):
         ("", "empty mesh filename"),
         ("package:///x.stl", "names no package"),
         ("..", "is not a file"),
+        # names longer than the file system allows (OSError from stat): not found, no raise
+        ("a" * 300 + ".stl", "does not exist"),
+        ("package://" + "p" * 300 + "/x.stl", "not found"),
+        ("$(find " + "q" * 300 + ")/x.stl", "not found"),
+        ("/" + "d" * 300 + "/x.stl", "does not exist"),
     ],
 )
 def test_resolve_uri_problems_never_raise(meshes, uri, fragment):

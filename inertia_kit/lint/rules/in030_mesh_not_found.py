@@ -9,6 +9,7 @@ from pathlib import Path
 
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
+from inertia_kit.description.packages import exists, is_dir, is_file, package_name
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -21,6 +22,8 @@ SUMMARY = "a visual/collision mesh URI does not resolve to a file"
 PACKAGE = "package://"
 # folders above the robot file searched for a package named by a URI that did not resolve
 MAX_ANCESTORS = 8
+# levels climbed from a place searched to the nearest existing folder, for a file of that name
+MOVED_LEVELS = 3
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
@@ -75,7 +78,11 @@ def _hint(mesh: model.Mesh) -> tuple[str, str] | None:
             )
         package, _, relative = rest.partition("/")
         if package and relative:
-            return _package_hint(package, relative, base)
+            return (
+                _package_hint(package, relative, base)
+                or _enclosing_hint(package, relative, base)
+                or _moved_hint(mesh)
+            )
         return None
     if "://" in uri:
         return None
@@ -92,7 +99,60 @@ def _hint(mesh: model.Mesh) -> tuple[str, str] | None:
     similar = _similar(target)
     if similar is not None:
         return f"did you mean `{similar}`? It is in the same folder", str(similar)
+    return _moved_hint(mesh)
+
+
+def _enclosing_hint(package: str, relative: str, base: Path) -> tuple[str, str] | None:
+    """The path after the package name exists in a folder above the file: another package."""
+
+    for ancestor in [base, *base.parents][:MAX_ANCESTORS]:
+        found = ancestor / relative
+        if is_file(found):
+            name = package_name(ancestor) or ancestor.name
+            return (
+                f"`{found}` exists, in `{ancestor}` above the robot file, but the URI names the "
+                f"package `{package}`: write `package://{name}/{relative}` if that is the file, "
+                f"or pass --package-path DIR with the `{package}` that holds it",
+                str(found),
+            )
     return None
+
+
+def _moved_hint(mesh: model.Mesh) -> tuple[str, str] | None:
+    """
+    A file of the same name near a place searched: in the nearest existing folder on the way
+    up (at most :data:`MOVED_LEVELS` levels) or one of its subfolders. One listing per folder.
+    """
+    for place in mesh.searched:
+        expected = Path(place.rsplit(": ", 1)[-1])
+        if not expected.is_absolute() or not expected.name:
+            continue
+        folder = expected.parent
+        for _ in range(MOVED_LEVELS):
+            if is_dir(folder):
+                break
+            folder = folder.parent
+        else:
+            continue
+        found = _named_in(folder, expected.name)
+        if found is not None:
+            return (
+                f"`{found}` exists, nearest to where the URI points (`{expected}`): the folders "
+                "in the URI do not match the files on disk; correct the path",
+                str(found),
+            )
+    return None
+
+
+def _named_in(folder: Path, name: str) -> Path | None:
+    """``folder/name`` or ``folder/*/name``, a file (first sorted), or ``None``."""
+    if is_file(folder / name):
+        return folder / name
+    try:
+        children = sorted(e.path for e in os.scandir(folder) if e.is_dir())
+    except OSError:
+        return None
+    return next((Path(c) / name for c in children if is_file(Path(c) / name)), None)
 
 
 def _similar(path: Path) -> Path | None:
@@ -108,7 +168,6 @@ def _similar(path: Path) -> Path | None:
 
 
 def _package_hint(package: str, relative: str, base: Path) -> tuple[str, str] | None:
-    from inertia_kit.description.packages import package_name
 
     for ancestor in [base, *base.parents][:MAX_ANCESTORS]:
         candidates = [(ancestor / package, ancestor)]
@@ -116,7 +175,7 @@ def _package_hint(package: str, relative: str, base: Path) -> tuple[str, str] | 
             candidates.append((ancestor, ancestor.parent))
         for folder, holder in candidates:
             found = folder / relative
-            if not found.is_file():
+            if not is_file(found):
                 variant = _case_variant(found)
                 if variant is None:
                     continue
@@ -145,7 +204,7 @@ def _case_variant(path: Path) -> Path | None:
     current = Path(parts[0])
     for index, part in enumerate(parts[1:], start=1):
         exact = current / part
-        if exact.exists():
+        if exists(exact):
             current = exact
             continue
         try:
@@ -156,6 +215,6 @@ def _case_variant(path: Path) -> Path | None:
         if len(matches) != 1:
             return None
         current = current / matches[0]
-        if index < len(parts) - 1 and not current.is_dir():
+        if index < len(parts) - 1 and not is_dir(current):
             return None
-    return current if current.is_file() and current != path else None
+    return current if is_file(current) and current != path else None

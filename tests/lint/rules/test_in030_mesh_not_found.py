@@ -129,6 +129,36 @@ def test_the_message_names_every_place_searched(tmp_path):
     ]
 
 
+def test_the_path_after_the_package_name_in_the_folder_above(tmp_path):
+    # rtb-data's irb140.urdf names abb_irb140_support, which it does not ship; the meshes are
+    # in abb_irb140_description above the file
+    package = tmp_path / "arm_description"
+    write_box_stl(package / "meshes" / "base.stl", CUBE)
+    path = package / "urdf" / "arm.urdf"
+    path.parent.mkdir()
+    path.write_text(robot("package://arm_support/meshes/base.stl"))
+    findings = lint_file(path, Selection(select=("IN030",))).findings
+    assert len(findings) == 2
+    assert "package `arm_support` not found" in findings[0].message
+    assert (
+        "write `package://arm_description/meshes/base.stl` if that is the file" in findings[0].help
+    )
+    assert findings[0].expected["found"] == str(package / "meshes" / "base.stl")
+
+
+def test_a_file_of_that_name_near_where_the_uri_points(tmp_path):
+    # robot_properties_fingers 2.0 names meshes/stl/..., which its wheel does not have
+    package = tmp_path / "fingers"
+    write_box_stl(package / "meshes" / "table.stl", CUBE)
+    path = package / "urdf" / "stage.urdf"
+    path.parent.mkdir()
+    path.write_text(robot("package://fingers/meshes/stl/table.stl"))
+    findings = lint_file(path, Selection(select=("IN030",))).findings
+    assert len(findings) == 2
+    assert f"{package / 'meshes' / 'stl' / 'table.stl'} does not exist" in findings[0].message
+    assert findings[0].help.startswith(f"`{package / 'meshes' / 'table.stl'}` exists, nearest to")
+
+
 def test_three_slashes_name_an_empty_package(lint):
     findings = lint(robot("package:///my_robot/meshes/part.stl"), "IN030")
     assert findings and "write `package://my_robot/meshes/part.stl`" in findings[0].help
