@@ -155,8 +155,8 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
     from inertia_kit.physics.unions import Part
 
     pose = _pose(shape.origin)
-    if pose is None:
-        return Solid(shape, None, None, problem=("invalid-number", "its <origin> is not numeric"))
+    # an <origin> that is not a number (IN004's) hides no problem of the shape itself
+    unplaced = Solid(shape, None, None, problem=("invalid-number", "its <origin> is not numeric"))
     geometry = shape.geometry
     if isinstance(geometry, model.Unknown):
         what = f"holds <{geometry.tag}>" if geometry.tag else "is empty"
@@ -186,6 +186,8 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
                 error.kind, "mesh-unreadable"
             )
             return Solid(shape, None, None, problem=(kind, error.message))
+        if pose is None:
+            return unplaced
         unit = solid.mass_properties(density=1.0).transformed(pose)
         corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
         return Solid(shape, unit, corners, mesh=solid)
@@ -206,6 +208,8 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
         return Solid(shape, None, None, problem=("invalid-number", "a dimension is not numeric"))
     if dims == ():
         return Solid(shape, None, None, problem=("degenerate", "a dimension is zero or negative"))
+    if pose is None:
+        return unplaced
     part = make(dims)
     return Solid(shape, part.mass_properties(density=1.0), box_corners(part.bounds), part=part)
 
