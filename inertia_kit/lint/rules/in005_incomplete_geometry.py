@@ -29,8 +29,19 @@ URDFDOM = {
     "empty": "Geometry tag contains no child element.",
     "absent": "Could not parse {kind} element for Link [{link}]",
 }
-# Drake's URDF extensions (detail_urdf_geometry.cc): Drake reads them, nothing else does
-DRAKE_SHAPES = ("drake:capsule", "drake:ellipsoid")
+# Shapes one engine adds to URDF, and which of the engines below reads each (measured): a file
+# meant for that engine, so an info, not a defect; inertia-kit computes none of them
+EXTENSIONS = {
+    "plane": "PyBullet",  # <plane normal>: an infinite half-space
+    "cdf": "PyBullet",  # a signed-distance file
+    "drake:capsule": "Drake",
+    "drake:ellipsoid": "Drake",
+}
+# who refuses what urdfdom refuses, measured: PyBullet "Cannot load URDF file."; Drake "Missing
+# sphere attribute: radius", "geometry element does not have a recognizable shape type"; MuJoCo
+# refuses a collision shape ("required attribute missing: 'radius'", "visual geometry
+# specification not found", "missing element: 'geometry'") and drops visual ones unread
+ENGINES = ("Gazebo", "Drake", "PyBullet", "MuJoCo")
 
 HELP_SIZE = (
     'write the shape\'s size in metres: `<sphere radius>`, `<box size="x y z">`, '
@@ -40,28 +51,22 @@ HELP_SHAPE = (
     "write one of URDF's shapes in the `<geometry>`: `<box size>`, `<cylinder radius length>`, "
     "`<sphere radius>` or `<mesh filename>`; or remove the `<{kind}>` if the link needs none"
 )
-HELP_DRAKE = (
+HELP_EXTENSION = (
     "for a file other tools read too, write a `<box>`, `<cylinder>`, `<sphere>` or `<mesh>`; "
-    "for a Drake-only file, ignore IN005 on this element"
+    "for a {reader}-only file, nothing to do"
 )
 
 
-def _refusers(kind: str, *, drake: bool) -> str:
-    """Who else refuses the file: Gazebo (urdfdom inside), Drake, PyBullet, MuJoCo."""
-    # measured: PyBullet "Cannot load URDF file"; Drake "Missing sphere attribute: radius",
-    # "geometry element does not have a recognizable shape type"; MuJoCo refuses a collision
-    # shape ("required attribute missing: 'radius'", "visual geometry specification not found",
-    # "missing element: 'geometry'") and drops visual ones on import without reading them
-    names = ["Gazebo", *([] if drake else ["Drake"]), "PyBullet"]
-    if kind == "collision":
-        names.append("MuJoCo")
+def _refusers(kind: str, reader: str | None) -> str:
+    """Who refuses the file besides urdfdom: every engine but ``reader``; MuJoCo for collisions."""
+    names = [e for e in ENGINES if e != reader and (e != "MuJoCo" or kind == "collision")]
     return ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     for shape in (*link.link.visuals, *link.link.collisions):
         geometry = shape.geometry
-        drake = isinstance(geometry, model.Unknown) and geometry.tag in DRAKE_SHAPES
+        reader = EXTENSIONS.get(geometry.tag) if isinstance(geometry, model.Unknown) else None
         help_text = HELP_SHAPE.format(kind=shape.kind)
         if isinstance(geometry, model.Unknown):
             if geometry.absent:
@@ -72,11 +77,11 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 words = URDFDOM["empty"]
             else:
                 what = f"its {shape.kind} `<geometry>` holds `<{geometry.tag}>`, " + (
-                    "a Drake extension" if drake else "no shape URDF has"
+                    f"a {reader} extension" if reader else "no shape URDF has"
                 )
                 words = f"Unknown geometry type '{geometry.tag}'"
-                if drake:
-                    help_text = HELP_DRAKE
+                if reader:
+                    help_text = HELP_EXTENSION.format(reader=reader)
         else:
             absent = absent_sizes(geometry)
             if not absent:
@@ -87,7 +92,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             )
             words = URDFDOM[tag]
             help_text = HELP_SIZE
-        readers = "Drake reads it; " if drake else ""
+        readers = f"{reader} reads it; " if reader else ""
         dropped = "" if shape.kind == "collision" else " (MuJoCo drops visuals on import)"
         unchecked = (
             "; the link's mass and inertia are not checked against this shape"
@@ -96,9 +101,9 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         )
         yield ctx.finding(
             f'link `{link.name}`: {what}: {readers}ROS (urdfdom: "{words}"), '
-            f"{_refusers(shape.kind, drake=drake)} refuse the file{dropped}{unchecked}",
+            f"{_refusers(shape.kind, reader)} refuse the file{dropped}{unchecked}",
             geometry.source or shape.source,
             link=link.name,
             help=help_text,
-            severity=Severity.WARNING if drake else None,
+            severity=Severity.INFO if reader else None,
         )

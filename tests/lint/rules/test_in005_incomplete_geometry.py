@@ -85,12 +85,21 @@ def test_every_absent_size_is_named(lint):
     assert "has no `radius` and no `length`" in finding.message
 
 
-def test_drake_shapes_are_a_warning_saying_drake_reads_them(lint):
+def test_drake_shapes_are_an_info_saying_drake_reads_them(lint):
     shape = '<drake:ellipsoid a="0.1" b="0.2" c="0.3"/>'
     (finding,) = lint(moving(HEAVY + collision(shape)), "IN005")
-    assert finding.severity == Severity.WARNING
+    assert finding.severity == Severity.INFO
     assert "a Drake extension: Drake reads it" in finding.message
     assert "Gazebo, PyBullet and MuJoCo refuse" in finding.message
+
+
+def test_pybullet_shapes_are_an_info_saying_pybullet_reads_them(lint):
+    """pybullet_data's plane_implicit.urdf: `<plane normal="0 0 1"/>` loads in PyBullet."""
+    (finding,) = lint(moving(HEAVY + collision('<plane normal="0 0 1"/>')), "IN005")
+    assert finding.severity == Severity.INFO
+    assert "a PyBullet extension: PyBullet reads it" in finding.message
+    assert "Unknown geometry type 'plane'" in finding.message
+    assert "Gazebo, Drake and MuJoCo refuse" in finding.message
 
 
 def test_complete_shapes_and_capsules_are_quiet(lint):
