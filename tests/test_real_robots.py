@@ -3,7 +3,7 @@ Published robot descriptions from PyPI packages, loaded file by file: whatever t
 ``InputError`` may escape ``load``, and what loads is a consistent model.
 
 Each package is optional (skipped when not installed): ``pybullet`` (pybullet_data), ``rtb-data``
-(Robotics Toolbox's xacro robots), ``example-robot-data``, ``dexmate-urdf`` and
+(Robotics Toolbox's xacro robots), ``example-robot-data``, ``dexmate-urdf``,
 ``fourier-robot-descriptions`` and ``airo-models``. Install them with ``pip install --no-deps``:
 only their files are used.
 """
