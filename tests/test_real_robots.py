@@ -3,9 +3,9 @@ Published robot descriptions from PyPI packages, loaded file by file: whatever t
 ``InputError`` may escape ``load``, and what loads is a consistent model.
 
 Each package is optional (skipped when not installed): ``pybullet`` (pybullet_data), ``rtb-data``
-(Robotics Toolbox's xacro robots), ``example-robot-data``, ``dexmate-urdf`` and
-``fourier-robot-descriptions``. Install them with ``pip install --no-deps``: only their files are
-used.
+(Robotics Toolbox's xacro robots), ``example-robot-data``, ``dexmate-urdf``,
+``fourier-robot-descriptions`` and ``airo-models``. Install them with ``pip install --no-deps``:
+only their files are used.
 """
 
 from __future__ import annotations
@@ -53,6 +53,7 @@ PACKAGES = {
     ),
     "dexmate-urdf": lambda: _module_folder("dexmate_urdf"),
     "fourier-robot-descriptions": lambda: _module_folder("fourier_robot_descriptions"),
+    "airo-models": lambda: _module_folder("airo_models"),
 }
 
 

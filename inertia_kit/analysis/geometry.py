@@ -35,8 +35,8 @@ class Solid:
 
     ``unit`` is its mass properties at 1 kg/m³ (so ``unit.mass`` is its volume); ``None``
     with ``problem`` set when the shape yields none: ``(kind, message)`` with kind one of
-    ``invalid-number``, ``degenerate``, ``unknown-geometry``, ``mesh-not-found``,
-    ``mesh-unreadable``, ``mesh-empty``.
+    ``invalid-number``, ``incomplete-geometry`` (a size absent), ``degenerate``,
+    ``unknown-geometry``, ``mesh-not-found``, ``mesh-unreadable``, ``mesh-empty``.
     """
 
     shape: model.Shape
@@ -129,6 +129,20 @@ def _pose(origin: model.Origin) -> NDArray[np.float64] | None:
     return transform(origin.xyz, origin.rpy)
 
 
+# the size attributes each of URDF's primitives (and the capsule) must have
+SIZES: dict[type, tuple[str, ...]] = {
+    model.Box: ("size",),
+    model.Cylinder: ("radius", "length"),
+    model.Sphere: ("radius",),
+    model.Capsule: ("radius", "length"),
+}
+
+
+def absent_sizes(geometry: model.Geometry) -> tuple[str, ...]:
+    """The size attributes the shape lacks (``radius`` of ``<sphere/>``), in URDF's order."""
+    return tuple(name for name in SIZES.get(type(geometry), ()) if getattr(geometry, name) is None)
+
+
 def _positive(values: tuple[model.Number, ...]) -> tuple[float, ...] | None:
     if not all(isinstance(v, float) for v in values):
         return None
@@ -141,14 +155,18 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
     from inertia_kit.physics.unions import Part
 
     pose = _pose(shape.origin)
-    if pose is None:
-        return Solid(shape, None, None, problem=("invalid-number", "its <origin> is not numeric"))
+    # an <origin> that is not a number (IN004's) hides no problem of the shape itself
+    unplaced = Solid(shape, None, None, problem=("invalid-number", "its <origin> is not numeric"))
     geometry = shape.geometry
     if isinstance(geometry, model.Unknown):
-        what = f"<{geometry.tag}>" if geometry.tag else "nothing"
-        return Solid(
-            shape, None, None, problem=("unknown-geometry", f"its <geometry> holds {what}")
-        )
+        what = f"holds <{geometry.tag}>" if geometry.tag else "is empty"
+        message = "there is no <geometry>" if geometry.absent else f"its <geometry> {what}"
+        return Solid(shape, None, None, problem=("unknown-geometry", message))
+    absent = absent_sizes(geometry)
+    if absent:
+        tag = type(geometry).__name__.lower()
+        message = f"its <{tag}> has no {' and no '.join(absent)}"
+        return Solid(shape, None, None, problem=("incomplete-geometry", message))
     if isinstance(geometry, model.Mesh):
         if geometry.path is None:
             return Solid(shape, None, None, problem=("mesh-not-found", geometry.problem or ""))
@@ -168,6 +186,8 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
                 error.kind, "mesh-unreadable"
             )
             return Solid(shape, None, None, problem=(kind, error.message))
+        if pose is None:
+            return unplaced
         unit = solid.mass_properties(density=1.0).transformed(pose)
         corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
         return Solid(shape, unit, corners, mesh=solid)
@@ -188,6 +208,8 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
         return Solid(shape, None, None, problem=("invalid-number", "a dimension is not numeric"))
     if dims == ():
         return Solid(shape, None, None, problem=("degenerate", "a dimension is zero or negative"))
+    if pose is None:
+        return unplaced
     part = make(dims)
     return Solid(shape, part.mass_properties(density=1.0), box_corners(part.bounds), part=part)
 

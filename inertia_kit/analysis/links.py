@@ -12,7 +12,12 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 from inertia_kit.analysis.bounds import Hull, MomentExcess, moment_excess
-from inertia_kit.analysis.declared import declared, declared_mass
+from inertia_kit.analysis.declared import (
+    declared,
+    declared_mass,
+    principal_moments,
+    written_tensor,
+)
 from inertia_kit.analysis.geometry import (
     Geometry,
     MeshLoader,
@@ -24,6 +29,9 @@ from inertia_kit.description import model
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
+
     from inertia_kit.physics.meshes import MeshSolid
 
 
@@ -53,6 +61,16 @@ class LinkAnalysis:
     @functools.cached_property
     def declared(self) -> MassProperties | None:
         return declared(self.link)
+
+    @functools.cached_property
+    def moments(self) -> NDArray[np.float64] | None:
+        """
+        (3,) ascending principal moments of the six ``<inertia>`` values alone, kg·m²: what
+        the tensor rules judge when the mass or the ``<origin>`` is missing or not a number
+        (the axes change no principal moment); ``None`` when a value is.
+        """
+        tensor = written_tensor(self.link)
+        return None if tensor is None else principal_moments(tensor)
 
     @functools.cached_property
     def collision(self) -> Geometry:

@@ -189,7 +189,7 @@ class Builder:
 
     def geometry(self, element: etree._Element | None, owner: etree._Element) -> model.Geometry:
         if element is None:
-            return model.Unknown(None, self.source_of(owner))
+            return model.Unknown(None, self.source_of(owner), absent=True)
         shape = next((child for child in element if isinstance(child.tag, str)), None)
         if shape is None:
             return model.Unknown(None, self.source_of(element))

@@ -108,10 +108,15 @@ class Mesh:
 
 @dataclass(frozen=True)
 class Unknown:
-    """A ``<geometry>`` with no shape we know (empty, or an unsupported element)."""
+    """
+    A shape that is not one of URDF's: ``tag`` is the first element of the ``<geometry>``
+    (``foo``, ``drake:capsule``), ``None`` when the ``<geometry>`` is empty or, with
+    ``absent``, when the ``<visual>``/``<collision>`` has no ``<geometry>`` at all.
+    """
 
     tag: str | None
     source: Source
+    absent: bool = False
 
 
 Geometry = Box | Cylinder | Sphere | Capsule | Mesh | Unknown

@@ -78,8 +78,15 @@ def parse_stamped(data: bytes, shown: str):
     try:
         return Builder().parseString(data)
     except expat.ExpatError as error:
+        message = expat.ErrorString(error.code)
+        if message == expat.errors.XML_ERROR_UNBOUND_PREFIX:
+            # xacro (minidom) refuses it too; plain URDF reads it (see xmlparse.fromstring)
+            message += (
+                ": a namespace prefix is used without its `xmlns:` declaration, which xacro "
+                'refuses; declare it on <robot> (`xmlns:drake="http://drake.mit.edu"`)'
+            )
         raise InputError(
-            f"not well-formed XML: {expat.ErrorString(error.code)}",
+            f"not well-formed XML: {message}",
             shown,
             error.lineno,
             error.offset + 1,
@@ -93,11 +100,14 @@ def to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]:
     """
     from lxml import etree
 
+    from inertia_kit.description.xmlparse import fromstring
+
     out: list[str] = []
     sources: list[Source] = []
     _write(root, out, sources, fallback)
     try:
-        lxml_root = etree.fromstring("".join(out).encode("utf-8"), safexml.parser(huge_tree=True))
+        # xacro (minidom) knows no namespaces either: an undeclared `drake:` prefix passes it
+        lxml_root = fromstring("".join(out).encode("utf-8"), huge_tree=True)
     except etree.XMLSyntaxError as error:
         raise InputError(f"xacro produced XML lxml cannot read: {error}", fallback.path) from None
     elements = list(lxml_root.iter(etree.Element))

@@ -1,7 +1,7 @@
 """
 Robot description text as XML, the way the URDF parsers read it: refused when empty or binary,
-parsed safely (:mod:`.safexml`) with the slips TinyXML2 reads tolerated, and every element's
-start tag located by line and column, which lxml does not give.
+parsed safely (:mod:`.safexml`) with the slips TinyXML2 reads tolerated (:func:`fromstring`),
+and every element's start tag located by line and column, which lxml does not give.
 """
 
 from __future__ import annotations
@@ -10,6 +10,7 @@ import bisect
 import re
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -28,6 +29,12 @@ _ENCODING = re.compile(rb"""\bencoding\s*=\s*["']([A-Za-z][A-Za-z0-9._-]*)["']""
 _MARKUP = re.compile(
     rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]*\[.*?\])?[^>]*>|</|<", re.DOTALL
 )
+_NAME_END = re.compile(rb"[^\s/>]*")
+_PREFIX = re.compile(r"[A-Za-z_][A-Za-z0-9._-]*")
+_POSITION = re.compile(r",? line \d+, column \d+$")
+#: The namespace a prefix used without a declaration is read in (``drake:`` in airo-models):
+#: ``UNDECLARED + prefix``. No URDF tag is in it, as no URDF tag is in a declared ``drake:``.
+UNDECLARED = "urn:inertia-kit:undeclared-prefix:"
 
 
 def parse_xml(data: bytes, path: str | Path) -> etree._Element:
@@ -51,14 +58,12 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
         if b"\x00" in data[end:]:
             data = data[:end]
     try:
-        safe = parser(remove_pis=True, encoding=encoding)
+        root = fromstring(data, remove_pis=True, encoding=encoding)
     except LookupError:
         raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
-    try:
-        root = etree.fromstring(data, safe, base_url=None)
     except etree.XMLSyntaxError as error:
         line, column = error.position if error.position else (None, None)
-        message = re.sub(r",? line \d+, column \d+$", "", str(error.msg or error))
+        message = _POSITION.sub("", str(error.msg or error))
         raise InputError(f"not well-formed XML: {message}", path, line, column) from None
     except (ValueError, etree.LxmlError) as error:
         raise InputError(f"not XML: {error}", path) from None
@@ -67,6 +72,85 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
         # only reachable for encodings the byte-level check cannot read (UTF-16, UTF-32)
         raise InputError(NO_ENTITIES, path, 1)
     return root
+
+
+def fromstring(data: bytes, **options: Any) -> etree._Element:
+    """
+    ``data`` parsed by a safe parser (:func:`.safexml.parser` with ``options``), with namespace
+    prefixes that are used but never declared read as declared ones.
+
+    TinyXML2 (urdfdom, so ROS and Gazebo), Drake and PyBullet know no namespaces: airo-models'
+    ``<limit drake:acceleration="2.5">`` or ``<drake:collision_filter_group>`` without an
+    ``xmlns:drake`` are plain names to them, and libxml2 refuses the file. Each such prefix is
+    declared on the root element (``UNDECLARED + prefix``, after the root's name, so only the
+    rest of that line moves; error columns there are moved back) and the file is parsed again,
+    as strictly as any other: every other error is still one. Element positions are taken from
+    the original bytes (:func:`start_tag_positions`), where ``prefix:name`` is what was written.
+
+    Raises what ``etree.fromstring`` raises (``XMLSyntaxError`` with the line and column in the
+    original bytes), and ``LookupError`` for an unknown ``encoding``.
+    """
+    safe = parser(**options)
+    try:
+        return etree.fromstring(data, safe, base_url=None)
+    except etree.XMLSyntaxError as error:
+        undeclared = any(e.type_name == "NS_ERR_UNDEFINED_NAMESPACE" for e in safe.error_log)
+        declared = _declare(data, _prefixes(data, options)) if undeclared else None
+        if declared is None:
+            raise
+        first = error
+    data, (line, column), width = declared
+    try:
+        return etree.fromstring(data, parser(**options), base_url=None)
+    except etree.XMLSyntaxError as error:
+        if not error.position:
+            raise first from None
+        at_line, at_column = error.position
+        if at_line == line and at_column > column:
+            at_column -= width
+        message = _POSITION.sub("", str(error.msg or error))
+        raise etree.XMLSyntaxError(
+            f"{message}, line {at_line}, column {at_column}", error.code, at_line, at_column
+        ) from None
+
+
+def _prefixes(data: bytes, options: dict[str, Any]) -> list[str]:
+    """
+    The prefixes of element and attribute names that a recovering parse leaves unresolved
+    (``drake`` of ``drake:acceleration``): the names libxml2 found no declaration for. Only
+    names are taken from this parse; the tree comes from a strict one.
+    """
+    found: set[str] = set()
+    try:
+        root = etree.fromstring(data, parser(recover=True, **options), base_url=None)
+    except (etree.LxmlError, ValueError):
+        return []
+    if root is None:
+        return []
+    for element in root.iter():
+        if not isinstance(element.tag, str):
+            continue
+        names = [element.tag, *element.attrib]
+        found.update(name.partition(":")[0] for name in names if ":" in name and "{" not in name)
+    return sorted(p for p in found if _PREFIX.fullmatch(p) and p.lower() not in ("xml", "xmlns"))
+
+
+def _declare(data: bytes, prefixes: list[str]) -> tuple[bytes, tuple[int, int], int] | None:
+    """
+    ``data`` with ``xmlns:prefix`` declarations inserted after the root element's name, the
+    (line, column) of the insertion and its width; ``None`` when there is nothing to declare or
+    the bytes are not ASCII-compatible (UTF-16, UTF-32).
+    """
+    if not prefixes or _is_wide(data):
+        return None
+    root = next((m for m in _MARKUP.finditer(data) if m.end() - m.start() == 1), None)
+    if root is None:
+        return None
+    at = _NAME_END.match(data, root.end()).end()
+    inserted = "".join(f' xmlns:{p}="{UNDECLARED}{p}"' for p in prefixes).encode("ascii")
+    line_start = data.rfind(b"\n", 0, at) + 1
+    position = (data.count(b"\n", 0, at) + 1, at - line_start + 1)
+    return data[:at] + inserted + data[at:], position, len(inserted)
 
 
 def check_text(data: bytes, path: str | Path) -> None:

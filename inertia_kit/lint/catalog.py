@@ -30,6 +30,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in002_non_positive_mass,
     in003_incomplete_inertial,
     in004_invalid_number,
+    in005_incomplete_geometry,
     in010_inertia_not_positive_definite,
     in011_inertia_triangle_inequality,
     in012_inertia_too_small,

@@ -68,17 +68,26 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     digits_aware = bool(ctx.option("digits_aware"))
     for link in robot.links:
         declared = positive_mass(link)
-        if declared is None:
+        # no rigid body of any mass has such a tensor: judged from the six values alone when
+        # the mass or the <origin> is missing or not a number (IN003, IN004) or the mass ≤ 0
+        moments = link.moments if declared is None else declared.principal_moments
+        if moments is None:
             continue
-        a, b, c = (float(v) for v in declared.principal_moments)
+        a, b, c = (float(v) for v in moments)
         tol0 = zero_tolerance(np.array([a, b, c]))
         if a < -tol0:
             continue  # a negative moment: IN010's
-        if a <= tol0 and not (
-            robot.welded_to_world(link.name)
-            or (len(robot.group_of(link.name)) > 1 and positive_definite(lumped(robot, link.name)))
+        if a <= tol0 and (
+            declared is None
+            or not (
+                robot.welded_to_world(link.name)
+                or (
+                    len(robot.group_of(link.name)) > 1
+                    and positive_definite(lumped(robot, link.name))
+                )
+            )
         ):
-            continue  # a zero moment IN010 reports
+            continue  # a zero moment IN010 reports (or not, without a positive mass)
         inertial = link.link.inertial
         assert inertial is not None
         shortfall = c - (a + b)
@@ -88,7 +97,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         allowed = max(allowed, NOISE_RTOL * c, 3 * ZERO_ATOL)
         if shortfall <= allowed:
             continue
-        written = geometry_tensor(link, declared.mass)
+        written = None if declared is None else geometry_tensor(link, declared.mass)
         basis = "" if written is None else f"; {basis_text(link, declared.mass)} {written.text()}"
         principal = np.array([a, b, c])
         shown = [0.0 if abs(v) <= tol0 else v for v in (a, b)]

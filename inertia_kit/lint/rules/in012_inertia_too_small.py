@@ -5,8 +5,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
+import numpy as np
+
+from inertia_kit.analysis.declared import declared_mass, written_tensor
 from inertia_kit.analysis.expected import basis_text
-from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import zero_tolerance
 from inertia_kit.engines.lumping import lumped, positive_mass
 from inertia_kit.lint.findings import Finding, Severity
@@ -37,13 +40,27 @@ def _too_small(body: MassProperties, min_moment: float, min_radius: float) -> bo
     return smallest < min_moment or smallest < body.mass * min_radius**2
 
 
+def _without_origin(link: LinkAnalysis) -> MassProperties | None:
+    """
+    The mass and the written tensor when only the ``<inertial><origin>`` is not a number
+    (IN004's): neither floor depends on it (the axes change no principal moment).
+    """
+    mass = declared_mass(link.link)
+    tensor = written_tensor(link.link)
+    if mass is None or tensor is None or link.moments is None:
+        return None
+    return MassProperties(mass, np.zeros(3), tensor)
+
+
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     min_moment = float(ctx.option("min_moment"))
     min_radius = float(ctx.option("min_radius"))
     for link in robot.links:
         declared = positive_mass(link)
         if declared is None:
-            continue
+            declared = _without_origin(link)
+        if declared is None:
+            continue  # the floor is relative to a positive mass: without one, IN002-IN004's
         principal = declared.principal_moments
         smallest = float(principal[0])
         if smallest <= zero_tolerance(principal):
@@ -71,7 +88,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             )
         payload: dict[str, object] = {"min_moment": floor}
         geometry_text = ""
-        expected = link.expected
+        # principal moments: the same in any axes, so the <origin> is not needed
+        expected = link.geometry.at_mass(mass)
         if expected is not None:
             geometry_moments = expected.principal_moments
             payload["geometry_principal_moments"] = [float(v) for v in geometry_moments]

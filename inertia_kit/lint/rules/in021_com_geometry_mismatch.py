@@ -6,6 +6,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from inertia_kit.analysis.declared import declared_com
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
@@ -55,16 +56,18 @@ def _xyz(point: np.ndarray) -> str:
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    declared = link.declared
-    if declared is None or not declared.mass > 0 or not np.isfinite(declared.com).all():
+    # the centre of mass is judged on its own: the tensor or the mass may be missing or not a
+    # number (IN003, IN004); a mass ≤ 0 has none (IN002)
+    inertial = link.link.inertial
+    com = declared_com(link.link)
+    if inertial is None or com is None:
+        return
+    if isinstance(inertial.mass, float) and not inertial.mass > 0:
         return
     # a negligible part of a welded body: its centre of mass moves the lumped one by nothing
     if link.mass_share < float(ctx.option("min_mass_share")):
         return
-    inertial = link.link.inertial
-    assert inertial is not None
     source = inertial.origin.source or inertial.source
-    com = declared.com
     envelope = link.envelope
     if envelope is not None:
         low, high = envelope.bounds

@@ -81,3 +81,31 @@ def test_mass_problems_are_other_rules(lint, mass):
 def test_rotated_axes_do_not_change_the_verdict(lint):
     rotated = inertial(3, *GOOD, rpy=f"0.3 {math.pi / 4} 1")
     assert in010(lint, moving(rotated + BOX)) == []
+
+
+# --- judged whatever is wrong elsewhere ----------------------------------------------------------
+
+
+@pytest.mark.parametrize("mass", ["abc", "0", "-1"])
+def test_a_negative_moment_is_flagged_whatever_the_mass(lint, mass):
+    (finding,) = in010(lint, moving(inertial(mass, 0.025, 0.025, -1) + BOX))
+    assert "-1 kg·m² is negative" in finding.message
+    # no geometry values without a positive mass to scale them
+    assert finding.expected is None and "gives" not in finding.message
+
+
+def test_a_zero_tensor_with_a_bad_origin_is_flagged_with_the_mass_known(lint):
+    (finding,) = in010(lint, moving(inertial(3, 0, xyz="a b c") + BOX))
+    assert "all six `<inertia>` values are 0" in finding.message
+
+
+def test_a_negative_diagonal_value_is_flagged_when_another_value_is_not_a_number(lint):
+    for products in ({"ixy": "abc"}, {"ixz": "1,5"}):
+        (finding,) = in010(lint, moving(inertial(3, 0.025, 0.025, -0.5, **products) + BOX))
+        assert "izz = -0.5 kg·m² is negative" in finding.message
+        assert "whatever the other values are" in finding.message
+    text = moving(inertial(3, 0.025, 0.025, -0.5).replace(' ixy="0"', "") + BOX)
+    (finding,) = in010(lint, text)
+    assert "izz = -0.5 kg·m²" in finding.message
+    # a partial tensor with positive diagonal values cannot be judged
+    assert in010(lint, moving(inertial(3, *GOOD, ixy="abc") + BOX)) == []

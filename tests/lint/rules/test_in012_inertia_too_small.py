@@ -70,3 +70,14 @@ def test_welded_to_world_is_static(lint):
 
 def test_zero_moment_is_in010s(lint):
     assert in012(lint, moving(inertial(0.3, 0))) == []
+
+
+def test_an_origin_that_is_not_a_number_hides_nothing(lint):
+    (finding,) = in012(lint, moving(inertial(0.3, 1e-10, rpy="a b c")))
+    assert f"smallest principal moment {fmt(1e-10, 3)} kg·m²" in finding.message
+
+
+@pytest.mark.parametrize("mass", ["abc", "0"])
+def test_without_a_positive_mass_there_is_no_floor(lint, mass):
+    # a massless frame may carry any tensor: IN002/IN004 report the mass
+    assert in012(lint, moving(inertial(mass, 1e-12))) == []

@@ -90,3 +90,22 @@ def test_negligible_link_on_a_fixed_joint_is_skipped(lint):
 def test_no_inertial_or_no_geometry_is_not_its_business(lint):
     assert lint(moving(BOX), "IN021") == []
     assert lint(moving(inertial_at("5 5 5")), "IN021") == []
+
+
+@pytest.mark.parametrize(
+    "inertial_text",
+    [
+        '<inertial><origin xyz="2 0 0"/><mass value="2"/></inertial>',  # no <inertia>: IN003
+        '<inertial><origin xyz="2 0 0"/><mass value="2kg"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>',  # IN004
+        inertial(2.0, 0.00833, 0.0283, 0.0333, xyz="2 0 0", ixy="abc"),  # IN004
+    ],
+    ids=["no-inertia", "mass-not-a-number", "product-not-a-number"],
+)
+def test_the_com_is_judged_whatever_the_rest_of_the_inertial(lint, inertial_text):
+    (finding,) = lint(moving(BOX + inertial_text), "IN021")
+    assert finding.severity == Severity.ERROR and "outside" in finding.message
+
+
+def test_a_massless_link_has_no_centre_of_mass(lint):
+    assert lint(moving(BOX + inertial(0, 0, xyz="2 0 0")), "IN021") == []
