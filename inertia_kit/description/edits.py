@@ -175,7 +175,11 @@ def write_atomic(
     try:
         handle, temporary = _create_temporary(target)
     except OSError as error:
-        raise InputError(f"cannot write: {error.strerror or error}", path) from None
+        raise InputError(
+            f"cannot write: no temporary file in {target.parent} ({error.strerror or error}); "
+            "nothing was written",
+            path,
+        ) from None
     try:
         # the descriptor stays open, and locked, until the file has its name: a run that finds
         # our temporary file meanwhile sees that it is in use (remove_stale_temporaries)

@@ -17,7 +17,6 @@ DEBUG level, one line without traceback; a file that cannot be read still raises
 from __future__ import annotations
 
 import contextlib
-import logging
 import math
 import threading
 from collections.abc import Iterator
@@ -32,6 +31,8 @@ from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.stl import read_stl
 
 if TYPE_CHECKING:
+    import logging
+
     import trimesh
 
 # file suffix -> (trimesh file type, name for messages); STL is read without trimesh
@@ -215,18 +216,16 @@ def _unit_factor(path: Path, unit: str) -> float:
 #: The loggers whose records a read keeps from the terminal, with every logger below them.
 LIBRARY_LOGGERS = ("trimesh", "collada")
 
-_log = logging.getLogger(__name__)
 
-
-class _QuietWhileReading(logging.Filter):
+class _QuietWhileReading:
     """
     A logger-level filter on each library logger: while the current thread is inside
-    :func:`library_logs_quiet`, a record is passed on to :data:`_log` (DEBUG, one line) and
-    dropped; otherwise, and in every other thread, it passes untouched.
+    :func:`library_logs_quiet`, a record is passed on to this module's logger (DEBUG, one line)
+    and dropped; otherwise, and in every other thread, it passes untouched. (Not a subclass of
+    ``logging.Filter``: logging asks only for ``filter``, and importing logging costs start-up.)
     """
 
     def __init__(self) -> None:
-        super().__init__()
         self.reading = threading.local()
 
     def filter(self, record: logging.LogRecord) -> bool:
@@ -237,12 +236,13 @@ class _QuietWhileReading(logging.Filter):
         if record.exc_info and record.exc_info[1] is not None:
             error = record.exc_info[1]
             message = f"{message} ({type(error).__name__}: {str(error).strip()[:200]})"
-        _log.debug("%s (reading %s): %s", record.name, path, message)
+        import logging
+
+        logging.getLogger(__name__).debug("%s (reading %s): %s", record.name, path, message)
         return False
 
 
 _QUIET = _QuietWhileReading()
-_seen_loggers = -1  # how many loggers there were when the filter was last attached
 
 
 @contextlib.contextmanager
@@ -267,12 +267,10 @@ def library_logs_quiet(path: str | Path) -> Iterator[None]:
 
 
 def _attach() -> None:
-    """The filter on every logger of :data:`LIBRARY_LOGGERS` and below (new ones included)."""
-    global _seen_loggers
-    loggers = logging.Logger.manager.loggerDict
-    if len(loggers) == _seen_loggers:
-        return
-    for name, logger in list(loggers.items()):
+    """The filter on every logger of :data:`LIBRARY_LOGGERS` and below, those made since too
+    (a few hundred dictionary items: nothing beside reading a file)."""
+    import logging  # here: trimesh has imported it already
+
+    for name, logger in list(logging.Logger.manager.loggerDict.items()):
         if isinstance(logger, logging.Logger) and name.split(".", 1)[0] in LIBRARY_LOGGERS:
             logger.addFilter(_QUIET)  # once: addFilter skips a filter already there
-    _seen_loggers = len(loggers)

@@ -270,3 +270,27 @@ def test_a_write_removes_stale_temporaries_beside_its_real_target(tmp_path):
     assert write_atomic(link, b"new", expected=b"old")
     assert not stale.exists()
     assert sorted(p.name for p in real.parent.iterdir()) == ["robot.urdf"]
+
+
+def test_a_failing_write_is_an_input_error_and_leaves_the_file(tmp_path, monkeypatch):
+    """A full disk (fsync fails) or a folder we may not write in: the file as it was, no
+    temporary file left, an InputError that says what happened."""
+    path = tmp_path / "r.urdf"
+    path.write_bytes(b"old")
+
+    def full(descriptor):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "fsync", full)
+        with pytest.raises(InputError, match="cannot write: No space left on device"):
+            write_atomic(path, b"new", expected=b"old")
+    assert path.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["r.urdf"]
+
+    def denied(target):
+        raise PermissionError(errno.EACCES, "Permission denied")
+
+    monkeypatch.setattr(edits, "_create_temporary", denied)
+    with pytest.raises(InputError, match=f"no temporary file in {tmp_path} \\(Permission denied"):
+        write_atomic(path, b"new", expected=b"old")
+    assert path.read_bytes() == b"old"
