@@ -131,7 +131,7 @@ def fill(
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.output import write_output
-    from inertia_kit.fill.plan import apply, plan_fill
+    from inertia_kit.fill.plan import apply, links_followed, plan_fill, remove_stale
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config_files import ConfigFinder
 
@@ -182,10 +182,18 @@ def fill(
     for plan in plans:
         for note in plan.notes:
             click.echo(f"note: {plan.path}: {note}", err=True)
+        if write:
+            for stale in remove_stale(plan):
+                click.echo(
+                    f"note: removed {stale}, a temporary file left by an inertia-fill that "
+                    "was killed while writing",
+                    err=True,
+                )
         if show_diff and plan.changed:
             click.echo(plan.diff(), nl=False)
         filled = plan.changed_links
         if filled or (plan.input_path is not None and write):
+            followed = links_followed(plan) if write else []
             try:
                 if write:
                     (apply if plan.input_path is None else write_output)(plan)
@@ -195,6 +203,12 @@ def fill(
             else:
                 changed = changed or bool(filled)
                 click.echo(_fill_line(plan, write), err=True)
+                for name, real in followed:
+                    click.echo(
+                        f"note: {name} is a symbolic link: the file it points to, {real}, "
+                        "was written and the link kept",
+                        err=True,
+                    )
         for refusal in plan.refused:
             refused = True
             click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)

@@ -8,5 +8,6 @@ and text edits back on the original bytes.
   ``packages``: ``$(find)`` and ``package://`` without ROS.
 - ``model``: the frozen dataclasses (Robot, Link, Joint, Inertial, ... each with its ``Source``).
 - ``inertial_xml``: an ``<inertial>`` block as text; ``xmlspan``: where an element stands in the
-  original text; ``edits``: text edits on the original bytes, and atomic writes.
+  original text; ``edits``: text edits on the original bytes, and atomic writes (through
+  symbolic links; stale temporary files of killed writes removed).
 """

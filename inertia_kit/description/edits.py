@@ -67,6 +67,7 @@ def read_source(path: str | Path) -> SourceText:
     try:
         original = Path(path).read_bytes()
     except OSError as error:
+        real_target(path)  # a link that leads nowhere: say so
         raise InputError(f"cannot read: {error.strerror or error}", path) from None
     bom = b""
     encoding = "utf-8"
@@ -118,13 +119,47 @@ class ChangedWhileEditing(InputError):
     """The file on disk is no longer the one the edits were computed from."""
 
 
+def real_target(path: str | Path) -> Path:
+    """
+    The file a write to ``path`` must replace: ``path`` itself, or for a symbolic link the file
+    at the end of its chain of links, so the link stays a link (``os.replace`` on the link's
+    own name would turn it into a regular file).
+
+    Raises ``InputError`` for a link that leads nowhere (dangling, or a loop of links).
+    """
+    target = Path(path)
+    if not target.is_symlink():
+        return target
+    try:
+        return target.resolve(strict=True)
+    except FileNotFoundError:
+        missing = os.path.realpath(target)
+        raise InputError(
+            f"is a symbolic link to {os.readlink(target)} ({missing}), which does not exist: "
+            "point the link at the file, or give the file itself",
+            path,
+        ) from None
+    except (OSError, RuntimeError) as error:  # a loop: RuntimeError before Python 3.13
+        reason = getattr(error, "strerror", None) or "a loop of links"
+        raise InputError(
+            f"is a symbolic link that cannot be followed ({reason}): point it at the file, "
+            "or give the file itself",
+            path,
+        ) from None
+
+
 def write_atomic(
     path: str | Path, data: bytes, *, expected: bytes | None = None, create: bool = False
 ) -> bool:
     """
     Replace ``path``'s content with ``data`` atomically (temporary file in the same folder,
-    ``fsync``, ``os.replace``), keeping its permission bits. Writes nothing when the bytes are
-    already ``data``.
+    ``fsync``, ``os.replace``), keeping its permission bits (and its owner and group where
+    the system lets us). Writes nothing when the bytes are already ``data``.
+
+    A symbolic link is followed (through a chain of links) and the file it points to is
+    replaced, with the temporary file beside that file; the link itself is left as it is. A
+    link that leads nowhere is an ``InputError``. Temporary files of an earlier write that was
+    killed (:func:`remove_stale_temporaries`) are removed from the folder first.
 
     ``expected`` is the content the edits were computed from: if the file no longer holds it
     (someone changed it meanwhile), nothing is written and ``ChangedWhileEditing`` is raised.
@@ -132,33 +167,47 @@ def write_atomic(
 
     Returns whether the file was written.
     """
-    target = Path(path)
-    current, mode = _state(target, create)
-    if not _may_write(target, current, mode, data, expected):
+    target = real_target(path)
+    current, mode = _state(target, create, path)
+    if not _may_write(target, current, mode, data, expected, path):
         return False
-    import tempfile  # here: its imports (shutil, random, bz2, lzma) cost start-up on every lint
-
+    remove_stale_temporaries(target.parent)
     try:
-        handle, temporary = tempfile.mkstemp(
-            prefix=f".{target.name}.", suffix=".tmp", dir=target.parent
-        )
+        handle, temporary = _create_temporary(target)
     except OSError as error:
-        raise InputError(f"cannot write: {error.strerror or error}", path) from None
+        raise InputError(
+            f"cannot write: no temporary file in {target.parent} ({error.strerror or error}); "
+            "nothing was written",
+            path,
+        ) from None
     try:
-        with os.fdopen(handle, "wb") as stream:
+        # the descriptor stays open, and locked, until the file has its name: a run that finds
+        # our temporary file meanwhile sees that it is in use (remove_stale_temporaries)
+        stream = os.fdopen(handle, "wb")
+        try:
             stream.write(data)
             stream.flush()
             os.fsync(stream.fileno())
-        os.chmod(temporary, mode)
-        # a last look: a change between our read and now must not be overwritten
-        if expected is not None and target.read_bytes() != expected:
-            raise ChangedWhileEditing(
-                "the file changed while it was being processed; nothing was written", path
-            )
-        os.replace(temporary, target)
-    except BaseException:
+            if current is not None:
+                _keep_owner(stream.fileno(), target)
+            _set_mode(stream.fileno(), temporary, mode)
+            # a last look: a change between our read and now must not be overwritten
+            if expected is not None and target.read_bytes() != expected:
+                raise ChangedWhileEditing(
+                    "the file changed while it was being processed; nothing was written", path
+                )
+            if os.name == "nt":  # pragma: no cover - Windows renames no open file
+                stream.close()
+            os.replace(temporary, target)
+        finally:
+            stream.close()
+    except BaseException as error:
         with contextlib.suppress(OSError):
             os.unlink(temporary)
+        if isinstance(error, OSError):  # a full disk, a lost network file system, ...
+            raise InputError(
+                f"cannot write: {error.strerror or error}; the file was left as it was", path
+            ) from None
         raise
     return True
 
@@ -166,46 +215,179 @@ def write_atomic(
 def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
     """
     ``(path, data, expected)`` for several files, each written as :func:`write_atomic` does;
-    every file is checked first (still ``expected``, writable), so one that changed or is
-    read-only stops the whole set before any file is written. Returns whether any was written.
+    every file is checked first (its links lead to a file, still ``expected``, writable), so
+    one that changed or is read-only stops the whole set before any file is written. Returns
+    whether any was written.
     """
     for path, data, expected in writes:
-        target = Path(path)
-        _may_write(target, *_state(target, False), data, expected)
+        target = real_target(path)
+        _may_write(target, *_state(target, False, path), data, expected, path)
     written = False
     for path, data, expected in writes:
         written = write_atomic(path, data, expected=expected) or written
     return written
 
 
-def _state(target: Path, create: bool) -> tuple[bytes | None, int]:
+# --- temporary files ---------------------------------------------------------------------------
+
+#: ``.robot.urdf.inertia-kit-0123456789ab.tmp``: ours, whatever the name of the file it was for
+_TEMPORARY = re.compile(r"\..+\.inertia-kit-[0-9a-f]{12}\.tmp")
+#: A temporary file younger than this is left alone, lock or no lock: a write takes
+#: milliseconds, so a younger one is most likely being written (or was killed just now).
+MIN_STALE_SECONDS = 60.0
+#: Where a lock cannot tell (no ``flock``; another user's file), only a file this old is stale.
+UNPROVEN_STALE_SECONDS = 3600.0
+
+
+def _create_temporary(target: Path) -> tuple[int, str]:
+    """A new temporary file beside ``target``, created exclusively (0600) and locked."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        name = target.parent / f".{target.name}.inertia-kit-{os.urandom(6).hex()}.tmp"
+        try:
+            handle = os.open(name, flags, 0o600)
+        except FileExistsError:  # pragma: no cover - 48 random bits
+            continue
+        _lock(handle, blocking=True)
+        try:
+            ours = os.path.samestat(os.fstat(handle), os.stat(name))
+        except OSError:
+            ours = False
+        if ours:
+            return handle, str(name)
+        # removed before we held its lock (a cleaner misled by a skewed clock): another name
+        os.close(handle)
+    raise FileExistsError(f"no free temporary name beside {target}")  # pragma: no cover
+
+
+def remove_stale_temporaries(folder: str | Path) -> list[Path]:
+    """
+    Remove the temporary files our writes left in ``folder`` when they were killed (a SIGKILL
+    or a power cut between creating the file and renaming it): only files named as ours
+    (``.NAME.inertia-kit-<12 hex digits>.tmp``), regular files, at least
+    :data:`MIN_STALE_SECONDS` old and provably not in use (nobody holds their lock), or, where
+    the lock cannot tell, :data:`UNPROVEN_STALE_SECONDS` old. A live write's file (another run,
+    another thread) is never removed. Returns the files removed; errors only mean a file stays.
+    """
+    import stat
+    import time
+
+    removed: list[Path] = []
+    now = time.time()
+    try:
+        with os.scandir(folder) as scan:
+            candidates = [entry for entry in scan if _TEMPORARY.fullmatch(entry.name)]
+    except OSError:
+        return removed
+    for entry in candidates:
+        try:
+            status = entry.stat(follow_symlinks=False)
+        except OSError:
+            continue
+        age = now - status.st_mtime
+        if not stat.S_ISREG(status.st_mode) or age < MIN_STALE_SECONDS:
+            continue
+        if _remove_if_unlocked(entry.path, unproven=age >= UNPROVEN_STALE_SECONDS):
+            removed.append(Path(entry.path))
+    return removed
+
+
+def _remove_if_unlocked(path: str, *, unproven: bool) -> bool:
+    """Remove ``path`` while holding its lock; without a lock to ask, only when ``unproven``."""
+    try:
+        handle = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0))
+    except OSError:  # not ours to read (another user): only the age can tell
+        return unproven and _unlink(path)
+    try:
+        try:
+            _lock(handle, blocking=False)
+        except BlockingIOError:
+            return False  # a live writer holds it
+        except OSError:  # no locks on this file system
+            return unproven and _unlink(path)
+        return _unlink(path)
+    finally:
+        os.close(handle)
+
+
+def _unlink(path: str) -> bool:
+    try:
+        os.unlink(path)
+    except OSError:
+        return False
+    return True
+
+
+def _lock(handle: int, *, blocking: bool) -> None:
+    """An exclusive ``flock`` (per open file, so it also tells apart two threads of a
+    process); released when the process ends, however it ends. No-op without ``fcntl``."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: only the age tells
+        if not blocking:
+            raise OSError("no flock") from None
+        return
+    if blocking:
+        with contextlib.suppress(OSError):  # a file system without locks: the age tells
+            fcntl.flock(handle, fcntl.LOCK_EX)
+    else:
+        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+
+
+def _keep_owner(handle: int, target: Path) -> None:
+    """Give the new file the target's owner and group, where we may (root; a group we are in)."""
+    if not hasattr(os, "fchown"):  # pragma: no cover - Windows
+        return
+    status = target.stat()
+    mine = os.fstat(handle)
+    if (status.st_uid, status.st_gid) != (mine.st_uid, mine.st_gid):
+        with contextlib.suppress(OSError):
+            os.fchown(handle, status.st_uid, status.st_gid)
+        if os.fstat(handle).st_gid != status.st_gid:
+            with contextlib.suppress(OSError):
+                os.fchown(handle, -1, status.st_gid)
+
+
+def _set_mode(handle: int, name: str, mode: int) -> None:
+    if hasattr(os, "fchmod"):
+        os.fchmod(handle, mode)
+    else:  # pragma: no cover - Windows
+        os.chmod(name, mode)
+
+
+def _state(target: Path, create: bool, shown: str | Path) -> tuple[bytes | None, int]:
     """The file's bytes (``None``: to be created) and the permission bits to write with."""
     if target.is_dir():
-        raise InputError("is a folder, not a file; nothing was written", target)
+        raise InputError("is a folder, not a file; nothing was written", shown)
     if create and not target.exists():
         if not target.parent.is_dir():
-            raise InputError(f"no folder {str(target.parent)!r} to write into", target)
+            raise InputError(f"no folder {str(target.parent)!r} to write into", shown)
         umask = os.umask(0)
         os.umask(umask)
         return None, 0o666 & ~umask
     try:
         current = target.read_bytes()
     except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", target) from None
+        raise InputError(f"cannot read: {error.strerror or error}", shown) from None
     return current, target.stat().st_mode & 0o7777
 
 
 def _may_write(
-    target: Path, current: bytes | None, mode: int, data: bytes, expected: bytes | None
+    target: Path,
+    current: bytes | None,
+    mode: int,
+    data: bytes,
+    expected: bytes | None,
+    shown: str | Path,
 ) -> bool:
-    """Whether ``data`` needs writing; ``InputError`` when it must not be."""
+    """Whether ``data`` needs writing; ``InputError`` (naming ``shown``) when it must not be."""
     if expected is not None and current != expected:
         raise ChangedWhileEditing(
-            "the file changed while it was being processed; nothing was written", target
+            "the file changed while it was being processed; nothing was written", shown
         )
     if current == data:
         return False
     # the permission bits, not os.access: a read-only file says "don't touch", even to root
     if current is not None and (not mode & 0o222 or not os.access(target, os.W_OK)):
-        raise InputError("the file is read-only; nothing was written", target)
+        raise InputError("the file is read-only; nothing was written", shown)
     return True

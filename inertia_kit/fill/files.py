@@ -1,6 +1,8 @@
 """
 The files a fill may edit: read once, parsed once, and only inside the input's package (the
-folder holding the nearest ``package.xml``, else the input's folder).
+folder holding the nearest ``package.xml``, else the input's folder). Symbolic links count where
+they point: an input that is a link is filled in the file it points to, within that file's
+package; an included file that is a link into another package is not edited.
 """
 
 from __future__ import annotations
@@ -41,7 +43,14 @@ class Files:
         return cls(path.parent)
 
     def editable(self, path: str) -> bool:
+        """Whether ``path`` is inside ``root``; a symbolic link by the file it points to."""
         return Path(path).resolve().is_relative_to(self.root)
+
+    def outside(self, path: str) -> str:
+        """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target)."""
+        if Path(path).is_symlink():
+            return f"outside {self.root} (it is a symbolic link to {Path(path).resolve()})"
+        return f"outside {self.root}"
 
     def source(self, path: str) -> SourceText:
         from inertia_kit.description.edits import read_source

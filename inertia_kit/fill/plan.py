@@ -280,3 +280,45 @@ def apply(plan: FillPlan) -> bool:
     return write_all_atomic(
         [(source.path, source.encode(text), source.original) for source, text in plan.changes()]
     )
+
+
+def written_files(plan: FillPlan) -> list[str]:
+    """The files writing ``plan`` replaces, as named in it: ``-o``'s OUT, else the changed ones."""
+    if plan.input_path is not None:
+        return [plan.path] if plan.source is not None else []
+    return [source.path for source, _ in plan.changes()]
+
+
+def links_followed(plan: FillPlan) -> list[tuple[str, Path]]:
+    """``(name, real file)`` for each file of :func:`written_files` that is a symbolic link:
+    its target is written and the link kept. A link leading nowhere is left to the write,
+    which refuses it."""
+    from inertia_kit.description.edits import real_target
+
+    followed = []
+    for name in written_files(plan):
+        if Path(name).is_symlink():
+            try:
+                followed.append((name, real_target(name)))
+            except InputError:
+                continue
+    return followed
+
+
+def remove_stale(plan: FillPlan) -> list[Path]:
+    """
+    Remove the temporary files an earlier write that was killed left beside the files
+    ``plan`` reads for editing (or, for ``-o``, beside OUT): only ours, and only those no live
+    write holds (:func:`~inertia_kit.description.edits.remove_stale_temporaries`).
+    """
+    from inertia_kit.description.edits import real_target, remove_stale_temporaries
+
+    names = [plan.path] if plan.input_path is not None else []
+    names += [source.path for source in (plan.source, *plan.others) if source is not None]
+    folders: dict[Path, None] = {}
+    for name in names:
+        try:
+            folders[real_target(name).parent] = None
+        except InputError:
+            continue
+    return [removed for folder in folders for removed in remove_stale_temporaries(folder)]

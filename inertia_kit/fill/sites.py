@@ -169,7 +169,7 @@ def _insert(target: Target, files: Files) -> Placement:
     where = target.link.link.source
     if not files.editable(where.path):
         return Placement(
-            problem=f"its <link> is written in {location(where)}, outside {files.root}"
+            problem=f"its <link> is written in {location(where)}, {files.outside(where.path)}"
         )
     offset = files.offset(where, "link")
     if offset is None:
@@ -211,7 +211,9 @@ def _replace_element(target: Target, where: Source, tag: str, files: Files) -> P
     from inertia_kit.description.xmlspan import element_span, line_indent
 
     if not files.editable(where.path):
-        return Placement(problem=f"<{tag}> is written in {location(where)}, outside {files.root}")
+        return Placement(
+            problem=f"<{tag}> is written in {location(where)}, {files.outside(where.path)}"
+        )
     offset = files.offset(where, tag)
     if offset is None:
         return Placement(problem=f"<{tag}> was not found at {location(where)}")
@@ -271,7 +273,7 @@ def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placemen
         return Placement(problem="its macro was not found")
     macro_name = macro.get("name", "?")
     if not files.editable(call.path):
-        return Placement(problem=f"the call at {location(call)} is outside {files.root}")
+        return Placement(problem=f"the call at {location(call)} is {files.outside(call.path)}")
     rpy = inertial.origin.rpy if isinstance(inertial.origin.rpy, tuple) else (0.0, 0.0, 0.0)
     new = written_values(target.properties, rpy)
     declared = link.declared

@@ -6,11 +6,20 @@ path); its triangles are read again, through trimesh, only when the surface is n
 DAE, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into one triangle
 soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the caller scales
 the integrals analytically. trimesh is imported only for a file that needs it.
+
+trimesh and pycollada log what they cannot do for a renderer, textures first ("unable to load
+bumpmap", with a full traceback, when Pillow is absent or an image file is missing): a texture
+is irrelevant to mass. While a file is read, :func:`library_logs_quiet` keeps their records from
+the terminal (and from a library user's handlers), passing each on to this module's logger at
+DEBUG level, one line without traceback; a file that cannot be read still raises ``MeshError``.
 """
 
 from __future__ import annotations
 
+import contextlib
 import math
+import threading
+from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -22,6 +31,8 @@ from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.stl import read_stl
 
 if TYPE_CHECKING:
+    import logging
+
     import trimesh
 
 # file suffix -> (trimesh file type, name for messages); STL is read without trimesh
@@ -116,8 +127,9 @@ def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
     except ImportError as error:  # pragma: no cover - trimesh is a dependency
         raise MeshError(path, "unreadable", f"reading {name} needs trimesh: {error}") from None
     try:
-        scene = trimesh.load_scene(str(path), file_type=file_type, process=False)
-        parts, units = _scene_parts(scene, trimesh.Trimesh)
+        with library_logs_quiet(path):
+            scene = trimesh.load_scene(str(path), file_type=file_type, process=False)
+            parts, units = _scene_parts(scene, trimesh.Trimesh)
     except MeshError:
         raise
     except Exception as error:
@@ -197,3 +209,68 @@ def _unit_factor(path: Path, unit: str) -> float:
             path, "unreadable", f"unit `{unit}` is {factor} m; re-export the file in metres"
         )
     return factor
+
+
+# --- the logs of trimesh and pycollada ---------------------------------------------------------
+
+#: The loggers whose records a read keeps from the terminal, with every logger below them.
+LIBRARY_LOGGERS = ("trimesh", "collada")
+
+
+class _QuietWhileReading:
+    """
+    A logger-level filter on each library logger: while the current thread is inside
+    :func:`library_logs_quiet`, a record is passed on to this module's logger (DEBUG, one line)
+    and dropped; otherwise, and in every other thread, it passes untouched. (Not a subclass of
+    ``logging.Filter``: logging asks only for ``filter``, and importing logging costs start-up.)
+    """
+
+    def __init__(self) -> None:
+        self.reading = threading.local()
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        path = getattr(self.reading, "path", None)
+        if path is None:
+            return True
+        message = record.getMessage().strip()
+        if record.exc_info and record.exc_info[1] is not None:
+            error = record.exc_info[1]
+            message = f"{message} ({type(error).__name__}: {str(error).strip()[:200]})"
+        import logging
+
+        logging.getLogger(__name__).debug("%s (reading %s): %s", record.name, path, message)
+        return False
+
+
+_QUIET = _QuietWhileReading()
+
+
+@contextlib.contextmanager
+def library_logs_quiet(path: str | Path) -> Iterator[None]:
+    """
+    While reading ``path`` in this thread, keep the records of trimesh's and pycollada's loggers
+    from every handler (the terminal's last resort, a library user's own), passing each on to
+    this module's logger at DEBUG level without its traceback.
+
+    No global logging setting changes: a filter is attached to those loggers (once; it lets
+    every record through outside this context and in other threads), and their levels,
+    handlers and propagation stay as the user set them.
+    """
+    _attach()
+    reading = _QUIET.reading
+    outer = getattr(reading, "path", None)
+    reading.path = str(path)
+    try:
+        yield
+    finally:
+        reading.path = outer
+
+
+def _attach() -> None:
+    """The filter on every logger of :data:`LIBRARY_LOGGERS` and below, those made since too
+    (a few hundred dictionary items: nothing beside reading a file)."""
+    import logging  # here: trimesh has imported it already
+
+    for name, logger in list(logging.Logger.manager.loggerDict.items()):
+        if isinstance(logger, logging.Logger) and name.split(".", 1)[0] in LIBRARY_LOGGERS:
+            logger.addFilter(_QUIET)  # once: addFilter skips a filter already there

@@ -1,16 +1,29 @@
-"""Text edits and atomic writes: bytes outside the edits never change."""
+"""
+Text edits and atomic writes: bytes outside the edits never change; a symbolic link is written
+through (the file it points to is replaced, the link kept); temporary files a killed write left
+behind are removed by the next write, and only those.
+"""
 
 import codecs
+import errno
 import os
 import stat
+import time
+from pathlib import Path
 
 import pytest
 
+from inertia_kit.description import edits
 from inertia_kit.description.edits import (
+    MIN_STALE_SECONDS,
+    UNPROVEN_STALE_SECONDS,
     ChangedWhileEditing,
     Edit,
     apply_edits,
     read_source,
+    real_target,
+    remove_stale_temporaries,
+    write_all_atomic,
     write_atomic,
 )
 from inertia_kit.errors import InputError
@@ -106,3 +119,178 @@ def test_create_writes_a_new_file_and_refuses_a_missing_folder(tmp_path):
         )  # without create, a missing file is an error
     with pytest.raises(InputError, match="folder"):
         write_atomic(tmp_path, b"data", create=True)
+
+
+# --- symbolic links: the file they point to is written, the link kept ----------------------------
+
+
+def linked(tmp_path):
+    """``ws/robot.urdf -> mid.urdf -> ../src/robot.urdf`` (a chain of relative links)."""
+    (tmp_path / "src").mkdir()
+    (tmp_path / "ws").mkdir()
+    real = tmp_path / "src" / "robot.urdf"
+    real.write_bytes(b"old")
+    os.chmod(real, 0o640)
+    (tmp_path / "ws" / "mid.urdf").symlink_to("../src/robot.urdf")
+    (tmp_path / "ws" / "robot.urdf").symlink_to("mid.urdf")
+    return tmp_path / "ws" / "robot.urdf", real
+
+
+def test_write_through_a_chain_of_links_keeps_the_links(tmp_path, monkeypatch):
+    link, real = linked(tmp_path)
+    renames = []
+    replace = os.replace
+    monkeypatch.setattr(os, "replace", lambda a, b: renames.append((a, b)) or replace(a, b))
+
+    assert real_target(link) == real.resolve()
+    assert write_atomic(link, b"new", expected=b"old")
+
+    assert real.read_bytes() == b"new" and stat.S_IMODE(real.stat().st_mode) == 0o640
+    assert os.readlink(link) == "mid.urdf" and os.readlink(link.parent / "mid.urdf") == (
+        "../src/robot.urdf"
+    )
+    # the temporary file was made beside the real file, so the rename stays in one folder
+    [(temporary, target)] = renames
+    assert Path(temporary).parent == real.resolve().parent and Path(target) == real.resolve()
+    assert sorted(p.name for p in (tmp_path / "src").iterdir()) == ["robot.urdf"]
+
+
+@pytest.mark.parametrize("kind", ["dangling", "loop"])
+def test_a_link_that_leads_nowhere_is_refused(tmp_path, kind):
+    link = tmp_path / "robot.urdf"
+    if kind == "dangling":
+        link.symlink_to("gone/robot.urdf")
+        message = r"symbolic link to gone/robot.urdf \(.*\), which does not exist"
+    else:
+        link.symlink_to("other.urdf")
+        (tmp_path / "other.urdf").symlink_to("robot.urdf")
+        message = "symbolic link that cannot be followed"
+    for write in (
+        lambda: write_atomic(link, b"new"),
+        lambda: write_atomic(link, b"new", create=True),  # -o OUT: not created at the far end
+        lambda: read_source(link),
+    ):
+        with pytest.raises(InputError, match=message):
+            write()
+    assert link.is_symlink() and not link.exists()
+    assert {p.name for p in tmp_path.iterdir()} <= {"robot.urdf", "other.urdf"}
+
+
+def test_write_all_checks_every_link_before_writing(tmp_path):
+    good = tmp_path / "good.urdf"
+    good.write_bytes(b"old")
+    dangling = tmp_path / "dangling.urdf"
+    dangling.symlink_to("missing.urdf")
+    with pytest.raises(InputError, match="does not exist"):
+        write_all_atomic([(good, b"new", b"old"), (dangling, b"new", b"old")])
+    assert good.read_bytes() == b"old"
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="needs root")
+def test_owner_and_group_are_kept_where_the_system_lets_us(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_bytes(b"old")
+    os.chown(path, 1234, 5678)
+    assert write_atomic(path, b"new")
+    assert (path.stat().st_uid, path.stat().st_gid) == (1234, 5678)
+
+
+# --- temporary files left by a write that was killed ---------------------------------------------
+
+HOUR = 3600.0
+
+
+def temporary(folder, name="robot.urdf", *, age=0.0, tag="0123456789ab"):
+    path = folder / f".{name}.inertia-kit-{tag}.tmp"
+    path.write_bytes(b"half a file")
+    when = time.time() - age
+    os.utime(path, (when, when))
+    return path
+
+
+def test_stale_temporaries_of_ours_are_removed_and_nothing_else(tmp_path):
+    stale = temporary(tmp_path, age=MIN_STALE_SECONDS + 5, tag="000000000001")
+    other_name = temporary(tmp_path, "arm.xacro", age=2 * HOUR, tag="000000000002")
+    young = temporary(tmp_path, age=5, tag="000000000003")  # perhaps being written right now
+    foreign = [  # not ours: another program's temporary files, and look-alikes
+        tmp_path / ".robot.urdf.k3j4h5g6.tmp",
+        tmp_path / ".robot.urdf.inertia-kit-XYZ.tmp",
+        tmp_path / "robot.urdf.inertia-kit-000000000004.tmp",
+        tmp_path / ".robot.urdf.inertia-kit-000000000005.tmp.bak",
+    ]
+    for path in foreign:
+        path.write_bytes(b"theirs")
+        os.utime(path, (0, 0))
+    folder = tmp_path / ".robot.urdf.inertia-kit-000000000006.tmp"
+    folder.mkdir()
+    os.utime(folder, (0, 0))
+    target = tmp_path / "precious.urdf"
+    target.write_bytes(b"precious")
+    link = tmp_path / ".robot.urdf.inertia-kit-000000000007.tmp"
+    link.symlink_to(target)
+    os.utime(link, (0, 0), follow_symlinks=False)
+
+    assert sorted(remove_stale_temporaries(tmp_path)) == sorted([stale, other_name])
+
+    assert not stale.exists() and not other_name.exists()
+    assert young.exists() and folder.is_dir() and link.is_symlink()
+    assert all(p.read_bytes() == b"theirs" for p in foreign)
+    assert target.read_bytes() == b"precious"
+
+
+def test_a_temporary_file_a_live_writer_holds_is_kept_however_old(tmp_path):
+    """A writer holds a lock on its temporary file until it has its name (a concurrent run in
+    another process, or another thread of this one: the lock is per open file)."""
+    import fcntl
+
+    live = temporary(tmp_path, age=10 * HOUR)
+    with open(live, "rb") as held:
+        fcntl.flock(held.fileno(), fcntl.LOCK_EX)
+        assert remove_stale_temporaries(tmp_path) == []
+        assert live.exists()
+    assert remove_stale_temporaries(tmp_path) == [live]  # its writer is gone
+
+
+def test_where_no_lock_can_tell_only_the_age_decides(tmp_path, monkeypatch):
+    """A file system without locks: a temporary file is stale only after an hour."""
+
+    def no_locks(handle, *, blocking):
+        raise OSError(errno.ENOLCK, "No locks available")
+
+    monkeypatch.setattr(edits, "_lock", no_locks)
+    recent = temporary(tmp_path, age=UNPROVEN_STALE_SECONDS - 60, tag="000000000001")
+    old = temporary(tmp_path, age=UNPROVEN_STALE_SECONDS + 60, tag="000000000002")
+    assert remove_stale_temporaries(tmp_path) == [old]
+    assert recent.exists()
+
+
+def test_a_write_removes_stale_temporaries_beside_its_real_target(tmp_path):
+    link, real = linked(tmp_path)
+    stale = temporary(real.parent, age=2 * HOUR)
+    assert write_atomic(link, b"new", expected=b"old")
+    assert not stale.exists()
+    assert sorted(p.name for p in real.parent.iterdir()) == ["robot.urdf"]
+
+
+def test_a_failing_write_is_an_input_error_and_leaves_the_file(tmp_path, monkeypatch):
+    """A full disk (fsync fails) or a folder we may not write in: the file as it was, no
+    temporary file left, an InputError that says what happened."""
+    path = tmp_path / "r.urdf"
+    path.write_bytes(b"old")
+
+    def full(descriptor):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    with monkeypatch.context() as patch:
+        patch.setattr(os, "fsync", full)
+        with pytest.raises(InputError, match="cannot write: No space left on device"):
+            write_atomic(path, b"new", expected=b"old")
+    assert path.read_bytes() == b"old" and [p.name for p in tmp_path.iterdir()] == ["r.urdf"]
+
+    def denied(target):
+        raise PermissionError(errno.EACCES, "Permission denied")
+
+    monkeypatch.setattr(edits, "_create_temporary", denied)
+    with pytest.raises(InputError, match=f"no temporary file in {tmp_path} \\(Permission denied"):
+        write_atomic(path, b"new", expected=b"old")
+    assert path.read_bytes() == b"old"

@@ -1,6 +1,7 @@
 """
 Mesh files written from triangles ((n, 3, 3) arrays, wound counter-clockwise seen from outside),
-byte by byte, without the code under test or trimesh's exporters: binary and ASCII STL, OBJ.
+byte by byte, without the code under test or trimesh's exporters: binary and ASCII STL, OBJ, and
+COLLADA with a textured material.
 """
 
 from __future__ import annotations
@@ -64,6 +65,96 @@ def obj(triangles) -> str:
     return "".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices.tolist()) + "".join(
         f"f {a} {b} {c}\n" for a, b, c in faces.tolist()
     )
+
+
+def textured_collada(triangles, image: str = "skin.png") -> str:
+    """
+    COLLADA 1.4.1 whose one material is textured with the file ``image`` (an ``<image>`` whose
+    ``<init_from>`` names it) as its diffuse and emission colours and, in an ``<extra>``, as a
+    bump map, the way Blender and 3ds Max export one. trimesh reads the triangles and tries to
+    load each texture for its renderer; the mass needs none of them.
+    """
+    flat = np.asarray(triangles, dtype=np.float64).reshape(-1, 3)
+    positions = " ".join(repr(v) for v in flat.ravel().tolist())
+    indices = " ".join(str(i) for i in range(len(flat)))
+    texture = '<texture texture="skin-sampler" texcoord="UVMap"/>'
+    return f"""<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1" name="meter"/><up_axis>Z_UP</up_axis></asset>
+  <library_images><image id="skin"><init_from>{image}</init_from></image></library_images>
+  <library_effects>
+    <effect id="skin-effect">
+      <profile_COMMON>
+        <newparam sid="skin-surface">
+          <surface type="2D"><init_from>skin</init_from></surface>
+        </newparam>
+        <newparam sid="skin-sampler"><sampler2D><source>skin-surface</source></sampler2D></newparam>
+        <technique sid="common">
+          <phong><emission>{texture}</emission><diffuse>{texture}</diffuse></phong>
+          <extra><technique profile="FCOLLADA"><bump>{texture}</bump></technique></extra>
+        </technique>
+      </profile_COMMON>
+    </effect>
+  </library_effects>
+  <library_materials>
+    <material id="skin-material"><instance_effect url="#skin-effect"/></material>
+  </library_materials>
+  <library_geometries>
+    <geometry id="part"><mesh>
+      <source id="part-positions">
+        <float_array id="part-array" count="{flat.size}">{positions}</float_array>
+        <technique_common><accessor source="#part-array" count="{len(flat)}" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common>
+      </source>
+      <vertices id="part-vertices"><input semantic="POSITION" source="#part-positions"/></vertices>
+      <triangles material="skin" count="{len(flat) // 3}">
+        <input semantic="VERTEX" source="#part-vertices" offset="0"/><p>{indices}</p>
+      </triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="part-node">
+    <instance_geometry url="#part"><bind_material><technique_common>
+      <instance_material symbol="skin" target="#skin-material"/>
+    </technique_common></bind_material></instance_geometry>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+"""
+
+
+def png_1x1() -> bytes:
+    """A valid PNG of one green pixel, for a texture that exists."""
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
+
+    header = struct.pack(">IIBBBBB", 1, 1, 8, 2, 0, 0, 0)
+    pixels = zlib.compress(b"\x00\x00\xff\x00")
+    return (
+        b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
+    )
+
+
+def write_textured_collada(path: Path, triangles, *, image: bool) -> Path:
+    """:func:`textured_collada` at ``path``, its texture ``skin.png`` beside it when ``image``."""
+    if image:
+        write(path.parent / "skin.png", png_1x1())
+    return write(path, textured_collada(triangles))
+
+
+def without_pillow(folder: Path) -> Path:
+    """
+    ``folder``, holding a package ``PIL`` whose import fails as it does when Pillow is not
+    installed: first on PYTHONPATH, it hides Pillow from a subprocess (trimesh then logs
+    "No module named 'PIL'" for every texture it tries to load).
+    """
+    refusal = "raise ImportError(\"No module named 'PIL'\", name='PIL')\n"
+    write(folder / "PIL" / "__init__.py", refusal)
+    return folder
 
 
 def write_binary_stl(path: Path, triangles, header: bytes = HEADER) -> Path:
