@@ -13,6 +13,13 @@ replaced for the duration of the call:
 - ``xacro.substitution_args._eval_find``: ``$(find pkg)`` goes to a
   :class:`~inertia_kit.description.packages.PackageResolver` instead of ``ament_index_python``.
 
+- ``xacro.safe_eval``: expressions run with ``**``, ``*`` and ``<<`` checked
+  (:func:`~inertia_kit.description.xacro_limits.guarded_code`).
+
+The expansion is bounded (:mod:`.xacro_limits`): it runs in a forked child process under a time
+and a memory limit (:mod:`.xacro_sandbox`), which hands back the expanded tree as text with the
+stamps; elements read and copied are counted against the element limit as they are made.
+
 xacro keeps its state in module globals, so expansions are serialised by a lock; everything is
 restored afterwards, also on error. What xacro prints to stderr from the expanding thread is
 collected as :attr:`Expanded.warnings`. Errors become :class:`~inertia_kit.errors.InputError`
@@ -22,11 +29,13 @@ naming the file and line at fault (:mod:`.xacro_errors`).
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import io
 import os
 import re
 import sys
 import threading
+import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -36,9 +45,18 @@ from xml.dom import Node
 from inertia_kit.description import safexml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound, input_error
+from inertia_kit.description.xacro_limits import (
+    LimitExceeded,
+    Meter,
+    XacroLimits,
+    guarded_code,
+    raise_hint,
+)
 from inertia_kit.description.xacro_source_map import (
+    _COPY_STAMP,
     add_call_site,
     parse_stamped,
+    serialise,
     stamp_of,
     to_lxml,
 )
@@ -110,6 +128,7 @@ def expand(
     *,
     args: Mapping[str, str] | None = None,
     resolver: PackageResolver | None = None,
+    limits: XacroLimits | None = None,
 ) -> Expanded:
     """
     Expand a xacro file with the real ``xacro`` package, recording where each element came from.
@@ -123,6 +142,9 @@ def expand(
       defaults fill in the rest.
     resolver : PackageResolver, optional
       Resolves ``$(find pkg)``; by default one that discovers packages near ``path``.
+    limits : XacroLimits, optional
+      Time, memory and element limits; by default :meth:`XacroLimits.resolve` (the defaults
+      and ``INERTIA_KIT_XACRO_LIMITS``).
 
     Returns
     -------
@@ -133,21 +155,130 @@ def expand(
     InputError
       For anything xacro refuses (undefined property or argument, bad expression, missing
       include, unknown macro or package), an unreadable, oversized or malformed file, or one
-      declaring entities; naming the file (and line) at fault.
+      declaring entities; an expansion past a limit; naming the file (and line) at fault.
     """
-    import xacro
+    import xacro  # noqa: F401 - imported before any fork, once for every child
 
+    from inertia_kit.description import xacro_sandbox
     from inertia_kit.description.packages import PackageResolver
 
     shown = str(path)
     if resolver is None:
         resolver = PackageResolver(start=path)
-    session = _Session(shown, resolver)
-    with _LOCK, _patched(xacro, session):
+    if limits is None:
+        limits = XacroLimits.resolve()
+    start = time.monotonic()
+
+    def work() -> _Result:
+        return _expand(shown, dict(args or {}), resolver, limits, start)
+
+    def in_child() -> _Result:
+        # the packages the child looked up, for the parent's resolver (package:// next)
+        return dataclasses.replace(work(), resolver_state=_state_of(resolver))
+
+    result = None
+    try:
+        if (limits.timeout or limits.memory) and xacro_sandbox.can_fork():
+            _preload()
+            with contextlib.suppress(xacro_sandbox.CannotFork):
+                result = xacro_sandbox.run(
+                    in_child,
+                    timeout=limits.timeout,
+                    memory_mb=limits.memory,
+                    start=start,
+                    lock=_LOCK,
+                )
+        if result is None:  # no fork here, or none possible now: the in-process limits only
+            with _LOCK:
+                result = work()
+    except xacro_sandbox.TimedOut:
+        raise InputError(
+            f"xacro: the expansion was stopped after {limits.timeout:g} s, "
+            f"{limits.describe('timeout')}: an expression or macro in it runs too long; "
+            + raise_hint("timeout"),
+            shown,
+        ) from None
+    except (MemoryError, xacro_sandbox.ChildDied) as error:
+        memory = _out_of_memory(limits)
+        if isinstance(error, xacro_sandbox.ChildDied):
+            memory = LimitExceeded(f"{memory} ({error.reason()})", memory.hint)
+        raise InputError(f"xacro: {memory.told()}", shown) from None
+    if result.resolver_state:
+        vars(resolver).update(result.resolver_state)
+    return result.expanded()
+
+
+def _state_of(resolver: PackageResolver) -> dict[str, Any] | None:
+    """The resolver's attributes (its caches), if they can be handed to the parent process."""
+    import pickle
+
+    state = dict(vars(resolver))
+    try:
+        pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:  # an attribute that does not pickle: the parent looks up again
+        return None
+    return state
+
+
+def _out_of_memory(limits: XacroLimits) -> LimitExceeded:
+    """What a ``MemoryError`` in the expansion means."""
+    if not limits.memory:
+        return LimitExceeded("the expansion ran out of memory")
+    return LimitExceeded(
+        f"the expansion needed more memory than {limits.describe('memory')}",
+        raise_hint("memory"),
+    )
+
+
+def _preload() -> None:
+    """What an expansion imports, imported once here rather than in every forked child."""
+    import ast  # noqa: F401
+    import resource  # noqa: F401
+    import signal  # noqa: F401
+    import xml.dom.expatbuilder
+    import xml.sax.saxutils  # noqa: F401
+
+    from xacro import substitution_args  # noqa: F401
+
+
+@dataclass(frozen=True)
+class _Result:
+    """What an expansion hands back (from a child process): plain, picklable values."""
+
+    path: str
+    files: tuple[str, ...]
+    fragment: bool
+    warnings: tuple[str, ...]
+    text: str | None = None  # the expanded robot, serialised
+    sources: list[Source] | None = None  # the stamp of each element of ``text``
+    maybe_fragment: bool = False  # only macros, properties, args and includes at the top
+    resolver_state: dict[str, Any] | None = None  # the child's package resolver
+
+    def expanded(self) -> Expanded:
+        from lxml import etree
+
+        if self.text is None or self.sources is None:
+            return Expanded(self.path, etree.Element("robot"), self.files, True, self.warnings)
+        root, sources = to_lxml(self.text, self.sources, Source(self.path))
+        if self.maybe_fragment and not any(child.tag in ("link", "joint") for child in root):
+            return Expanded(self.path, etree.Element("robot"), self.files, True, self.warnings)
+        return Expanded(self.path, root, self.files, False, self.warnings, sources)
+
+
+def _expand(
+    shown: str, args: dict[str, str], resolver: PackageResolver, limits: XacroLimits, start: float
+) -> _Result:
+    """The expansion itself (in the child process, or in-process under ``_LOCK``)."""
+    import xacro
+
+    session = _Session(shown, resolver, Meter(limits, start))
+    with _patched(xacro, session):
         try:
             doc = session.parse_file(shown)
         except OSError as error:
             raise InputError(f"cannot read: {error.strerror or error}", shown) from None
+        except LimitExceeded as error:
+            raise InputError(f"xacro: {error.told()}", shown) from None
         top = {
             child.tagName
             for child in doc.documentElement.childNodes
@@ -156,20 +287,17 @@ def expand(
         if top <= FRAGMENT_TAGS - {"xacro:include"}:
             # Nothing here can produce a link or joint; expanding could only fail on context
             # that the including file provides.
-            return session.result(None, fragment=True)
+            return session.result(None)
         try:
             xacro.init_stacks(shown)
-            xacro.process_doc(doc, mappings=dict(args or {}), verbosity=1)
+            xacro.process_doc(doc, mappings=args, verbosity=1)
         except InputError:
             raise
         except Exception as error:  # xacro raises anything from NameError to RuntimeError
-            raise input_error(error, session.path, session.display) from None
-        expanded = session.result(doc.documentElement, fragment=False)
-        if top <= FRAGMENT_TAGS and not any(
-            child.tag in ("link", "joint") for child in expanded.root
-        ):
-            return session.result(None, fragment=True)
-        return expanded
+            raise input_error(
+                error, session.path, session.display, _out_of_memory(limits)
+            ) from None
+        return session.result(doc.documentElement, maybe_fragment=top <= FRAGMENT_TAGS)
 
 
 # --- one expansion --------------------------------------------------------------------------
@@ -178,9 +306,11 @@ def expand(
 class _Session:
     """The state of one expansion: files read, captured output, and the hooks' bodies."""
 
-    def __init__(self, path: str, resolver: PackageResolver):
+    def __init__(self, path: str, resolver: PackageResolver, meter: Meter | None = None):
         self.path = path
         self.resolver = resolver
+        self.meter = meter if meter is not None else Meter(XacroLimits(0, 0, 0))
+        self.builtins = self.meter.builtins()
         self.files: list[str] = []
         self.stderr = io.StringIO()
         self.includes_start = 0
@@ -195,7 +325,7 @@ class _Session:
         data = _read_checked(os.path.join(xacro.root_dir, filename), shown)
         if shown not in self.files:
             self.files.append(shown)
-        return parse_stamped(data, shown)
+        return parse_stamped(data, shown, self.meter.add)
 
     def display(self, filename: str) -> str:
         """How to show an included file: relative to the working folder if the input is."""
@@ -225,7 +355,7 @@ class _Session:
             inp = inp.encode("utf-8")
         if isinstance(inp, bytes):
             _check_bytes(inp, shown)
-            return parse_stamped(inp, shown)
+            return parse_stamped(inp, shown, self.meter.add)
         return inp
 
     def handle_macro_call(self, original):
@@ -245,6 +375,13 @@ class _Session:
             return handled
 
         return hook
+
+    def safe_eval(self, expr, globals, locals=None):
+        """Replaces ``xacro.safe_eval``: the same, with ``**``, ``*`` and ``<<`` checked."""
+        code = guarded_code(expr.strip())
+        self.meter.check_time()
+        globals.update(__builtins__=self.builtins)  # xacro's, plus the checked operators
+        return eval(code, globals, locals)
 
     def find(self, package: str) -> str:
         """Replaces ``substitution_args._eval_find``."""
@@ -280,9 +417,9 @@ class _Session:
             first if not rest else f"{first} ({'; '.join(rest)})" for first, *rest in entries
         )
 
-    def result(self, root, *, fragment: bool) -> Expanded:
+    def result(self, root, *, maybe_fragment: bool = False) -> _Result:
+        """What the expansion gives: the robot ``root`` (``None``: a fragment) serialised."""
         import xacro
-        from lxml import etree
 
         files = list(self.files)
         for name in xacro.all_includes[self.includes_start :]:
@@ -290,11 +427,11 @@ class _Session:
             if shown not in files and os.path.isfile(name):
                 files.append(shown)
         if root is None:
-            return Expanded(
-                self.path, etree.Element("robot"), tuple(files), fragment, self.warnings()
-            )
-        lxml_root, sources = to_lxml(root, Source(self.path))
-        return Expanded(self.path, lxml_root, tuple(files), fragment, self.warnings(), sources)
+            return _Result(self.path, tuple(files), True, self.warnings())
+        text, sources = serialise(root, Source(self.path))
+        return _Result(
+            self.path, tuple(files), False, self.warnings(), text, sources, maybe_fragment
+        )
 
 
 @contextlib.contextmanager
@@ -309,6 +446,8 @@ def _patched(xacro, session: _Session, stamping: bool = True) -> Iterator[None]:
         patches += [
             (xacro, "parse", session.parse),
             (xacro, "handle_macro_call", session.handle_macro_call(xacro.handle_macro_call)),
+            (xacro, "safe_eval", session.safe_eval),
+            (_COPY_STAMP, "on_copy", session.meter.add),
         ]
     saved = [(owner, name, getattr(owner, name)) for owner, name, _ in patches]
     saved_find = substitution_args._eval_dict.get("find")
