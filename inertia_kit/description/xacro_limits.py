@@ -244,23 +244,27 @@ def guarded_code(expr: str) -> CodeType:
 def _shown(value: Any) -> str:
     """An operand as a message shows it: short, whatever its size."""
     if isinstance(value, int) and not isinstance(value, bool):
-        bits = value.bit_length()
-        if bits > 64:
-            return f"an integer of {_digits(bits)} digits"
+        if value.bit_length() > 100:  # 31 digits or more
+            return f"an integer of {_digits(math.log10(abs(value)))}"
         return str(value)
     text = repr(value)
     return text if len(text) <= 24 else f"{text[:20]}...{text[-1]} (length {len(value)})"
 
 
-def _digits(bits: float) -> str:
-    return f"{math.floor(bits * math.log10(2)) + 1:.0f}"
+def _digits(log10: float) -> str:
+    """``10000000001 digits``: of the integer whose decimal logarithm is ``log10``."""
+    if log10 < 1e15:
+        return f"{math.floor(log10) + 1} digits"
+    if math.isfinite(log10):
+        return f"about {log10:.3g} digits"
+    return "more digits than a float can count"
 
 
-def _too_many_bits(expression: str, bits: float) -> LimitExceeded:
+def _too_many_bits(expression: str, log10: float) -> LimitExceeded:
     return LimitExceeded(
-        f"{expression} would be an integer of {_digits(bits)} digits ({bits:.3g} bits): refused, "
-        f"as any integer over {MAX_INT_BITS} bits (it takes minutes to compute and no robot "
-        "description needs one)"
+        f"{expression} would be an integer of {_digits(log10)}, more than the "
+        f"{MAX_INT_BITS} bits ({_digits(MAX_INT_BITS * math.log10(2))}) a xacro expression may "
+        "make: computing it takes minutes or more, and no robot description needs such a number"
     )
 
 
@@ -272,8 +276,8 @@ def _pow(base: Any, exponent: Any) -> Any:
         and abs(base) > 1
         and (exponent > MAX_INT_BITS or exponent * math.log2(abs(base)) > MAX_INT_BITS)
     ):
-        bits = exponent * math.log2(abs(base)) if exponent <= 1e300 else math.inf
-        raise _too_many_bits(f"{_shown(base)} ** {_shown(exponent)}", bits)
+        log10 = exponent * math.log10(abs(base)) if exponent < 1e300 else math.inf
+        raise _too_many_bits(f"{_shown(base)} ** {_shown(exponent)}", log10)
     return base**exponent
 
 
@@ -284,15 +288,16 @@ def _lshift(value: Any, shift: Any) -> Any:
         and value != 0
         and shift > MAX_INT_BITS - value.bit_length()
     ):
-        raise _too_many_bits(f"{_shown(value)} << {_shown(shift)}", value.bit_length() + shift)
+        log2 = math.log2(abs(value)) + shift if shift < 1e300 else math.inf
+        raise _too_many_bits(f"{_shown(value)} << {_shown(shift)}", log2 * math.log10(2))
     return value << shift
 
 
 def _mul(left: Any, right: Any, *, memory: int, limits: XacroLimits) -> Any:
     if isinstance(left, int) and isinstance(right, int):
-        bits = left.bit_length() + right.bit_length()
-        if bits > MAX_INT_BITS:
-            raise _too_many_bits(f"{_shown(left)} * {_shown(right)}", bits)
+        if left.bit_length() + right.bit_length() > MAX_INT_BITS:
+            log10 = math.log10(abs(left)) + math.log10(abs(right))
+            raise _too_many_bits(f"{_shown(left)} * {_shown(right)}", log10)
     elif memory:
         sequence, count = (left, right) if isinstance(right, int) else (right, left)
         if isinstance(sequence, str | bytes | list | tuple) and isinstance(count, int):
