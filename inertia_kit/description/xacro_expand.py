@@ -45,13 +45,8 @@ from xml.dom import Node
 from inertia_kit.description import safexml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound, input_error
-from inertia_kit.description.xacro_limits import (
-    LimitExceeded,
-    Meter,
-    XacroLimits,
-    guarded_code,
-    raise_hint,
-)
+from inertia_kit.description.xacro_limits import LimitExceeded, Meter, XacroLimits, guarded_code
+from inertia_kit.description.xacro_sandbox import Expansion
 from inertia_kit.description.xacro_source_map import (
     _COPY_STAMP,
     add_call_site,
@@ -169,17 +164,17 @@ def expand(
         limits = XacroLimits.resolve()
     start = time.monotonic()
 
-    def work() -> _Result:
+    def work() -> Expansion:
         return _expand(shown, dict(args or {}), resolver, limits, start)
 
-    def in_child() -> _Result:
+    def in_child() -> Expansion:
         # the packages the child looked up, for the parent's resolver (package:// next)
-        return dataclasses.replace(work(), resolver_state=_state_of(resolver))
+        return dataclasses.replace(work(), resolver_state=xacro_sandbox.state_of(resolver))
 
     result = None
     try:
         if (limits.timeout or limits.memory) and xacro_sandbox.can_fork():
-            _preload()
+            xacro_sandbox.preload()
             with contextlib.suppress(xacro_sandbox.CannotFork):
                 result = xacro_sandbox.run(
                     in_child,
@@ -192,82 +187,32 @@ def expand(
             with _LOCK:
                 result = work()
     except xacro_sandbox.TimedOut:
-        raise InputError(
-            f"xacro: the expansion was stopped after {limits.timeout:g} s, "
-            f"{limits.describe('timeout')}: an expression or macro in it runs too long; "
-            + raise_hint("timeout"),
-            shown,
-        ) from None
+        raise InputError(f"xacro: {limits.timed_out().told()}", shown) from None
     except (MemoryError, xacro_sandbox.ChildDied) as error:
-        memory = _out_of_memory(limits)
+        memory = limits.out_of_memory()
         if isinstance(error, xacro_sandbox.ChildDied):
             memory = LimitExceeded(f"{memory} ({error.reason()})", memory.hint)
         raise InputError(f"xacro: {memory.told()}", shown) from None
     if result.resolver_state:
         vars(resolver).update(result.resolver_state)
-    return result.expanded()
+    return _expanded(result)
 
 
-def _state_of(resolver: PackageResolver) -> dict[str, Any] | None:
-    """The resolver's attributes (its caches), if they can be handed to the parent process."""
-    import pickle
+def _expanded(result: Expansion) -> Expanded:
+    """The expansion handed over (from the child) as the lxml tree and its source map."""
+    from lxml import etree
 
-    state = dict(vars(resolver))
-    try:
-        pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
-    except Exception:  # an attribute that does not pickle: the parent looks up again
-        return None
-    return state
-
-
-def _out_of_memory(limits: XacroLimits) -> LimitExceeded:
-    """What a ``MemoryError`` in the expansion means."""
-    if not limits.memory:
-        return LimitExceeded("the expansion ran out of memory")
-    return LimitExceeded(
-        f"the expansion needed more memory than {limits.describe('memory')}",
-        raise_hint("memory"),
-    )
-
-
-def _preload() -> None:
-    """What an expansion imports, imported once here rather than in every forked child."""
-    import ast  # noqa: F401
-    import resource  # noqa: F401
-    import signal  # noqa: F401
-    import xml.dom.expatbuilder
-    import xml.sax.saxutils  # noqa: F401
-
-    from xacro import substitution_args  # noqa: F401
-
-
-@dataclass(frozen=True)
-class _Result:
-    """What an expansion hands back (from a child process): plain, picklable values."""
-
-    path: str
-    files: tuple[str, ...]
-    fragment: bool
-    warnings: tuple[str, ...]
-    text: str | None = None  # the expanded robot, serialised
-    sources: list[Source] | None = None  # the stamp of each element of ``text``
-    maybe_fragment: bool = False  # only macros, properties, args and includes at the top
-    resolver_state: dict[str, Any] | None = None  # the child's package resolver
-
-    def expanded(self) -> Expanded:
-        from lxml import etree
-
-        if self.text is None or self.sources is None:
-            return Expanded(self.path, etree.Element("robot"), self.files, True, self.warnings)
-        root, sources = to_lxml(self.text, self.sources, Source(self.path))
-        if self.maybe_fragment and not any(child.tag in ("link", "joint") for child in root):
-            return Expanded(self.path, etree.Element("robot"), self.files, True, self.warnings)
-        return Expanded(self.path, root, self.files, False, self.warnings, sources)
+    if result.text is None or result.sources is None:
+        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+    root, sources = to_lxml(result.text, result.sources, Source(result.path))
+    if result.maybe_fragment and not any(child.tag in ("link", "joint") for child in root):
+        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+    return Expanded(result.path, root, result.files, False, result.warnings, sources)
 
 
 def _expand(
     shown: str, args: dict[str, str], resolver: PackageResolver, limits: XacroLimits, start: float
-) -> _Result:
+) -> Expansion:
     """The expansion itself (in the child process, or in-process under ``_LOCK``)."""
     import xacro
 
@@ -295,7 +240,7 @@ def _expand(
             raise
         except Exception as error:  # xacro raises anything from NameError to RuntimeError
             raise input_error(
-                error, session.path, session.display, _out_of_memory(limits)
+                error, session.path, session.display, limits.out_of_memory()
             ) from None
         return session.result(doc.documentElement, maybe_fragment=top <= FRAGMENT_TAGS)
 
@@ -417,7 +362,7 @@ class _Session:
             first if not rest else f"{first} ({'; '.join(rest)})" for first, *rest in entries
         )
 
-    def result(self, root, *, maybe_fragment: bool = False) -> _Result:
+    def result(self, root, *, maybe_fragment: bool = False) -> Expansion:
         """What the expansion gives: the robot ``root`` (``None``: a fragment) serialised."""
         import xacro
 
@@ -427,9 +372,9 @@ class _Session:
             if shown not in files and os.path.isfile(name):
                 files.append(shown)
         if root is None:
-            return _Result(self.path, tuple(files), True, self.warnings())
+            return Expansion(self.path, tuple(files), True, self.warnings())
         text, sources = serialise(root, Source(self.path))
-        return _Result(
+        return Expansion(
             self.path, tuple(files), False, self.warnings(), text, sources, maybe_fragment
         )
 

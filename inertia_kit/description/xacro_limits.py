@@ -98,6 +98,23 @@ class XacroLimits:
         kind = {"timeout": "time", "memory": "memory", "elements": "element"}[name]
         return f"the xacro {kind} limit ({value:g} {_UNITS[name]})"
 
+    def timed_out(self) -> LimitExceeded:
+        """The expansion was stopped from outside at the time limit."""
+        return LimitExceeded(
+            f"the expansion was stopped after {self.timeout:g} s, {self.describe('timeout')}: "
+            "an expression or macro in it runs too long",
+            raise_hint("timeout"),
+        )
+
+    def out_of_memory(self) -> LimitExceeded:
+        """What a ``MemoryError`` in the expansion means."""
+        if not self.memory:
+            return LimitExceeded("the expansion ran out of memory")
+        return LimitExceeded(
+            f"the expansion needed more memory than {self.describe('memory')}",
+            raise_hint("memory"),
+        )
+
 
 def check_limit(name: str, value: Any) -> float | int:
     """``value`` as the limit ``name`` takes it; ``ValueError`` saying what is expected."""

@@ -27,8 +27,10 @@ import time
 import warnings
 from collections.abc import Callable
 from contextlib import AbstractContextManager
+from dataclasses import dataclass
 from typing import Any
 
+from inertia_kit.description.model import Source
 from inertia_kit.errors import InputError
 
 #: Seconds the parent waits past the time limit before it kills the child: the child's own
@@ -36,6 +38,42 @@ from inertia_kit.errors import InputError
 GRACE = 1.0
 
 _HEADER = struct.Struct("<Q")
+
+
+@dataclass(frozen=True)
+class Expansion:
+    """What an expansion hands over (from the child): plain, picklable values."""
+
+    path: str
+    files: tuple[str, ...]
+    fragment: bool
+    warnings: tuple[str, ...]
+    text: str | None = None  # the expanded robot, serialised (None: a fragment)
+    sources: list[Source] | None = None  # the stamp of each element of ``text``
+    maybe_fragment: bool = False  # only macros, properties, args and includes at the top
+    resolver_state: dict[str, Any] | None = None  # the child's package resolver's attributes
+
+
+def state_of(resolver: Any) -> dict[str, Any] | None:
+    """``resolver``'s attributes (its caches), if they can be handed to the parent process."""
+    state = dict(vars(resolver))
+    try:
+        pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+    except Exception:  # an attribute that does not pickle: the parent looks up again
+        return None
+    return state
+
+
+def preload() -> None:
+    """What an expansion imports, imported once here rather than in every forked child."""
+    import ast  # noqa: F401
+    import resource  # noqa: F401
+    import select  # noqa: F401
+    import signal  # noqa: F401
+    import xml.dom.expatbuilder
+    import xml.sax.saxutils  # noqa: F401
+
+    from xacro import substitution_args  # noqa: F401
 
 
 class CannotFork(Exception):
