@@ -69,6 +69,10 @@ class XacroLimits:
     memory: int = 1024
     elements: int = 50_000
 
+    def __post_init__(self) -> None:
+        for field in dataclasses.fields(self):
+            object.__setattr__(self, field.name, check_limit(field.name, getattr(self, field.name)))
+
     @classmethod
     def resolve(
         cls,

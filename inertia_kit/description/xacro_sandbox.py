@@ -3,14 +3,15 @@ One xacro expansion in a forked child process under resource limits, its result 
 pipe: the only robust bound on work that runs in C (``10**10**10`` is one call to CPython's
 integer power, which no signal, no trace hook and no in-process timer interrupts).
 
-The child inherits everything loaded (forking a process that already imported xacro and lxml
-costs a few milliseconds; README: "Bounded xacro expansion"). It sets ``RLIMIT_AS`` to its
-current address space plus the memory limit (an allocation past it raises ``MemoryError``
-where it happens) and ``RLIMIT_CPU`` to the time limit plus a grace (a backstop should the
-parent die), ignores ``SIGINT`` (the parent, which Ctrl-C also reaches, kills it), runs the work
-and writes a pickled outcome to the pipe. The parent reads it until the deadline, then kills
-the child. Where ``os.fork`` is missing, or both the time and memory limits are off, the work
-runs in-process (only the limits checked inside the expansion then apply).
+The child inherits everything loaded (:func:`preload` imports what an expansion needs first),
+so a fork costs about 8-10 ms of CPU per expansion (README: "Bounded xacro expansion"). It
+sets ``RLIMIT_AS`` to its current address space plus the memory limit (an allocation past it
+raises ``MemoryError`` where it happens) and ``RLIMIT_CPU`` to the time limit plus a grace (a
+backstop should the parent die), ignores ``SIGINT`` (the parent, which Ctrl-C also reaches,
+kills it), runs the work and writes a pickled outcome to the pipe. The parent reads it until
+the deadline, then kills the child. Where ``os.fork`` is missing or fails (:class:`CannotFork`),
+or both the time and memory limits are off, the caller runs the work in-process (only the
+limits checked inside the expansion then apply).
 
 The memory limit needs ``/proc/self/statm`` (Linux) to know the address space the child starts
 with; elsewhere it is not set.

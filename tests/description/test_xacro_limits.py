@@ -64,6 +64,12 @@ def test_bad_limits_are_refused_saying_what_is_expected(text, message):
     assert str(caught.value).startswith(f"{ENV}={text!r}: ")
 
 
+def test_limits_made_in_python_are_checked():
+    assert XacroLimits(timeout=2, memory=512.0) == XacroLimits(2.0, 512, 50_000)
+    with pytest.raises(ValueError, match="`elements` takes a number of elements ≥ 0"):
+        XacroLimits(elements=-1)
+
+
 def test_limit_values():
     assert parse_limits("timeout=2.5,memory=512 ,, elements=1e3") == {
         "timeout": 2.5,
