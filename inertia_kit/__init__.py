@@ -28,6 +28,7 @@ _EXPORTS = {
     "union": "inertia_kit.physics.unions",
     "UnionResult": "inertia_kit.physics.unions",
     "load": "inertia_kit.description.loader",
+    "XacroLimits": "inertia_kit.description.xacro_limits",
     "InputError": "inertia_kit.errors",
     "MeshError": "inertia_kit.errors",
 }
@@ -48,6 +49,7 @@ __all__ = [  # noqa: RUF022  (grouped as _EXPORTS, not sorted)
     "union",
     "UnionResult",
     "load",
+    "XacroLimits",
     "InputError",
     "MeshError",
     "__version__",
@@ -55,6 +57,7 @@ __all__ = [  # noqa: RUF022  (grouped as _EXPORTS, not sorted)
 
 if TYPE_CHECKING:
     from inertia_kit.description.loader import load
+    from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import InputError, MeshError
     from inertia_kit.physics.mass import MassProperties, Validity
     from inertia_kit.physics.meshes import MeshMassProperties, MeshSolid, mesh, mesh_solid

@@ -12,7 +12,9 @@ from inertia_kit.cli.options import (
     UsageError,
     package_path_option,
     parse_xacro_args,
+    parse_xacro_limits,
     xacro_arg_option,
+    xacro_limit_option,
 )
 from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
@@ -76,6 +78,7 @@ from inertia_kit.version import __version__
 )
 @package_path_option
 @xacro_arg_option
+@xacro_limit_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -127,8 +130,10 @@ def fill(
     output: str | None = None,
     package_paths: tuple[str, ...] = (),
     xacro_args: tuple[str, ...] = (),
+    xacro_limits: tuple[str, ...] = (),
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
+    from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.output import write_output
     from inertia_kit.fill.plan import apply, links_followed, plan_fill, remove_stale
@@ -141,6 +146,7 @@ def fill(
         if output is not None and len(paths) != 1:
             raise UsageError(f"-o takes exactly one PATH, got {len(paths)}")
         arguments = parse_xacro_args(xacro_args)
+        limits = parse_xacro_limits(xacro_limits)
         try:
             density = density_option(density, material, total_mass)
         except ValueError as error:
@@ -164,8 +170,10 @@ def fill(
     }
     for path in paths:
         try:
-            per_file = per_link(finder.for_file(path).links, masses)
-            plans.append(plan_fill(path, output=output, **options, **per_file))
+            found = finder.for_file(path)
+            per_file = per_link(found.links, masses)
+            bounds = XacroLimits.resolve(found.xacro, limits)
+            plans.append(plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file))
         except ConfigError as error:
             click.echo(f"error: {error}", err=True)
             return 2

@@ -12,7 +12,9 @@ from inertia_kit.cli.options import (
     UsageError,
     package_path_option,
     parse_xacro_args,
+    parse_xacro_limits,
     xacro_arg_option,
+    xacro_limit_option,
 )
 from inertia_kit.version import __version__
 
@@ -89,6 +91,7 @@ def _colour() -> bool | None:
 )
 @package_path_option
 @xacro_arg_option
+@xacro_limit_option
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -123,6 +126,7 @@ def lint(
     config_path: str | None = None,
     package_paths: tuple[str, ...] = (),
     xacro_args: tuple[str, ...] = (),
+    xacro_limits: tuple[str, ...] = (),
     explain: str | None = None,
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
@@ -157,6 +161,7 @@ def lint(
             fail_on=None if fail_on is None else Severity.parse(fail_on),
             xacro_args=parse_xacro_args(xacro_args),
             package_paths=package_paths,
+            xacro_limits=parse_xacro_limits(xacro_limits),
         )
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)

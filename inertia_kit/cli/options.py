@@ -1,6 +1,6 @@
 """
 What the commands share: usage errors (exit 2), ``-h``, and the options that say how to load a
-robot (``--package-path``, ``--xacro-arg``).
+robot (``--package-path``, ``--xacro-arg``, ``--xacro-limit``).
 """
 
 from __future__ import annotations
@@ -37,6 +37,30 @@ xacro_arg_option = click.option(
     metavar="NAME:=VALUE",
     help="A xacro argument (repeatable).",
 )
+
+
+xacro_limit_option = click.option(
+    "--xacro-limit",
+    "xacro_limits",
+    multiple=True,
+    metavar="NAME=VALUE",
+    help="A limit of each xacro expansion: timeout=SECONDS (default 30), memory=MB (1024) "
+    "or elements=COUNT (50000); 0: no limit; comma-separated or repeatable. Over "
+    "INERTIA_KIT_XACRO_LIMITS and [tool.inertia-kit.xacro].",
+)
+
+
+def parse_xacro_limits(values: tuple[str, ...]) -> dict[str, float]:
+    """``--xacro-limit timeout=60,memory=2048`` as ``{"timeout": 60.0, "memory": 2048}``."""
+    from inertia_kit.description.xacro_limits import parse_limits
+
+    limits: dict[str, float] = {}
+    for value in values:
+        try:
+            limits.update(parse_limits(value))
+        except ValueError as error:
+            raise UsageError(f"--xacro-limit: {error}") from None
+    return limits
 
 
 def parse_xacro_args(values: tuple[str, ...]) -> dict[str, str]:

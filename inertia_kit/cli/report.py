@@ -8,7 +8,9 @@ from inertia_kit.cli.options import (
     UsageError,
     package_path_option,
     parse_xacro_args,
+    parse_xacro_limits,
     xacro_arg_option,
+    xacro_limit_option,
 )
 
 
@@ -37,6 +39,7 @@ from inertia_kit.cli.options import (
 )
 @package_path_option
 @xacro_arg_option
+@xacro_limit_option
 def report_command(
     path: str,
     output_format: str,
@@ -44,13 +47,16 @@ def report_command(
     engines: tuple[str, ...],
     package_paths: tuple[str, ...],
     xacro_args: tuple[str, ...],
+    xacro_limits: tuple[str, ...],
 ) -> None:
     """A table of the robot's links: parent joint, declared mass, COM, principal moments,
     geometry and the source line to edit; and the robot's total mass. With --lumped, the
     bodies each engine simulates."""
     from inertia_kit.description.loader import load
+    from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.engines.vocabulary import ENGINES, parse_engines
-    from inertia_kit.errors import InputError
+    from inertia_kit.errors import ConfigError, InputError
+    from inertia_kit.lint.config_files import ConfigFinder
     from inertia_kit.report.robot import render, render_lumped
 
     if engines and not lumped:
@@ -61,8 +67,16 @@ def report_command(
         raise UsageError(f"--engine: {error}") from None
 
     try:
-        robot = load(path, xacro_args=parse_xacro_args(xacro_args), package_paths=package_paths)
-    except InputError as error:
+        # the xacro limits of the nearest configuration, as inertia-lint takes them
+        configured = ConfigFinder().for_file(path).xacro
+        limits = XacroLimits.resolve(configured, parse_xacro_limits(xacro_limits))
+        robot = load(
+            path,
+            xacro_args=parse_xacro_args(xacro_args),
+            package_paths=package_paths,
+            xacro_limits=limits,
+        )
+    except (InputError, ConfigError) as error:
         raise UsageError(str(error)) from None
     if robot.fragment:
         click.echo(

@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
@@ -19,6 +20,9 @@ from inertia_kit.description import model
 from inertia_kit.description.builder import Builder
 from inertia_kit.description.safexml import read_bounded
 from inertia_kit.description.xmlparse import check_text, element_locator, parse_xml
+
+if TYPE_CHECKING:
+    from inertia_kit.description.xacro_limits import XacroLimits
 
 # Anything xacro would change: without it, a file that declares the xacro namespace (as xacro's
 # own output does) is plain URDF, and xacro would give it back unchanged
@@ -40,6 +44,7 @@ def load(
     *,
     xacro_args: Mapping[str, str] | None = None,
     package_paths: Iterable[str | Path] = (),
+    xacro_limits: XacroLimits | None = None,
 ) -> model.Robot:
     """
     Load a URDF or xacro robot description.
@@ -53,6 +58,9 @@ def load(
     package_paths : iterable of paths
       Folders searched first for ``$(find pkg)`` and ``package://pkg`` (a package, or a folder
       of packages).
+    xacro_limits : XacroLimits, optional
+      Time, memory and element limits of a xacro expansion; by default
+      ``XacroLimits.resolve()``: the defaults and ``INERTIA_KIT_XACRO_LIMITS``.
 
     Returns
     -------
@@ -65,8 +73,9 @@ def load(
     InputError
       For anything that is not a readable robot description: a missing, unreadable, empty,
       binary or oversized file, malformed XML, entity declarations, a root other than
-      ``<robot>``, or anything xacro refuses. Missing meshes and non-numeric values are not
-      errors: they are recorded on the model (``Mesh.problem``, ``Robot.invalid``).
+      ``<robot>``, anything xacro refuses, or a xacro expansion past a limit. Missing
+      meshes and non-numeric values are not errors: they are recorded on the model
+      (``Mesh.problem``, ``Robot.invalid``).
     """
     from inertia_kit.description.packages import PackageResolver
     from inertia_kit.description.xacro_expand import expand, is_xacro
@@ -78,7 +87,7 @@ def load(
 
     xacro = is_xacro(data)
     if needs_expansion(data):
-        expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver)
+        expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
         if expanded.fragment:
             return _fragment(path, expanded.files)
         return Builder(path, expanded.source_of, resolver, tuple(expanded.files)).robot(

@@ -13,6 +13,7 @@ from typing import Any
 from xml.dom import Node
 
 from inertia_kit.description.model import Source
+from inertia_kit.description.xacro_limits import LimitExceeded
 from inertia_kit.description.xacro_source_map import stamp_of
 from inertia_kit.errors import InputError
 
@@ -33,10 +34,17 @@ class PackageNotFound(LookupError):
         )
 
 
-def input_error(error: BaseException, path: str, display: Callable[[str], str]) -> InputError:
+def input_error(
+    error: BaseException,
+    path: str,
+    display: Callable[[str], str],
+    out_of_memory: LimitExceeded | None = None,
+) -> InputError:
     """
     An :class:`InputError` for what xacro raised while expanding ``path``, at the innermost
-    element it was on; ``display`` shows an included file's name as the user should see it.
+    element it was on; ``display`` shows an included file's name as the user should see it;
+    ``out_of_memory`` says what a ``MemoryError`` means (the memory limit). A limit's hint
+    (how to raise it) comes last.
     """
     import xacro
 
@@ -47,11 +55,18 @@ def input_error(error: BaseException, path: str, display: Callable[[str], str]) 
         stack = [f for f in (xacro.filestack or []) if f]
         source = Source(display(stack[-1]) if len(stack) > 1 else path)
     message = str(not_found) if not_found is not None else _message(error)
+    exceeded = _cause(error, LimitExceeded)
+    if _cause(error, MemoryError) is not None:
+        exceeded = out_of_memory or LimitExceeded("out of memory")
+        # the expression xacro was evaluating, if any: "when evaluating expression '...'"
+        message = str(exceeded) if message == "MemoryError" else f"{exceeded} ({message})"
     if node is not None and any(call is node for call, _, _ in macro_calls):
         message = f"{message} (calling macro `{node.tagName.removeprefix('xacro:')}`)"
     chain = _chain([(name, site) for call, name, site in macro_calls if call is not node])
     if chain:
         message = f"{message} (in macro {chain})"
+    if exceeded is not None and exceeded.hint:
+        message = f"{message}; {exceeded.hint}"
     return InputError(f"xacro: {message}", source.path, source.line, source.column)
 
 

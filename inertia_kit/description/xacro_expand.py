@@ -15,6 +15,13 @@ replaced for the duration of the call:
   ``xacro.eval_text`` is wrapped to see the path that follows it (``$(find pkg)/urdf/arm.xacro``),
   so that, as for a mesh, the candidate folder holding that path wins.
 
+- ``xacro.safe_eval``: expressions run with ``**``, ``*`` and ``<<`` checked
+  (:func:`~inertia_kit.description.xacro_limits.guarded_code`).
+
+The expansion is bounded (:mod:`.xacro_limits`): it runs in a forked child process under a time
+and a memory limit (:mod:`.xacro_sandbox`), which hands back the expanded tree as text with the
+stamps; elements read and copied are counted against the element limit as they are made.
+
 xacro keeps its state in module globals, so expansions are serialised by a lock; everything is
 restored afterwards, also on error. What xacro prints to stderr from the expanding thread is
 collected as :attr:`Expanded.warnings`. Errors become :class:`~inertia_kit.errors.InputError`
@@ -24,11 +31,13 @@ naming the file and line at fault (:mod:`.xacro_errors`).
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import io
 import os
 import re
 import sys
 import threading
+import time
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,9 +47,13 @@ from xml.dom import Node
 from inertia_kit.description import safexml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound, input_error
+from inertia_kit.description.xacro_limits import LimitExceeded, Meter, XacroLimits, guarded_code
+from inertia_kit.description.xacro_sandbox import Expansion
 from inertia_kit.description.xacro_source_map import (
+    _COPY_STAMP,
     add_call_site,
     parse_stamped,
+    serialise,
     stamp_of,
     to_lxml,
 )
@@ -112,6 +125,7 @@ def expand(
     *,
     args: Mapping[str, str] | None = None,
     resolver: PackageResolver | None = None,
+    limits: XacroLimits | None = None,
 ) -> Expanded:
     """
     Expand a xacro file with the real ``xacro`` package, recording where each element came from.
@@ -125,6 +139,9 @@ def expand(
       defaults fill in the rest.
     resolver : PackageResolver, optional
       Resolves ``$(find pkg)``; by default one that discovers packages near ``path``.
+    limits : XacroLimits, optional
+      Time, memory and element limits; by default :meth:`XacroLimits.resolve` (the defaults
+      and ``INERTIA_KIT_XACRO_LIMITS``).
 
     Returns
     -------
@@ -135,21 +152,80 @@ def expand(
     InputError
       For anything xacro refuses (undefined property or argument, bad expression, missing
       include, unknown macro or package), an unreadable, oversized or malformed file, or one
-      declaring entities; naming the file (and line) at fault.
+      declaring entities; an expansion past a limit; naming the file (and line) at fault.
     """
-    import xacro
+    import xacro  # noqa: F401 - imported before any fork, once for every child
 
+    from inertia_kit.description import xacro_sandbox
     from inertia_kit.description.packages import PackageResolver
 
     shown = str(path)
     if resolver is None:
         resolver = PackageResolver(start=path)
-    session = _Session(shown, resolver)
-    with _LOCK, _patched(xacro, session):
+    if limits is None:
+        limits = XacroLimits.resolve()
+    start = time.monotonic()
+
+    def work() -> Expansion:
+        return _expand(shown, dict(args or {}), resolver, limits, start)
+
+    def in_child() -> Expansion:
+        # the packages the child looked up, for the parent's resolver (package:// next)
+        return dataclasses.replace(work(), resolver_state=xacro_sandbox.state_of(resolver))
+
+    result = None
+    try:
+        if (limits.timeout or limits.memory) and xacro_sandbox.can_fork():
+            xacro_sandbox.preload()
+            with contextlib.suppress(xacro_sandbox.CannotFork):
+                result = xacro_sandbox.run(
+                    in_child,
+                    timeout=limits.timeout,
+                    memory_mb=limits.memory,
+                    start=start,
+                    lock=_LOCK,
+                )
+        if result is None:  # no fork here, or none possible now: the in-process limits only
+            with _LOCK:
+                result = work()
+    except xacro_sandbox.TimedOut:
+        raise InputError(f"xacro: {limits.timed_out().told()}", shown) from None
+    except (MemoryError, xacro_sandbox.ChildDied) as error:
+        memory = limits.out_of_memory()
+        if isinstance(error, xacro_sandbox.ChildDied):
+            memory = LimitExceeded(f"{memory} ({error.reason()})", memory.hint)
+        raise InputError(f"xacro: {memory.told()}", shown) from None
+    if result.resolver_state:
+        vars(resolver).update(result.resolver_state)
+    return _expanded(result)
+
+
+def _expanded(result: Expansion) -> Expanded:
+    """The expansion handed over (from the child) as the lxml tree and its source map."""
+    from lxml import etree
+
+    if result.text is None or result.sources is None:
+        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+    root, sources = to_lxml(result.text, result.sources, Source(result.path))
+    if result.maybe_fragment and not any(child.tag in ("link", "joint") for child in root):
+        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+    return Expanded(result.path, root, result.files, False, result.warnings, sources)
+
+
+def _expand(
+    shown: str, args: dict[str, str], resolver: PackageResolver, limits: XacroLimits, start: float
+) -> Expansion:
+    """The expansion itself (in the child process, or in-process under ``_LOCK``)."""
+    import xacro
+
+    session = _Session(shown, resolver, Meter(limits, start))
+    with _patched(xacro, session):
         try:
             doc = session.parse_file(shown)
         except OSError as error:
             raise InputError(f"cannot read: {error.strerror or error}", shown) from None
+        except LimitExceeded as error:
+            raise InputError(f"xacro: {error.told()}", shown) from None
         top = {
             child.tagName
             for child in doc.documentElement.childNodes
@@ -158,20 +234,17 @@ def expand(
         if top <= FRAGMENT_TAGS - {"xacro:include"}:
             # Nothing here can produce a link or joint; expanding could only fail on context
             # that the including file provides.
-            return session.result(None, fragment=True)
+            return session.result(None)
         try:
             xacro.init_stacks(shown)
-            xacro.process_doc(doc, mappings=dict(args or {}), verbosity=1)
+            xacro.process_doc(doc, mappings=args, verbosity=1)
         except InputError:
             raise
         except Exception as error:  # xacro raises anything from NameError to RuntimeError
-            raise input_error(error, session.path, session.display) from None
-        expanded = session.result(doc.documentElement, fragment=False)
-        if top <= FRAGMENT_TAGS and not any(
-            child.tag in ("link", "joint") for child in expanded.root
-        ):
-            return session.result(None, fragment=True)
-        return expanded
+            raise input_error(
+                error, session.path, session.display, limits.out_of_memory()
+            ) from None
+        return session.result(doc.documentElement, maybe_fragment=top <= FRAGMENT_TAGS)
 
 
 # --- one expansion --------------------------------------------------------------------------
@@ -180,9 +253,11 @@ def expand(
 class _Session:
     """The state of one expansion: files read, captured output, and the hooks' bodies."""
 
-    def __init__(self, path: str, resolver: PackageResolver):
+    def __init__(self, path: str, resolver: PackageResolver, meter: Meter | None = None):
         self.path = path
         self.resolver = resolver
+        self.meter = meter if meter is not None else Meter(XacroLimits(0, 0, 0))
+        self.builtins = self.meter.builtins()
         self.files: list[str] = []
         self.stderr = io.StringIO()
         self.includes_start = 0
@@ -198,7 +273,7 @@ class _Session:
         data = _read_checked(os.path.join(xacro.root_dir, filename), shown)
         if shown not in self.files:
             self.files.append(shown)
-        return parse_stamped(data, shown)
+        return parse_stamped(data, shown, self.meter.add)
 
     def display(self, filename: str) -> str:
         """How to show an included file: relative to the working folder if the input is."""
@@ -228,7 +303,7 @@ class _Session:
             inp = inp.encode("utf-8")
         if isinstance(inp, bytes):
             _check_bytes(inp, shown)
-            return parse_stamped(inp, shown)
+            return parse_stamped(inp, shown, self.meter.add)
         return inp
 
     def handle_macro_call(self, original):
@@ -258,6 +333,13 @@ class _Session:
                 self.texts.pop()
 
         return hook
+
+    def safe_eval(self, expr, globals, locals=None):
+        """Replaces ``xacro.safe_eval``: the same, with ``**``, ``*`` and ``<<`` checked."""
+        code = guarded_code(expr.strip())
+        self.meter.check_time()
+        globals.update(__builtins__=self.builtins)  # xacro's, plus the checked operators
+        return eval(code, globals, locals)
 
     def find(self, package: str) -> str:
         """Replaces ``substitution_args._eval_find``."""
@@ -295,9 +377,9 @@ class _Session:
             first if not rest else f"{first} ({'; '.join(rest)})" for first, *rest in entries
         )
 
-    def result(self, root, *, fragment: bool) -> Expanded:
+    def result(self, root, *, maybe_fragment: bool = False) -> Expansion:
+        """What the expansion gives: the robot ``root`` (``None``: a fragment) serialised."""
         import xacro
-        from lxml import etree
 
         files = list(self.files)
         for name in xacro.all_includes[self.includes_start :]:
@@ -305,11 +387,11 @@ class _Session:
             if shown not in files and os.path.isfile(name):
                 files.append(shown)
         if root is None:
-            return Expanded(
-                self.path, etree.Element("robot"), tuple(files), fragment, self.warnings()
-            )
-        lxml_root, sources = to_lxml(root, Source(self.path))
-        return Expanded(self.path, lxml_root, tuple(files), fragment, self.warnings(), sources)
+            return Expansion(self.path, tuple(files), True, self.warnings())
+        text, sources = serialise(root, Source(self.path))
+        return Expansion(
+            self.path, tuple(files), False, self.warnings(), text, sources, maybe_fragment
+        )
 
 
 @contextlib.contextmanager
@@ -325,6 +407,8 @@ def _patched(xacro, session: _Session, stamping: bool = True) -> Iterator[None]:
         patches += [
             (xacro, "parse", session.parse),
             (xacro, "handle_macro_call", session.handle_macro_call(xacro.handle_macro_call)),
+            (xacro, "safe_eval", session.safe_eval),
+            (_COPY_STAMP, "on_copy", session.meter.add),
         ]
     saved = [(owner, name, getattr(owner, name)) for owner, name, _ in patches]
     saved_find = substitution_args._eval_dict.get("find")

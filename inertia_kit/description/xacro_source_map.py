@@ -5,14 +5,14 @@ was written at, and the stamps carried through macro expansion onto the URDF tre
 :func:`parse_stamped` parses a file with expat into minidom and stamps each element (DOM user
 data under :data:`STAMP`, which minidom copies onto clones, so a macro body's stamps survive
 its expansion); :func:`add_call_site` records a macro call on the elements it produced; and
-:func:`to_lxml` turns the expanded minidom tree into the lxml tree the loader reads, with a map
-from each lxml element to its :class:`~inertia_kit.description.model.Source`.
+:func:`serialise` and :func:`to_lxml` turn the expanded minidom tree into the lxml tree the loader
+reads, with a map from each lxml element to its :class:`~inertia_kit.description.model.Source`.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
 
@@ -28,7 +28,12 @@ STAMP = "inertia_kit.source"
 
 
 class _CopyStampOnClone:
-    """A DOM ``UserDataHandler``: a clone of a stamped node (a macro body) keeps its stamp."""
+    """
+    A DOM ``UserDataHandler``: a clone of a stamped node (a macro body) keeps its stamp.
+    ``on_copy``, when set (by an expansion, for its element limit), is called for each copy.
+    """
+
+    on_copy: Callable[[], None] | None = None
 
     def handle(self, operation, key, data, src, dst) -> None:
         if dst is not None and operation in (
@@ -36,6 +41,8 @@ class _CopyStampOnClone:
             UserDataHandler.NODE_IMPORTED,
         ):
             dst.setUserData(key, data, self)
+            if self.on_copy is not None:
+                self.on_copy()
 
 
 _COPY_STAMP = _CopyStampOnClone()
@@ -55,8 +62,11 @@ def add_call_site(node, site: Source) -> None:
             element.setUserData(STAMP, stamp, _COPY_STAMP)
 
 
-def parse_stamped(data: bytes, shown: str):
-    """Parse with expat into minidom, every element stamped with ``Source(shown, line, col)``."""
+def parse_stamped(data: bytes, shown: str, on_element: Callable[[], None] | None = None):
+    """
+    Parse with expat into minidom, every element stamped with ``Source(shown, line, col)``;
+    ``on_element`` (an expansion's element limit) is called for each element as it is read.
+    """
     from xml.dom import expatbuilder
     from xml.parsers import expat
 
@@ -74,6 +84,8 @@ def parse_stamped(data: bytes, shown: str):
             parser = self._parser
             source = Source(shown, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1)
             self.curNode.setUserData(STAMP, source, _COPY_STAMP)
+            if on_element is not None:
+                on_element()
 
     try:
         return Builder().parseString(data)
@@ -93,21 +105,32 @@ def parse_stamped(data: bytes, shown: str):
         ) from None
 
 
-def to_lxml(root, fallback: Source) -> tuple[etree._Element, dict[Any, Source]]:
+def serialise(root, fallback: Source) -> tuple[str, list[Source]]:
     """
-    Serialise the expanded minidom tree (attributes in document order, not xacro's sorted
-    order) and parse it with lxml; pair elements in document order to carry the stamps over.
+    The expanded minidom tree as XML text (attributes in document order, not xacro's sorted
+    order) and the stamp of each element, in document order; :func:`to_lxml` reads them back.
+    Plain values, so that an expansion run in a child process can hand them over.
+    """
+    out: list[str] = []
+    sources: list[Source] = []
+    _write(root, out, sources, fallback)
+    return "".join(out), sources
+
+
+def to_lxml(
+    text: str, sources: list[Source], fallback: Source
+) -> tuple[etree._Element, dict[Any, Source]]:
+    """
+    Parse :func:`serialise`'s text with lxml; pair elements in document order with
+    ``sources`` to carry the stamps over.
     """
     from lxml import etree
 
     from inertia_kit.description.xmlparse import fromstring
 
-    out: list[str] = []
-    sources: list[Source] = []
-    _write(root, out, sources, fallback)
     try:
         # xacro (minidom) knows no namespaces either: an undeclared `drake:` prefix passes it
-        lxml_root = fromstring("".join(out).encode("utf-8"), huge_tree=True)
+        lxml_root = fromstring(text.encode("utf-8"), huge_tree=True)
     except etree.XMLSyntaxError as error:
         raise InputError(f"xacro produced XML lxml cannot read: {error}", fallback.path) from None
     elements = list(lxml_root.iter(etree.Element))

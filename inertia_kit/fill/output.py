@@ -18,6 +18,7 @@ from inertia_kit.errors import InputError
 if TYPE_CHECKING:
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Robot
+    from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.fill.plan import FillPlan
 
 
@@ -26,6 +27,7 @@ def output_source(
     output: Path,
     package_paths: Sequence[str | Path],
     xacro_args: Mapping[str, str] | None,
+    xacro_limits: XacroLimits | None = None,
 ) -> tuple[SourceText, Robot]:
     """
     What filling ``path`` into the new file ``output`` fills: the input's bytes and robot for a
@@ -42,11 +44,11 @@ def output_source(
     if output.exists() and path.exists() and output.resolve() == path.resolve():
         raise InputError("-o names the input file itself; give another output file", path)
     if needs_expansion(read_bounded(path)):
-        text, robot = _expanded(path, output, package_paths, xacro_args)
+        text, robot = _expanded(path, output, package_paths, xacro_args, xacro_limits)
         return SourceText(str(output), text.encode("utf-8"), text, "utf-8", b""), robot
     # a URDF file: its own bytes, edited (offsets into them), written elsewhere
     source = read_source(path)
-    robot = load(path, package_paths=package_paths)
+    robot = load(path, package_paths=package_paths, xacro_limits=xacro_limits)
     if robot.fragment:
         raise InputError("a xacro fragment without links: no robot to write", path)
     return source, robot
@@ -71,6 +73,7 @@ def _expanded(
     output: Path,
     package_paths: Sequence[str | Path],
     xacro_args: Mapping[str, str] | None,
+    xacro_limits: XacroLimits | None = None,
 ) -> tuple[str, Robot]:
     """The expanded URDF of the xacro file ``path`` as text (indented two spaces, with a
     comment naming its source), and its model with the lines of that text; meshes and
@@ -86,7 +89,7 @@ def _expanded(
     from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
 
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
-    expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver)
+    expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
     if expanded.fragment:
         raise InputError("a xacro fragment without links: no robot to write", path)
     root = copy.deepcopy(expanded.root)

@@ -27,6 +27,7 @@ from inertia_kit.physics.mass import MassProperties
 if TYPE_CHECKING:
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Robot
+    from inertia_kit.description.xacro_limits import XacroLimits
 
 
 @dataclass(frozen=True)
@@ -158,6 +159,7 @@ def plan_fill(
     densities: Mapping[str, float] | None = None,
     total_mass: float | None = None,
     output: str | Path | None = None,
+    xacro_limits: XacroLimits | None = None,
 ) -> FillPlan:
     """
     Plan the ``<inertial>`` edits for one file (nothing is written).
@@ -180,6 +182,8 @@ def plan_fill(
       ``inertia-fill -o``: plan filling ``path`` into this new file instead
       (:func:`~inertia_kit.fill.output.output_source`; ``write_output`` writes it). The plan's
       ``path`` is ``output``, its ``input_path`` is ``path``.
+    xacro_limits : XacroLimits, optional
+      The limits of a xacro expansion (:func:`~inertia_kit.description.loader.load`).
 
     Raises
     ------
@@ -196,10 +200,12 @@ def plan_fill(
     choice = MassChoice.checked(density, masses, densities, total_mass)
     path = Path(path)
     if output is not None:
-        source, robot = output_source(path, Path(output), package_paths, xacro_args)
+        source, robot = output_source(path, Path(output), package_paths, xacro_args, xacro_limits)
         return plan_robot(str(output), source, robot, choice, fix=fix, input_path=str(path))
     source = read_source(path)
-    robot = load(path, xacro_args=xacro_args, package_paths=package_paths)
+    robot = load(
+        path, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
+    )
     return plan_robot(str(path), source, robot, choice, fix=fix)
 
 

@@ -25,6 +25,10 @@ and the key (the command exits 2).
     min_moment = 1e-7                 # the rule's own options, checked against its OPTIONS
     [tool.inertia-kit.links.gripper]  # for inertia-fill: a density or a mass per link
     density = 2700.0
+    [tool.inertia-kit.xacro]          # limits of a xacro expansion (0: none); the
+    timeout = 30                      # environment's INERTIA_KIT_XACRO_LIMITS and
+    memory = 1024                     # --xacro-limit override them
+    elements = 50000
 """
 
 from __future__ import annotations
@@ -54,6 +58,7 @@ KEYS = (
     "engines",
     "rules",
     "links",
+    "xacro",
 )
 LINK_KEYS = ("density", "mass")
 
@@ -109,6 +114,7 @@ class Config:
     severities: dict[str, Severity] = field(default_factory=dict)  # code -> severity
     links: dict[str, LinkSettings] = field(default_factory=dict)
     engines: tuple[str, ...] = ()  # engines whose verdict rules run (IN07x)
+    xacro: dict[str, float] = field(default_factory=dict)  # xacro limits set here: name -> value
 
 
 # --- validation -------------------------------------------------------------------------------
@@ -152,7 +158,24 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
         severities=severities,
         links=_links(where, table.get("links", {})),
         engines=where.engines(table.get("engines", []), "engines"),
+        xacro=_xacro_limits(where, table.get("xacro", {})),
     )
+
+
+def _xacro_limits(where: _Where, xacro_table: Any) -> dict[str, float]:
+    from inertia_kit.description.xacro_limits import check_limit
+
+    settings = where.table(xacro_table, "xacro")
+    where.only(settings, ("timeout", "memory", "elements"), "xacro")
+    values = {}
+    for name, value in settings.items():
+        if isinstance(value, str):
+            where.fail(f"xacro.{name}", f"expected a number (0: no limit), got {_shown(value)}")
+        try:
+            values[name] = check_limit(name, value)
+        except ValueError as error:
+            where.fail(f"xacro.{name}", str(error))
+    return values
 
 
 def _rule_tables(

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
+from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
@@ -178,6 +179,7 @@ def lint_file(
     xacro_args: dict[str, str] | None = None,
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
+    xacro_limits: XacroLimits | None = None,
 ) -> FileResult:
     """
     Lint one file; an unreadable one gives a result with ``error`` set, not an exception.
@@ -190,7 +192,9 @@ def lint_file(
     if directives(path).disabled:
         return FileResult(str(path), disabled=True)
     try:
-        robot = load(path, xacro_args=xacro_args, package_paths=package_paths)
+        robot = load(
+            path, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
+        )
     except InputError as error:
         return FileResult(str(path), error=error)
     if robot.fragment:
@@ -245,12 +249,14 @@ def lint_paths(
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
     engines: Sequence[str] | None = None,
+    xacro_limits: Mapping[str, float] | None = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
     nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one,
     ``engines`` (names, comma-separated or ``all``; ``None``: the configured ones) instead of
-    the configured ones.
+    the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
+    environment's.
 
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
@@ -277,6 +283,7 @@ def lint_paths(
             raise ConfigError(f"--engine: {error}") from None
     finder = ConfigFinder(config)
     plan = [(file, finder.for_file(file)) for file in expand_paths(paths)]
+    limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
     for file, found in plan:
         result = lint_file(
@@ -285,6 +292,7 @@ def lint_paths(
             xacro_args=xacro_args,
             package_paths=package_paths,
             load_mesh=load_mesh,
+            xacro_limits=limits[found.path],
         )
         # not `or`: Severity.INFO is 0
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)

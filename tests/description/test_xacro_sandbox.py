@@ -1,0 +1,105 @@
+"""The forked child an expansion runs in: outcomes, the deadline, signals, and reaping."""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import time
+
+import pytest
+
+from inertia_kit.description import xacro_sandbox
+from inertia_kit.errors import InputError
+
+pytestmark = pytest.mark.skipif(not xacro_sandbox.can_fork(), reason="no os.fork here")
+
+
+def run(work, timeout: float = 10, memory_mb: int = 0):
+    return xacro_sandbox.run(work, timeout=timeout, memory_mb=memory_mb, start=time.monotonic())
+
+
+def test_the_value_comes_back_from_the_child():
+    parent = os.getpid()
+    assert run(lambda: (os.getpid() != parent, "x" * 3_000_000)) == (True, "x" * 3_000_000)
+
+
+def test_an_input_error_comes_back_whole():
+    def work():
+        raise InputError("bad", "robot.xacro", 3, 7)
+
+    with pytest.raises(InputError) as caught:
+        run(work)
+    assert (caught.value.message, caught.value.path, caught.value.line, caught.value.column) == (
+        "bad",
+        "robot.xacro",
+        3,
+        7,
+    )
+
+
+def test_any_other_exception_is_an_internal_error_with_the_childs_traceback():
+    def work():
+        raise KeyError("oops")
+
+    with pytest.raises(RuntimeError, match=r"(?s)failed in its child process:.*KeyError: 'oops'"):
+        run(work)
+
+
+def test_a_child_killed_by_a_signal_is_reported(tmp_path):
+    def work():
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    with pytest.raises(xacro_sandbox.ChildDied) as caught:
+        run(work)
+    assert caught.value.reason() == "it was killed by SIGKILL"
+
+
+def test_the_deadline_kills_and_reaps_the_child(tmp_path):
+    pid_file = tmp_path / "pid"
+
+    def work():
+        pid_file.write_text(str(os.getpid()))
+        while True:  # Python-level, but the child's own check is not in this loop
+            time.sleep(0.01)
+
+    began = time.monotonic()
+    with pytest.raises(xacro_sandbox.TimedOut):
+        run(work, timeout=0.2)
+    assert time.monotonic() - began < 0.2 + xacro_sandbox.GRACE + 2
+    with pytest.raises(ProcessLookupError):  # killed and reaped: no zombie left
+        os.kill(int(pid_file.read_text()), 0)
+
+
+def test_work_in_c_is_stopped_too():
+    began = time.monotonic()
+    with pytest.raises(xacro_sandbox.TimedOut):
+        run(lambda: sum(range(10**15)), timeout=0.2)  # one C call: no signal reaches Python
+    assert time.monotonic() - began < 0.2 + xacro_sandbox.GRACE + 2
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="RLIMIT_AS is set on Linux")
+def test_the_memory_limit_makes_a_large_allocation_fail_in_the_child():
+    with pytest.raises(MemoryError):
+        run(lambda: len(bytearray(300 << 20)), memory_mb=100)
+    assert run(lambda: len(bytearray(50 << 20)), memory_mb=100) == 50 << 20
+
+
+def test_ctrl_c_in_the_child_is_left_to_the_parent():
+    def work():
+        os.kill(os.getpid(), signal.SIGINT)  # as a terminal's Ctrl-C reaches the whole group
+        return "finished"
+
+    assert run(work) == "finished"
+
+
+def test_no_fork_possible_says_so(monkeypatch):
+    def refuse():
+        raise BlockingIOError(11, "Resource temporarily unavailable")
+
+    monkeypatch.setattr(os, "fork", refuse)
+    before = len(os.listdir("/proc/self/fd")) if os.path.isdir("/proc/self/fd") else None
+    with pytest.raises(xacro_sandbox.CannotFork):
+        run(lambda: 1)
+    if before is not None:
+        assert len(os.listdir("/proc/self/fd")) == before  # the pipe was closed
