@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterator
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import PurePosixPath
 
 import numpy as np
@@ -31,111 +31,18 @@ from numpy.typing import NDArray
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
 from inertia_kit.engines import articulated
+from inertia_kit.engines import drake_parser as parser
 from inertia_kit.engines import drake_reading as reading
-from inertia_kit.engines.lumping import written_tensor
+from inertia_kit.engines.drake_parser import WATER, plausible_sphere
 from inertia_kit.engines.vocabulary import Event, Verdict, event
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix, transform
 
 ENGINE = "drake"
 VERSION = reading.VERSION
-WATER = 1000.0  # kg/m³: detail_common.cc kPlausibleDensity
 PROXIMITY_MESHES = (".obj", ".vtk", ".gltf")
 ROTATES = {"revolute": True, "continuous": True, "prismatic": False, "planar": True}
 TRANSLATES = {"revolute": False, "continuous": False, "prismatic": True, "planar": True}
-CUSTOM_JOINTS = ("ball", "screw", "universal", "curvilinear")  # only as <drake:joint>
-KNOWN_JOINTS = ("revolute", "continuous", "fixed", "prismatic", "floating", "planar")
-
-
-def plausible_sphere(mass: float) -> tuple[float, float, float]:
-    """
-    The solid sphere Drake's ``ParseSpatialInertia`` substitutes for invalid values: mass (the
-    declared one if finite and > 0, else 1 kg), radius at 1000 kg/m³, and its moment 2/5 m r².
-    """
-    m = mass if math.isfinite(mass) and mass > 0 else 1.0
-    radius = (3.0 / (4.0 * math.pi) * (m / WATER)) ** (1.0 / 3.0)
-    return m, radius, 0.4 * m * radius**2
-
-
-# --- reading a link's <inertial> as Drake does ---------------------------------------------------
-
-
-@dataclass(frozen=True)
-class Inertia:
-    """
-    What Drake makes of one ``<inertial>``: ``kind`` is ``massless`` (mass and tensor 0),
-    ``valid``, ``sphere`` (replaced) or ``refused`` (``message`` says why, at ``source``).
-    ``mass``, ``xyz``, ``rpy`` and ``tensor`` are the values as Drake read them.
-    """
-
-    kind: str
-    mass: float = 0.0
-    xyz: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    rpy: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    tensor: NDArray[np.float64] | None = None
-    message: str | None = None
-    source: model.Source | None = None
-
-
-class _Refused(Exception):
-    def __init__(self, message: str, source: model.Source | None):
-        super().__init__(message)
-        self.message, self.source = message, source
-
-
-def _scalar(value: model.Number, attribute: str, source: model.Source | None) -> float:
-    """A scalar attribute as Drake reads it: a missing one is 0."""
-    if value is None:
-        return 0.0
-    if isinstance(value, model.Invalid):
-        numbers = reading.read_numbers(value.text)
-        if len(numbers) != 1:
-            raise _Refused(reading.scalar_error(attribute, value.text), value.source)
-        return numbers[0]
-    return float(value)
-
-
-def _vector(value: model.Vector, attribute: str) -> tuple[float, float, float] | None:
-    """A vector attribute as Drake reads it (``None`` when absent)."""
-    if value is None:
-        return None
-    if isinstance(value, model.Invalid):
-        numbers = reading.read_numbers(value.text)
-        if len(numbers) != 3:
-            raise _Refused(reading.vector_error(attribute, value.text), value.source)
-        return (numbers[0], numbers[1], numbers[2])
-    return value
-
-
-def _origin(origin: model.Origin) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    xyz = _vector(origin.xyz, "xyz") or (0.0, 0.0, 0.0)
-    rpy = _vector(origin.rpy, "rpy") or (0.0, 0.0, 0.0)
-    return xyz, rpy
-
-
-def read_inertial(inertial: model.Inertial) -> Inertia:
-    """``UrdfParser::ExtractSpatialInertiaAboutBoExpressedInB`` and ``ParseSpatialInertia``."""
-    try:
-        xyz, rpy = _origin(inertial.origin)
-        mass = _scalar(inertial.mass, "value", inertial.mass_source)
-        values = [
-            _scalar(v, name, inertial.inertia_source)
-            for name, v in inertial.tensor_values().items()
-        ]
-    except _Refused as refused:
-        return Inertia("refused", message=refused.message, source=refused.source)
-    tensor = written_tensor(values)
-    plausible = mass if math.isfinite(mass) and mass > 0 else 1.0
-    if 3.0 / (4.0 * math.pi) * (plausible / WATER) == 0.0:  # the sphere is made first, always
-        return Inertia("refused", message=reading.ZERO_RADIUS, source=inertial.source)
-    read = Inertia("valid", mass, xyz, rpy, tensor)  # type: ignore[arg-type]
-    if not reading.could_be_physically_valid(tensor):
-        return replace(read, kind="sphere", message=reading.invalid_inertia_message(tensor))
-    if mass == 0 and not tensor.any():
-        return replace(read, kind="massless")
-    if not mass > 0:
-        return replace(read, kind="sphere", message=reading.NON_POSITIVE_MASS)
-    return read
 
 
 # --- events ----------------------------------------------------------------------------------
@@ -179,7 +86,7 @@ def _link_events(robot: RobotAnalysis) -> Iterator[Event]:
 
 
 def _inertial_events(link: str, inertial: model.Inertial) -> Iterator[Event]:
-    read = read_inertial(inertial)
+    read = parser.read_inertial(inertial)
     if read.kind == "refused":
         yield event(
             ENGINE,
@@ -210,21 +117,13 @@ def _inertial_events(link: str, inertial: model.Inertial) -> Iterator[Event]:
         )
 
 
-_SHAPES = {
-    model.Box: "Box",
-    model.Cylinder: "Cylinder",
-    model.Sphere: "Sphere",
-    model.Capsule: "Capsule",
-}
-
-
 def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
     """``ParseVisual``/``ParseCollision``: the first refusal of one shape, if any."""
     geometry = shape.geometry
-    where = f"the {shape.kind} {_describe(geometry)} of link `{link}`"
+    where = f"the {shape.kind} {parser.describe(geometry)} of link `{link}`"
     try:
-        refusal = _shape_refusal(link, shape)
-    except _Refused as refused:
+        refusal = parser.shape_refusal(link, shape)
+    except parser.Refused as refused:
         refusal = ("geometry", refused.message, refused.source)
     if refusal is not None:
         kind, message, source = refusal
@@ -258,118 +157,32 @@ def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
     )
 
 
-def _describe(geometry: model.Geometry) -> str:
-    if isinstance(geometry, model.Mesh):
-        return f"mesh `{geometry.filename}`"
-    if isinstance(geometry, model.Unknown):
-        return "geometry"
-    return f"<{type(geometry).__name__.lower()}>"
-
-
-Refusal = tuple[str, str | None, model.Source | None]  # kind, Drake's message, where
-
-
-def _shape_refusal(link: str, shape: model.Shape) -> Refusal | None:
-    geometry = shape.geometry
-    if isinstance(geometry, model.Unknown) and geometry.source == shape.source:
-        if shape.kind == "visual":
-            return "geometry", f"Link {link} has a visual element without geometry.", shape.source
-        message = f"Link '{link}' has a collision element without geometry"
-        return "geometry", message, shape.source
-    _origin(shape.origin)
-    if isinstance(geometry, model.Unknown):
-        if geometry.tag in ("drake:capsule", "drake:ellipsoid"):
-            return None  # Drake's own shapes (inertia-kit does not read them)
-        message = "Warning: geometry element does not have a recognizable shape type"
-        return "geometry", message, geometry.source
-    if isinstance(geometry, model.Mesh):
-        return _mesh_refusal(geometry)
-    name = _SHAPES[type(geometry)]
-    dimensions: list[tuple[str, float]] = []
-    if isinstance(geometry, model.Box):
-        size = _vector(geometry.size, "size")
-        if size is None:
-            return "geometry", "Missing box attribute: size", geometry.source
-        dimensions = list(zip(("width", "depth", "height"), size, strict=True))
-    else:
-        attributes = ("radius",) if isinstance(geometry, model.Sphere) else ("radius", "length")
-        for attribute in attributes:
-            value = getattr(geometry, attribute)
-            if value is None:
-                message = f"Missing {name.lower()} attribute: {attribute}"
-                return "geometry", message, geometry.source
-            dimensions.append((attribute, _scalar(value, attribute, geometry.source)))
-    for dimension, value in dimensions:
-        ok = value >= 0 if name == "Sphere" else value > 0
-        if not (math.isfinite(value) and ok):
-            return "geometry", reading.shape_error(name, dimension, value), None
-    return None
-
-
-def _mesh_refusal(mesh: model.Mesh) -> Refusal | None:
-    """``ParseMesh``: the file (``ResolveUri``), then the scale (``ThrowForBadScale``)."""
-    if not mesh.filename:
-        return None
-    if mesh.path is None:
-        return "mesh-missing", _missing_mesh(mesh), mesh.source
-    scale = mesh.scale
-    if isinstance(scale, model.Invalid):
-        numbers = reading.read_numbers(scale.text)
-        if " " in scale.text:
-            if len(numbers) != 3:
-                return "geometry", reading.vector_error("scale", scale.text), None
-        elif len(numbers) != 1:
-            return "geometry", reading.scalar_error("scale", scale.text), mesh.source
-        scale = tuple(numbers) if len(numbers) == 3 else (numbers[0],) * 3
-    values = (1.0, 1.0, 1.0) if scale is None else scale
-    if not all(math.isfinite(v) and abs(v) >= 1e-8 for v in values):
-        shown = reading.fmt_eigen_row(values)
-        return "geometry", f"Mesh |scale| cannot be < 1e-8 on any axis, given [{shown}].", None
-    return None
-
-
-def _missing_mesh(mesh: model.Mesh) -> str | None:
-    """``ResolveUri``'s error for a file that is not there (the package map's when it is one)."""
-    uri = mesh.filename
-    scheme, separator, rest = uri.partition("://")
-    if separator and scheme == "file":
-        path = "/" + rest.partition("/")[2].lstrip("/")
-    elif separator:
-        return None  # package:// and model://: the words depend on the user's package map
-    elif uri.startswith("/"):
-        path = uri
-    else:
-        root = os.path.dirname(os.path.abspath(mesh.source.path))
-        path = f"{root}/{uri}"
-    return f"URI '{uri}' resolved to '{path}' which does not exist."
-
-
 def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
     known = {link.name for link in robot.links}
     for joint in robot.robot.joints:
         if not joint.name or joint.parent not in known or joint.child not in known:
             continue  # a broken tree: IN040
-        message = None
-        try:
-            _origin(joint.origin)
-            message = _axis_refusal(joint)
-        except _Refused as refused:
-            message = refused.message
-        if message is None and joint.type in CUSTOM_JOINTS:
-            message = (
-                f"Joint {joint.name} of type {joint.type} is a custom joint type, and should be "
-                "a <drake:joint>"
+        read = parser.read_joint(joint)
+        if read.friction != 0:
+            yield event(
+                ENGINE,
+                Verdict.CHANGES,
+                "friction",
+                f"ignores the friction of joint `{joint.name}` ({fmt(read.friction)})",
+                reading.FRICTION,
+                read.dynamics,
+                link=joint.child,
+                joint=joint.name,
             )
-        elif message is None and joint.type not in KNOWN_JOINTS:
-            message = f"Joint '{joint.name}' has unrecognized type: '{joint.type}'"
-        if message is not None:
+        if read.refusal is not None:
+            message, source = read.refusal
             yield event(
                 ENGINE,
                 Verdict.REFUSES,
                 "joint",
                 f"refuses the model at joint `{joint.name}`",
                 message,
-                joint.source,
+                source or joint.source,
                 link=joint.child,
                 joint=joint.name,
             )
@@ -388,15 +201,6 @@ def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
             )
 
 
-def _axis_refusal(joint: model.Joint) -> str | None:
-    if joint.type in ("fixed", "floating", "ball") or joint.axis is None:
-        return None
-    axis = _vector(joint.axis, "xyz")
-    if axis is not None and math.hypot(*axis) < 1e-8:
-        return f"Joint '{joint.name}' axis is zero.  Don't do that."
-    return None
-
-
 # --- forward dynamics ------------------------------------------------------------------------
 
 
@@ -405,7 +209,7 @@ def _spatial_inertia(link: LinkAnalysis) -> NDArray[np.float64]:
     inertial = link.link.inertial
     if inertial is None or link.name == model.WORLD:
         return np.zeros((6, 6))
-    read = read_inertial(inertial)
+    read = parser.read_inertial(inertial)
     if read.kind == "massless":
         return np.zeros((6, 6))
     if read.kind == "refused" or read.tensor is None:
@@ -447,7 +251,7 @@ def _bodies(robot: RobotAnalysis) -> list[articulated.Body]:
         attached = joint is None or joint.type == "floating" or joint.parent == model.WORLD
         pose = np.eye(4) if joint is None or joint.type == "floating" else None
         if pose is None and joint is not None:
-            pose = _child_pose(robot, poses, joint)
+            pose = _child_pose(poses, joint)
             if pose is None:
                 continue  # an origin Drake refuses, or a parent not placed (a cycle)
         assert pose is not None
@@ -478,14 +282,17 @@ def _bodies(robot: RobotAnalysis) -> list[articulated.Body]:
     return bodies
 
 
-def _child_pose(robot, poses, joint: model.Joint) -> NDArray[np.float64] | None:
+def _child_pose(
+    poses: dict[str, NDArray[np.float64]], joint: model.Joint
+) -> NDArray[np.float64] | None:
+    """The child link's pose at rest from its parent's (``None`` if that is not placed)."""
     parent = poses.get(joint.parent or "")
     if parent is None:
         return None
     try:
-        xyz, rpy = _origin(joint.origin)
+        xyz, rpy = parser.origin(joint.origin)
         return parent @ transform(xyz, rpy)
-    except (_Refused, ValueError):
+    except (parser.Refused, ValueError):
         return None
 
 
@@ -493,8 +300,8 @@ def _axis(joint: model.Joint | None) -> NDArray[np.float64] | None:
     if joint is None:
         return None
     try:
-        axis = np.array(_vector(joint.axis, "xyz") or (1.0, 0.0, 0.0), dtype=np.float64)
-    except _Refused:
+        axis = np.array(parser.vector(joint.axis, "xyz") or (1.0, 0.0, 0.0), dtype=np.float64)
+    except parser.Refused:
         return None
     norm = float(np.linalg.norm(axis))
     if not math.isfinite(norm) or norm < 1e-8:

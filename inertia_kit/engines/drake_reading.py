@@ -134,6 +134,22 @@ NON_POSITIVE_MASS = (
     "SetFromRotationalInertia(): condition 'mass > 0' failed."
 )
 
+# the Joint constructor and Joint::set_velocity_limits, as the wheel prints them
+JOINT_LIMITS = (
+    "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
+    "multibody_tree_core/drake/multibody/tree/joint.h:159 in Joint(): condition "
+    "'(pos_lower_limits.array() <= pos_upper_limits.array()).all()' failed."
+)
+VELOCITY_LIMITS = (
+    "Failure at bazel-out/k8-opt/bin/external/drake+/multibody/tree/_virtual_includes/"
+    "multibody_tree_core/drake/multibody/tree/joint.h:435 in set_velocity_limits(): condition "
+    "'(lower_limits.array() <= upper_limits.array()).all()' failed."
+)
+FRICTION = (
+    "A joint has specified a non-zero value for the 'friction' attribute of a joint/dynamics "
+    "tag. MultibodyPlant does not currently support non-zero joint friction."
+)
+
 # SpatialInertia::SolidSphereWithDensity, when the stand-in sphere's radius underflows to 0
 ZERO_RADIUS = "SolidSphereWithDensity(): radius is not positive and finite: 0."
 

@@ -34,8 +34,11 @@ HELP = {
     "Drake's package map)",
     "mesh": "convert the collision mesh to .obj (e.g. with trimesh or meshlab) and reference "
     "that file; visual meshes may stay as they are",
-    "joint": "give the joint a non-zero <axis> and a type Drake knows (revolute, continuous, "
-    "prismatic, fixed, planar, floating; ball, screw and universal as <drake:joint>)",
+    "joint": "give the joint a non-zero <axis>, a type Drake knows (revolute, continuous, "
+    "prismatic, fixed, planar, floating; ball, screw and universal as <drake:joint>), "
+    "lower ≤ upper, velocity ≥ 0 and damping ≥ 0",
+    "friction": "model the joint's friction another way (Drake's joint friction is ignored; "
+    "damping is kept), or remove the attribute",
     "floating": "leave the link unattached (Drake makes every unattached link a free body) or "
     "give it a joint Drake models",
     "singular": "give the link (or a link outboard of it) mass and inertia about the joint's "
