@@ -250,9 +250,7 @@ def read_joint(joint: model.Joint) -> JointReading:
             friction = _given(dynamics.friction, "friction", dynamics.source, 0.0)
     except Refused as refused:
         return JointReading((refused.message, refused.source))
-    found = JointReading(
-        friction=friction, dynamics=None if dynamics is None else dynamics.source
-    )
+    found = JointReading(friction=friction, dynamics=None if dynamics is None else dynamics.source)
     if not lower <= upper:
         return replace(found, refusal=(reading.JOINT_LIMITS, None))
     if damping < 0:

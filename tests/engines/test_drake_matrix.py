@@ -177,7 +177,7 @@ BAD_TRIANGLE = inertial(1, 0.001, 0.001, 0.01)
 NEGATIVE_EIGEN = inertial(1, 0.01, ixy=0.02)
 POINT = inertial(1, 0)  # 1 kg, no moment of inertia
 
-# name -> (urdf, the verdict Drake gives it, options: root welded, package map, message known)
+# name -> (urdf, the verdict Drake gives it: "loads" | "changes" | "refuses")
 CASES: dict[str, tuple[str, str]] = {
     # clean
     "clean-arm": (arm(UNIT), "loads"),
