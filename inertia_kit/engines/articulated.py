@@ -22,8 +22,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 # a hinge inertia, each motion scaled by its composite (rigid-subtree) inertia, whose smallest
-# eigenvalue is at most this is singular: the exact value is 0 and what is left is rounding
-SINGULAR = 1e-10
+# eigenvalue is at most this is singular: the exact value is 0 and what is left is floating-point
+# rounding (~1e-16). Not more: iCub's neck (example-robot-data) has two joint axes parallel to
+# 3.7e-6 rad (rpy written 1.5708 for π/2), a hinge inertia of 1.4e-11, and Drake runs it
+SINGULAR = 1e-12
 
 MOTIONS = ("fixed", "revolute", "prismatic", "planar", "free")
 

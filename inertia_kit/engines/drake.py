@@ -50,18 +50,37 @@ TRANSLATES = {"revolute": False, "continuous": False, "prismatic": True, "planar
 
 def events(robot: RobotAnalysis) -> Iterator[Event]:
     """
-    In Drake's order: per link ``number``/``tiny`` (the ``<inertial>`` is refused), ``world``
-    (its ``<inertial>`` ignored), ``sphere`` (replaced), ``geometry``/``mesh-missing``/``mesh``
-    (a shape or mesh refused); per joint ``joint`` (refused) or ``floating`` (left out); then
-    ``singular`` (forward dynamics fails). Refusals carry ``first``: the one Drake reports.
+    In Drake's order: ``robot`` (it has no name); per link ``number``/``tiny`` (the
+    ``<inertial>`` is refused), ``world`` (its ``<inertial>`` ignored), ``sphere`` (replaced),
+    ``geometry``/``mesh-missing``/``mesh`` (a shape or mesh refused); per joint ``friction``
+    (ignored), ``joint`` (refused) or ``floating`` (left out); then ``singular`` (the first
+    simulation step fails). Refusals carry ``first``: the one Drake reports.
     """
-    found = [*_link_events(robot), *_joint_events(robot), *_singular_events(robot)]
+    found = [
+        *_robot_events(robot),
+        *_link_events(robot),
+        *_joint_events(robot),
+        *_singular_events(robot),
+    ]
     first = next((e for e in found if e.verdict is Verdict.REFUSES), None)
     for found_event in found:
         if found_event.verdict is Verdict.REFUSES:
             facts = {**found_event.facts, "first": found_event is first}
             found_event = replace(found_event, facts=facts)
         yield found_event
+
+
+def _robot_events(robot: RobotAnalysis) -> Iterator[Event]:
+    """``UrdfParser::Parse``: the model's name is the robot's (``AddModels`` gives no other)."""
+    if robot.robot.name is None:
+        yield event(
+            ENGINE,
+            Verdict.REFUSES,
+            "robot",
+            "refuses the model: the <robot> has no name",
+            "Your robot must have a name attribute or a model name must be specified.",
+            robot.robot.source,
+        )
 
 
 def _link_events(robot: RobotAnalysis) -> Iterator[Event]:

@@ -466,6 +466,11 @@ CASES: dict[str, tuple[str, str]] = {
     "geometry-unknown-shape": (arm(UNIT, visual("<foo/>")), "refuses"),
     "collision-without-geometry": (arm(UNIT, "<collision/>"), "refuses"),
     "visual-without-geometry": (arm(UNIT, "<visual/>"), "refuses"),
+    "robot-without-name": (arm(UNIT).replace('<robot name="r">', "<robot>"), "refuses"),
+    "robot-name-before-links": (
+        arm(raw_inertial("abc")).replace('<robot name="r">', "<robot>"),
+        "refuses",
+    ),
     # the first refusal: links in document order (inertial, visuals, collisions), then joints,
     # then forward dynamics (deepest joint first, then depth first)
     "first-in-document-order": (

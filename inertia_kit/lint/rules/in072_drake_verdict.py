@@ -20,6 +20,7 @@ SUMMARY = (
 )
 
 HELP = {
+    "robot": 'name the robot (<robot name="...">): Drake names the model after it',
     "number": "write each <inertial> value as one plain number (Drake reads `2kg` as 2 and "
     "refuses `nan`, `inf`, `1e999` and empty values)",
     "tiny": "the mass is below 1e-320 kg: write the real mass, or remove the <inertial> of a "
