@@ -156,12 +156,15 @@ def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
             ENGINE, Verdict.REFUSES, kind, what, message, source or geometry.source, link=link
         )
         return
-    if shape.kind != "collision" or not isinstance(geometry, model.Mesh) or not geometry.path:
+    if shape.kind != "collision" or not isinstance(geometry, model.Mesh):
         return
-    suffix = PurePosixPath(geometry.path).suffix.lower()
+    found = parser.drake_path(geometry) or geometry.path
+    if not found:
+        return
+    path = os.path.normpath(os.path.abspath(found))
+    suffix = PurePosixPath(path).suffix.lower()
     if suffix in PROXIMITY_MESHES:
         return
-    path = os.path.abspath(geometry.path)
     yield event(
         ENGINE,
         Verdict.REFUSES,

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -53,12 +54,14 @@ class Inertia:
 
 
 class Refused(Exception):
+    """Drake's parser stops here: ``message`` is its error, ``source`` the element it names."""
+
     def __init__(self, message: str, source: model.Source | None):
         super().__init__(message)
         self.message, self.source = message, source
 
 
-def scalar(value: model.Number, attribute: str, source: model.Source | None) -> float:
+def scalar(value: model.Number, attribute: str) -> float:
     """A scalar attribute as Drake reads it: a missing one is 0."""
     if value is None:
         return 0.0
@@ -82,9 +85,13 @@ def vector(value: model.Vector, attribute: str) -> tuple[float, float, float] | 
     return value
 
 
-def origin(origin: model.Origin) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    xyz = vector(origin.xyz, "xyz") or (0.0, 0.0, 0.0)
-    rpy = vector(origin.rpy, "rpy") or (0.0, 0.0, 0.0)
+Triple = tuple[float, float, float]
+
+
+def origin(element: model.Origin) -> tuple[Triple, Triple]:
+    """An ``<origin>``'s ``xyz`` and ``rpy`` as Drake reads them (zeros when absent)."""
+    xyz = vector(element.xyz, "xyz") or (0.0, 0.0, 0.0)
+    rpy = vector(element.rpy, "rpy") or (0.0, 0.0, 0.0)
     return xyz, rpy
 
 
@@ -92,17 +99,15 @@ def read_inertial(inertial: model.Inertial) -> Inertia:
     """``UrdfParser::ExtractSpatialInertiaAboutBoExpressedInB`` and ``ParseSpatialInertia``."""
     try:
         xyz, rpy = origin(inertial.origin)
-        mass = scalar(inertial.mass, "value", inertial.mass_source)
-        values = [
-            scalar(v, name, inertial.inertia_source) for name, v in inertial.tensor_values().items()
-        ]
+        mass = scalar(inertial.mass, "value")
+        values = [scalar(v, name) for name, v in inertial.tensor_values().items()]
     except Refused as refused:
         return Inertia("refused", message=refused.message, source=refused.source)
     tensor = written_tensor(values)
     plausible = mass if math.isfinite(mass) and mass > 0 else 1.0
     if 3.0 / (4.0 * math.pi) * (plausible / WATER) == 0.0:  # the sphere is made first, always
         return Inertia("refused", message=reading.ZERO_RADIUS, source=inertial.source)
-    read = Inertia("valid", mass, xyz, rpy, tensor)  # type: ignore[arg-type]
+    read = Inertia("valid", mass, xyz, rpy, tensor)
     if not reading.could_be_physically_valid(tensor):
         return replace(read, kind="sphere", message=reading.invalid_inertia_message(tensor))
     if mass == 0 and not tensor.any():
@@ -163,7 +168,7 @@ def shape_refusal(link: str, shape: model.Shape) -> Refusal | None:
             if value is None:
                 message = f"Missing {name.lower()} attribute: {attribute}"
                 return "geometry", message, geometry.source
-            dimensions.append((attribute, scalar(value, attribute, geometry.source)))
+            dimensions.append((attribute, scalar(value, attribute)))
     for dimension, value in dimensions:
         ok = value >= 0 if name == "Sphere" else value > 0
         if not (math.isfinite(value) and ok):
@@ -175,8 +180,16 @@ def mesh_refusal(mesh: model.Mesh) -> Refusal | None:
     """``ParseMesh``: the file (``ResolveUri``), then the scale (``ThrowForBadScale``)."""
     if not mesh.filename:
         return None
-    if mesh.path is None:
-        return "mesh-missing", missing_mesh(mesh), mesh.source
+    path = drake_path(mesh)
+    if path is None and mesh.path is None:
+        message = None  # package:// and model://: the words depend on the user's package map
+        return "mesh-missing", message, mesh.source
+    if path is not None and not os.path.exists(os.path.normpath(path)):
+        return (
+            "mesh-missing",
+            f"URI '{mesh.filename}' resolved to '{path}' which does not exist.",
+            mesh.source,
+        )
     scale = mesh.scale
     if isinstance(scale, model.Invalid):
         numbers = reading.read_numbers(scale.text)
@@ -193,20 +206,22 @@ def mesh_refusal(mesh: model.Mesh) -> Refusal | None:
     return None
 
 
-def missing_mesh(mesh: model.Mesh) -> str | None:
-    """``ResolveUri``'s error for a file that is not there (the package map's when it is one)."""
+def drake_path(mesh: model.Mesh) -> str | None:
+    """
+    The file ``ResolveUri`` looks for (before it normalises it): ``file://`` URIs and absolute
+    paths as they are, a relative path next to the file that names it, whatever other folders
+    inertia-kit searches; ``None`` for ``package://`` and ``model://`` (the user's package map).
+    """
     uri = mesh.filename
-    scheme, separator, rest = uri.partition("://")
-    if separator and scheme == "file":
-        path = "/" + rest.partition("/")[2].lstrip("/")
-    elif separator:
-        return None  # package:// and model://: the words depend on the user's package map
-    elif uri.startswith("/"):
-        path = uri
-    else:
-        root = os.path.dirname(os.path.abspath(mesh.source.path))
-        path = f"{root}/{uri}"
-    return f"URI '{uri}' resolved to '{path}' which does not exist."
+    found = _URI.match(uri)
+    if found:
+        return "/" + found[3] if found[1] == "file" else None
+    if uri.startswith("/"):
+        return uri
+    return f"{os.path.dirname(os.path.abspath(mesh.source.path))}/{uri}"
+
+
+_URI = re.compile(r"([a-z0-9+.-]+)://([^/]*)/+(.*)", re.S)
 
 
 # --- joints --------------------------------------------------------------------------------
@@ -240,14 +255,14 @@ def read_joint(joint: model.Joint) -> JointReading:
         limit, dynamics = joint.limit, joint.dynamics
         lower, upper, velocity = -math.inf, math.inf, math.inf
         if limit is not None:
-            lower = _given(limit.lower, "lower", limit.source, lower)
-            upper = _given(limit.upper, "upper", limit.source, upper)
-            velocity = _given(limit.velocity, "velocity", limit.source, velocity)
-            _given(limit.effort, "effort", limit.source, math.inf)
+            lower = _given(limit.lower, "lower", lower)
+            upper = _given(limit.upper, "upper", upper)
+            velocity = _given(limit.velocity, "velocity", velocity)
+            _given(limit.effort, "effort", math.inf)
         damping = friction = 0.0
         if dynamics is not None:
-            damping = _given(dynamics.damping, "damping", dynamics.source, 0.0)
-            friction = _given(dynamics.friction, "friction", dynamics.source, 0.0)
+            damping = _given(dynamics.damping, "damping", 0.0)
+            friction = _given(dynamics.friction, "friction", 0.0)
     except Refused as refused:
         return JointReading((refused.message, refused.source))
     found = JointReading(friction=friction, dynamics=None if dynamics is None else dynamics.source)
@@ -261,9 +276,9 @@ def read_joint(joint: model.Joint) -> JointReading:
     return found
 
 
-def _given(value: model.Number, attribute: str, source: model.Source, default: float) -> float:
+def _given(value: model.Number, attribute: str, default: float) -> float:
     """A scalar attribute as Drake reads it, ``default`` when absent."""
-    return default if value is None else scalar(value, attribute, source)
+    return default if value is None else scalar(value, attribute)
 
 
 def _axis_refusal(joint: model.Joint) -> str | None:

@@ -440,6 +440,7 @@ CASES: dict[str, tuple[str, str]] = {
         "refuses",
     ),
     "visual-mesh-missing": (arm(UNIT, visual(mesh("nowhere.stl"))), "refuses"),
+    "mesh-next-to-the-file-only": (arm(UNIT, collision(mesh("meshes/box.obj"))), "refuses"),
     "file-uri-missing": (arm(UNIT, visual(mesh("file:///nowhere/at/all.obj"))), "refuses"),
     "package-uri-unknown-package": (
         arm(UNIT, collision(mesh("package://elsewhere/box.obj"))),
@@ -590,7 +591,10 @@ def write_case(tmp_path: Path, text: str) -> Path:
 
 
 def predicted(path: Path):
-    result = lint_file(path, Selection(select=(), engines=("drake",)), package_paths=[path.parent])
+    # the package `robot` is found, and so would be `meshes/box.obj` where a relative path is
+    # also looked up under each package path (PyBullet's search path), which Drake does not do
+    paths = [path.parent, path.parent / "robot"]
+    result = lint_file(path, Selection(select=(), engines=("drake",)), package_paths=paths)
     assert result.error is None, result.error
     assert {f.code for f in result.findings} <= {"IN072"}
     return result.findings
