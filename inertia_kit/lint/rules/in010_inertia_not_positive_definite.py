@@ -55,7 +55,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         written = geometry_tensor(link, declared.mass)
         basis = "" if written is None else f"; {basis_text(link, declared.mass)} {written.text()}"
         engines = (
-            "MuJoCo refuses the model, Gazebo and Drake reject the tensor, PyBullet zeroes it"
+            "MuJoCo refuses the model, Gazebo rejects the tensor, Drake replaces it by a sphere "
+            "of water, PyBullet zeroes it"
             if negative
             else "MuJoCo refuses the model; Drake and PyBullet cannot turn a body with no "
             "rotational inertia about that axis"
