@@ -1,163 +1,362 @@
 """
-What Drake's URDF parser and MultibodyPlant do with each link: an invalid inertia is replaced by
-a solid sphere of water density (``detail_common.cc`` ``ParseSpatialInertia``), a moving link
-with no mass anywhere outboard fails at simulation time (a singular articulated body inertia),
-and a collision mesh must be ``.obj`` (or a tetrahedral ``.vtk``).
+What Drake's URDF parser and ``MultibodyPlant`` do with each link (Drake 1.51.1; the messages
+are quoted as its PyPI wheel prints them and checked against it in
+``tests/engines/test_drake_matrix.py``).
+
+In Drake's order: the parser reads the links in document order (each link's ``<inertial>``, then
+its visuals, then its collisions), then the joints; the first error stops it (``refuses``), a
+warning lets it go on (``changes``: an invalid inertia replaced by a water-density sphere, the
+``<inertial>`` of the link ``world`` ignored, a ``floating`` joint left out). With a
+``SceneGraph`` (as for any simulation) each collision mesh becomes its convex hull, which Drake
+computes for ``.obj``, ``.vtk`` and ``.gltf`` files only. Last, forward dynamics (the first
+simulation step) runs the articulated-body algorithm and stops at a joint whose outboard bodies
+have no inertia along its motion (``engines/articulated.py``).
+
+Assumptions, as a Drake user loads a robot: the root link is welded to the world
+(``plant.WeldFrames``), unless it is the link ``world``; the package map resolves the
+``package://`` URIs inertia-kit resolves.
 """
 
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import PurePosixPath
 
 import numpy as np
+from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
-from inertia_kit.engines.lumping import written_tensor
+from inertia_kit.engines import articulated
+from inertia_kit.engines import drake_parser as parser
+from inertia_kit.engines import drake_reading as reading
+from inertia_kit.engines.drake_parser import WATER, plausible_sphere
 from inertia_kit.engines.vocabulary import Event, Verdict, event
 from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.frames import rpy_matrix, transform
 
 ENGINE = "drake"
-WATER = 1000.0  # kg/m³: detail_common.cc kPlausibleDensity
-PROXIMITY_MESHES = (".obj", ".vtk")
-SINGULAR = (
-    "Encountered singular articulated body hinge inertia for body node index …. Please ensure "
-    "that this body has non-zero inertia along all axes of motion."
-)
+VERSION = reading.VERSION
+PROXIMITY_MESHES = (".obj", ".vtk", ".gltf")
+ROTATES = {"revolute": True, "continuous": True, "prismatic": False, "planar": True}
+TRANSLATES = {"revolute": False, "continuous": False, "prismatic": True, "planar": True}
 
 
-def plausible_sphere(mass: float) -> tuple[float, float, float]:
-    """
-    The solid sphere Drake's ``ParseSpatialInertia`` substitutes for invalid values: mass (the
-    declared one if finite and > 0, else 1 kg), radius at 1000 kg/m³, and its moment 2/5 m r².
-    """
-    m = mass if math.isfinite(mass) and mass > 0 else 1.0
-    radius = (3.0 / (4.0 * math.pi) * (m / WATER)) ** (1.0 / 3.0)
-    return m, radius, 0.4 * m * radius**2
-
-
-def _values(inertial: model.Inertial) -> tuple[float, np.ndarray] | None:
-    """Mass and the (3, 3) tensor as written, Drake's missing attributes reading as 0."""
-    numbers = [inertial.mass, *inertial.tensor_values().values()]
-    if any(isinstance(v, model.Invalid) for v in numbers):
-        return None
-    mass, *tensor = (0.0 if v is None else float(v) for v in numbers)
-    return mass, written_tensor(tensor)
-
-
-def could_be_physically_valid(tensor: np.ndarray) -> bool:
-    """Drake ``RotationalInertia::CouldBePhysicallyValid``: moments ≥ 0 and A + B ≥ C (± ε)."""
-    if not np.isfinite(tensor).all():
-        return False
-    a, b, c = np.linalg.eigvalsh(0.5 * (tensor + tensor.T))
-    eps = 16 * np.finfo(np.float64).eps * max(abs(c), abs(a))
-    return bool(a >= -eps and a + b + eps >= c)
-
-
-def drake_mass(link: LinkAnalysis) -> float:
-    """The mass Drake gives the body: 0 when massless, the sphere's when substituted."""
-    inertial = link.link.inertial
-    if inertial is None:
-        return 0.0
-    values = _values(inertial)
-    if values is None:
-        return math.nan
-    mass, tensor = values
-    if mass == 0 and not tensor.any():
-        return 0.0
-    if mass > 0 and could_be_physically_valid(tensor):
-        return mass
-    return plausible_sphere(mass)[0]
-
-
-def _outboard_massless(robot: RobotAnalysis, link: LinkAnalysis) -> bool:
-    stack, seen = [link], set()
-    while stack:
-        current = stack.pop()
-        if current.name in seen:
-            continue
-        seen.add(current.name)
-        if drake_mass(current) != 0:
-            return False
-        stack.extend(robot.by_name[j.child] for j in current.children if j.child in robot.by_name)
-    return True
+# --- events ----------------------------------------------------------------------------------
 
 
 def events(robot: RobotAnalysis) -> Iterator[Event]:
     """
-    Link by link: ``sphere`` (the inertia is replaced), ``singular`` (the plant fails at
-    simulation time), ``mesh`` (a collision mesh is refused).
+    In Drake's order: ``robot`` (it has no name); per link ``number``/``tiny`` (the
+    ``<inertial>`` is refused), ``world`` (its ``<inertial>`` ignored), ``sphere`` (replaced),
+    ``geometry``/``mesh-missing``/``mesh`` (a shape or mesh refused); per joint ``friction``
+    (ignored), ``joint`` (refused) or ``floating`` (left out); then ``singular`` (the first
+    simulation step fails). Refusals carry ``first``: the one Drake reports.
     """
+    found = [
+        *_robot_events(robot),
+        *_link_events(robot),
+        *_joint_events(robot),
+        *_singular_events(robot),
+    ]
+    first = next((e for e in found if e.verdict is Verdict.REFUSES), None)
+    for found_event in found:
+        if found_event.verdict is Verdict.REFUSES:
+            facts = {**found_event.facts, "first": found_event is first}
+            found_event = replace(found_event, facts=facts)
+        yield found_event
+
+
+def _robot_events(robot: RobotAnalysis) -> Iterator[Event]:
+    """``UrdfParser::Parse``: the model's name is the robot's (``AddModels`` gives no other)."""
+    if robot.robot.name is None:
+        yield event(
+            ENGINE,
+            Verdict.REFUSES,
+            "robot",
+            "refuses the model: the <robot> has no name",
+            "Your robot must have a name attribute or a model name must be specified.",
+            robot.robot.source,
+        )
+
+
+def _link_events(robot: RobotAnalysis) -> Iterator[Event]:
     for link in robot.links:
         inertial = link.link.inertial
-        values = None if inertial is None else _values(inertial)
-        if inertial is not None and values is not None:
-            mass, tensor = values
-            massless = mass == 0 and not tensor.any()
-            if not massless and (not could_be_physically_valid(tensor) or not mass > 0):
-                yield _sphere(link.name, inertial, mass, tensor)
-        if link.moves and link.parent.type != "floating" and _outboard_massless(robot, link):
+        if inertial is not None and link.name == model.WORLD:
             yield event(
                 ENGINE,
-                Verdict.REFUSES,
-                "singular",
-                f"fails at simulation time on link `{link.name}`: it moves on joint "
-                f"`{link.parent.name}` and neither it nor anything outboard has mass",
-                SINGULAR,
-                inertial.source if inertial is not None else link.link.source,
+                Verdict.CHANGES,
+                "world",
+                "ignores the <inertial> of link `world`: the world body has no mass",
+                'A URDF file declared the "world" link and then attempted to assign mass '
+                "properties (via the <inertial> tag). Only geometries, <collision> and <visual>, "
+                "can be assigned to the world link. The <inertial> tag is being ignored.",
+                link.link.source,
                 link=link.name,
-                joint=link.parent.name,
             )
-        for shape in link.link.collisions:
-            geometry = shape.geometry
-            if not isinstance(geometry, model.Mesh):
-                continue
-            suffix = PurePosixPath(geometry.filename).suffix.lower()
-            if suffix in PROXIMITY_MESHES:
-                continue
-            shown = geometry.path or geometry.filename
-            yield event(
-                ENGINE,
-                Verdict.REFUSES,
-                "mesh",
-                f"refuses the {suffix or 'extension-less'} collision mesh of link "
-                f"`{link.name}` (proximity geometry must be .obj, or a tetrahedral .vtk)",
-                f"ProximityEngine: expect an Obj file for non-hydroelastics but get {suffix} "
-                f"file {shown}) instead.",
-                geometry.source,
-                link=link.name,
-                mesh=shown,
-            )
+        elif inertial is not None:
+            yield from _inertial_events(link.name, inertial)
+        for shape in (*link.link.visuals, *link.link.collisions):
+            yield from _shape_events(link.name, shape)
 
 
-def _sphere(link: str, inertial: model.Inertial, mass: float, tensor: np.ndarray) -> Event:
-    """The sphere Drake puts in place of an invalid inertia, with the error it logs."""
-    m, radius, moment = plausible_sphere(mass)
-    if could_be_physically_valid(tensor):
-        message = (
-            "While re-expressing as central inertia: Spatial inertia fails "
-            f"SpatialInertia::IsPhysicallyValid(). (mass = {fmt(mass)})"
+def _inertial_events(link: str, inertial: model.Inertial) -> Iterator[Event]:
+    read = parser.read_inertial(inertial)
+    if read.kind == "refused":
+        yield event(
+            ENGINE,
+            Verdict.REFUSES,
+            "number" if read.message != reading.ZERO_RADIUS else "tiny",
+            f"refuses the model at the <inertial> of link `{link}`",
+            read.message,
+            read.source or inertial.source,
+            link=link,
         )
-    else:
-        message = (
-            "While parsing inertia matrix: MakeFromMomentsAndProductsOfInertia(): "
-            "The rotational inertia … did not pass the test "
-            "CouldBePhysicallyValid()."
+    elif read.kind == "sphere":
+        m, radius, moment = plausible_sphere(read.mass)
+        yield event(
+            ENGINE,
+            Verdict.CHANGES,
+            "sphere",
+            f"replaces the inertia of link `{link}` by a solid sphere of {fmt(WATER)} kg/m³: "
+            f"{fmt(m)} kg, radius {fmt(radius, 4)} m, moment {fmt(moment, 4)} kg·m² about "
+            "each axis",
+            reading.flatten(read.message or ""),
+            inertial.source,
+            link=link,
+            mass=m,
+            radius=radius,
+            ixx=moment,
+            iyy=moment,
+            izz=moment,
         )
-    return event(
+
+
+def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
+    """``ParseVisual``/``ParseCollision``: the first refusal of one shape, if any."""
+    geometry = shape.geometry
+    where = f"the {shape.kind} {parser.describe(geometry)} of link `{link}`"
+    try:
+        refusal = parser.shape_refusal(link, shape)
+    except parser.Refused as refused:
+        refusal = ("geometry", refused.message, refused.source)
+    if refusal is not None:
+        kind, message, source = refusal
+        what = f"refuses the model at {where}"
+        if kind == "mesh-missing" and message is None:
+            what = (
+                f"refuses the model: {where} is not found (Drake's words depend on the "
+                "packages its package map holds)"
+            )
+        yield event(
+            ENGINE, Verdict.REFUSES, kind, what, message, source or geometry.source, link=link
+        )
+        return
+    if shape.kind != "collision" or not isinstance(geometry, model.Mesh):
+        return
+    found = parser.drake_path(geometry) or geometry.path
+    if not found:
+        return
+    path = os.path.normpath(os.path.abspath(found))
+    suffix = PurePosixPath(path).suffix.lower()
+    if suffix in PROXIMITY_MESHES:
+        return
+    yield event(
         ENGINE,
-        Verdict.CHANGES,
-        "sphere",
-        f"replaces the inertia of link `{link}` by a solid sphere of {fmt(WATER)} kg/m³: "
-        f"{fmt(m)} kg, radius {fmt(radius, 4)} m, moment {fmt(moment, 4)} kg·m² about each axis",
-        message,
-        inertial.inertia_source or inertial.source,
+        Verdict.REFUSES,
+        "mesh",
+        f"refuses the {suffix or 'extension-less'} collision mesh of link `{link}` (it "
+        "computes a collision mesh's convex hull from .obj, .vtk or .gltf only)",
+        f"MakeConvexHull only applies to .obj, .vtk, and .gltf meshes; unsupported extension "
+        f"'{suffix}' for geometry data: {path}.",
+        geometry.source,
         link=link,
-        mass=m,
-        radius=radius,
-        ixx=moment,
-        iyy=moment,
-        izz=moment,
+        mesh=path,
     )
+
+
+def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
+    known = {link.name for link in robot.links}
+    for joint in robot.robot.joints:
+        if not joint.name or joint.parent not in known or joint.child not in known:
+            continue  # a broken tree: IN040
+        read = parser.read_joint(joint)
+        if read.friction != 0:
+            yield event(
+                ENGINE,
+                Verdict.CHANGES,
+                "friction",
+                f"ignores the friction of joint `{joint.name}` ({fmt(read.friction)})",
+                reading.FRICTION,
+                read.dynamics,
+                link=joint.child,
+                joint=joint.name,
+            )
+        if read.refusal is not None:
+            message, source = read.refusal
+            yield event(
+                ENGINE,
+                Verdict.REFUSES,
+                "joint",
+                f"refuses the model at joint `{joint.name}`",
+                message,
+                source or joint.source,
+                link=joint.child,
+                joint=joint.name,
+            )
+        elif joint.type == "floating":
+            yield event(
+                ENGINE,
+                Verdict.CHANGES,
+                "floating",
+                f"leaves out the floating joint `{joint.name}`: link `{joint.child}` becomes a "
+                "free body, moved by nothing but gravity and contact",
+                f"Joint '{joint.name}' specified as type floating which is not supported by "
+                f"MultibodyPlant.  Leaving '{joint.child}' as a free body.",
+                joint.source,
+                link=joint.child,
+                joint=joint.name,
+            )
+
+
+# --- forward dynamics ------------------------------------------------------------------------
+
+
+def _spatial_inertia(link: LinkAnalysis) -> NDArray[np.float64]:
+    """The body's spatial inertia about its origin in its own axes, as Drake has it."""
+    inertial = link.link.inertial
+    if inertial is None or link.name == model.WORLD:
+        return np.zeros((6, 6))
+    read = parser.read_inertial(inertial)
+    if read.kind == "massless":
+        return np.zeros((6, 6))
+    if read.kind == "refused" or read.tensor is None:
+        return np.eye(6)  # unknown until the file is fixed: taken as sound
+    com = np.array(read.xyz, dtype=np.float64)
+    if read.kind == "sphere":
+        m, _, moment = plausible_sphere(read.mass)
+        return articulated.spatial_inertia(m, com, moment * np.eye(3))
+    rotation = rpy_matrix(read.rpy)
+    central = rotation @ read.tensor @ rotation.T
+    return articulated.spatial_inertia(read.mass, com, central)
+
+
+def _motion(joint: model.Joint | None) -> str:
+    if joint is None or joint.type == "fixed":
+        return "fixed"
+    if joint.type in ("revolute", "continuous"):
+        return "revolute"
+    if joint.type in ("prismatic", "planar"):
+        return joint.type
+    if joint.type == "floating":
+        return "free"
+    return "fixed"  # a joint Drake refuses: nothing to say about its dynamics
+
+
+def _bodies(robot: RobotAnalysis) -> list[articulated.Body]:
+    """Drake's bodies at rest, in world axes; the root welded to the world."""
+    poses: dict[str, NDArray[np.float64]] = {}
+    bodies: list[articulated.Body] = []
+    stack = [link for link in reversed(robot.links) if link.parent is None]
+    for link in robot.links:  # links of a floating joint start a tree of their own
+        if link.parent is not None and link.parent.type == "floating":
+            stack.insert(0, link)
+    while stack:
+        link = stack.pop()
+        if link.name in poses:
+            continue
+        joint = link.parent
+        attached = joint is None or joint.type == "floating" or joint.parent == model.WORLD
+        pose = np.eye(4) if joint is None or joint.type == "floating" else None
+        if pose is None and joint is not None:
+            pose = _child_pose(poses, joint)
+            if pose is None:
+                continue  # an origin Drake refuses, or a parent not placed (a cycle)
+        assert pose is not None
+        poses[link.name] = pose
+        motion = _motion(joint)
+        axis = _axis(joint) if motion in ("revolute", "prismatic", "planar") else None
+        if axis is None and motion in ("revolute", "prismatic", "planar"):
+            motion = "fixed"
+        rotation = pose[:3, :3]
+        local = _spatial_inertia(link)
+        both = np.kron(np.eye(2), rotation)
+        if link.name != model.WORLD:
+            bodies.append(
+                articulated.Body(
+                    link.name,
+                    None if attached or joint is None else joint.parent,
+                    motion,
+                    rotation @ axis if axis is not None else np.zeros(3),
+                    pose[:3, 3],
+                    both @ local @ both.T,
+                )
+            )
+        stack.extend(
+            robot.by_name[j.child]
+            for j in reversed(link.children)
+            if j.child in robot.by_name and j.type != "floating"
+        )
+    return bodies
+
+
+def _child_pose(
+    poses: dict[str, NDArray[np.float64]], joint: model.Joint
+) -> NDArray[np.float64] | None:
+    """The child link's pose at rest from its parent's (``None`` if that is not placed)."""
+    parent = poses.get(joint.parent or "")
+    if parent is None:
+        return None
+    try:
+        xyz, rpy = parser.origin(joint.origin)
+        return parent @ transform(xyz, rpy)
+    except (parser.Refused, ValueError):
+        return None
+
+
+def _axis(joint: model.Joint | None) -> NDArray[np.float64] | None:
+    if joint is None:
+        return None
+    try:
+        axis = np.array(parser.vector(joint.axis, "xyz") or (1.0, 0.0, 0.0), dtype=np.float64)
+    except parser.Refused:
+        return None
+    norm = float(np.linalg.norm(axis))
+    if not math.isfinite(norm) or norm < 1e-8:
+        return None
+    return axis / norm
+
+
+def _singular_events(robot: RobotAnalysis) -> Iterator[Event]:
+    with np.errstate(all="ignore"):
+        hinges = articulated.hinges(_bodies(robot))
+    for hinge in hinges:
+        if not hinge.singular:
+            continue
+        link = robot.by_name[hinge.body]
+        joint = link.parent
+        assert joint is not None
+        free = joint.type == "floating"
+        inboard = "world" if free else joint.parent or "world"
+        rotates = free or ROTATES.get(joint.type, False)
+        translates = free or TRANSLATES.get(joint.type, False)
+        motion = {
+            (True, False): "inertia about its axis",
+            (False, True): "mass along its axis",
+        }.get((rotates, translates), "inertia in every direction it moves")
+        inertial = link.link.inertial
+        yield event(
+            ENGINE,
+            Verdict.REFUSES,
+            "singular",
+            f"fails at simulation time on joint `{joint.name}`: neither link `{link.name}` nor "
+            f"anything outboard of it has {motion}",
+            reading.singular_hinge(inboard, link.name, rotates, translates),
+            inertial.source if inertial is not None else link.link.source,
+            link=link.name,
+            joint=joint.name,
+        )

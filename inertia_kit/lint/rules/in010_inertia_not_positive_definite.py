@@ -93,7 +93,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
 
 def _engines(negative: bool) -> str:
     if negative:
-        return "MuJoCo refuses the model, Gazebo and Drake reject the tensor, PyBullet zeroes it"
+        return (
+            "MuJoCo refuses the model, Gazebo rejects the tensor, Drake replaces it by a sphere "
+            "of water, PyBullet zeroes it"
+        )
     return (
         "MuJoCo refuses the model; Drake and PyBullet cannot turn a body with no rotational "
         "inertia about that axis"

@@ -106,7 +106,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             f"A + B ≥ C: {fmt(shown[0], 4)} + {fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)}"
             f" < {fmt(c, 4)}, "
             f"{fmt(100 * shortfall / c, 3)} % short (no rigid body has such a tensor; MuJoCo "
-            f"refuses it, Gazebo and Drake reject it, PyBullet zeroes it){basis}",
+            f"refuses it, Gazebo rejects it, Drake replaces it by a sphere of water, PyBullet "
+            f"zeroes it){basis}",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected=None if written is None else written.fields,

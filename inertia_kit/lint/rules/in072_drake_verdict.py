@@ -14,17 +14,36 @@ ENGINE = "drake"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
 SUMMARY = (
-    "Drake replaces an invalid tensor by a water-density sphere, fails at run time on a "
-    "massless moving link, and refuses collision meshes that are not .obj"
+    "Drake replaces an invalid tensor by a water-density sphere, refuses what its parser cannot "
+    "read (numbers, shapes, meshes, collision meshes that are not .obj/.vtk/.gltf), and fails at "
+    "the first simulation step on a joint whose outboard links have no inertia along its motion"
 )
 
 HELP = {
+    "robot": 'name the robot (<robot name="...">): Drake names the model after it',
+    "number": "write each <inertial> value as one plain number (Drake reads `2kg` as 2 and "
+    "refuses `nan`, `inf`, `1e999` and empty values)",
+    "tiny": "the mass is below 1e-320 kg: write the real mass, or remove the <inertial> of a "
+    "massless frame",
+    "world": "remove the <inertial> from the link `world`: it stands for the world, which "
+    "has no mass",
     "sphere": "write a physically valid tensor about the centre of mass (every principal moment "
     "≥ 0, A + B ≥ C) and a mass > 0",
-    "singular": "give the link (or a link welded to it) a mass and inertia; a massless frame "
-    "belongs on a fixed joint",
+    "geometry": "give the shape its dimensions, each > 0 (a sphere's radius ≥ 0), or remove the "
+    "element",
+    "mesh-missing": "point the mesh at an existing file (a `package://` URI needs the package in "
+    "Drake's package map)",
     "mesh": "convert the collision mesh to .obj (e.g. with trimesh or meshlab) and reference "
     "that file; visual meshes may stay as they are",
+    "joint": "give the joint a non-zero <axis>, a type Drake knows (revolute, continuous, "
+    "prismatic, fixed, planar, floating; ball, screw and universal as <drake:joint>), "
+    "lower ≤ upper, velocity ≥ 0 and damping ≥ 0",
+    "friction": "model the joint's friction another way (Drake's joint friction is ignored; "
+    "damping is kept), or remove the attribute",
+    "floating": "leave the link unattached (Drake makes every unattached link a free body) or "
+    "give it a joint Drake models",
+    "singular": "give the link (or a link outboard of it) mass and inertia about the joint's "
+    "motion; a massless frame belongs on a fixed joint",
 }
 
 
