@@ -251,6 +251,12 @@ def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:
     """Why the link's geometry cannot give its mass properties, or ``None``."""
     geometry = link.geometry
     if not geometry.solids:
+        if link.parent is None:
+            return (
+                "the robot's base has no mass (IN001) and no <visual> or <collision> geometry "
+                "to compute it from: write its <inertial> by hand, or hang the robot from a "
+                "`world` link by a fixed joint if its base is fixed"
+            )
         return (
             "it has no <visual> or <collision> geometry to compute from: write its <inertial> "
             "by hand, or give it geometry"

@@ -19,7 +19,7 @@ import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
 from kit.moments import box_tensor, solid_box, solid_cylinder
-from kit.urdf import box, collision, filled_inertial, inertial, joint, moving
+from kit.urdf import box, collision, filled_inertial, inertial, joint, link, moving, robot
 from test_plan import MISSING_MESH
 
 from inertia_kit import load
@@ -296,3 +296,22 @@ def test_configured_links_under_given_masses_and_unknown_names():
     plans = [FillPlan("x.urdf", None, links=frozenset({"a", "b"}))]
     assert unknown_links(["c", "a", "nosuch"], plans) == ["c", "nosuch"]
     assert unknown_links(["c"], []) == []  # no file was read: its error is what to tell
+
+
+def test_a_massless_base_without_geometry_is_refused_with_the_way_out(tmp_path: Path):
+    """IN001 flags a massless root above moving links; with no geometry fill cannot help."""
+    text = robot(
+        link("base"),
+        joint("base", "arm"),
+        link("arm", inertial(2, 0.01), collision(box(0.1, 0.1, 0.1))),
+    )
+    path = tmp_path / "robot.urdf"
+    path.write_text(text)
+    result = CliRunner().invoke(fill_command, [str(path)])
+    assert result.exit_code == 1
+    assert f"{path}: link `base` not filled: the robot's base has no mass (IN001)" in result.stderr
+    assert "hang the robot from a `world` link by a fixed joint" in result.stderr
+    assert path.read_text() == text
+    welded = text.replace('"base"', '"world"')
+    path.write_text(welded)
+    assert CliRunner().invoke(fill_command, [str(path)]).exit_code == 0
