@@ -18,8 +18,8 @@ NAME = "missing-inertial"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = (
-    "a link that moves (child of a non-fixed joint) or has collision geometry has no mass in its "
-    "fixed-joint group"
+    "a link that moves (child of a non-fixed joint) or has collision geometry, or the root above "
+    "moving links, has no mass in its fixed-joint group"
 )
 OPTIONS = (
     # True: the root is free unless a fixed joint welds it to a `world` link, as Gazebo, Drake
