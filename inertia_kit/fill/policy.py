@@ -3,9 +3,10 @@ Which links ``inertia-fill`` fills, which it refuses, and the mass each one gets
 
 Which links (``fix``):
 
-- ``missing`` (default): the links IN001 reports (a link that moves or has collision geometry, with
-  no mass in its fixed-joint group) that have geometry. Massless frames without geometry, and
-  fixed links with visual geometry only, are left alone.
+- ``missing`` (default): the links IN001 reports (a link that moves or has collision geometry, or
+  the root above moving links, with no mass in its fixed-joint group) that have geometry (one
+  without is refused). Massless frames on fixed joints, and fixed links with visual geometry
+  only, are left alone.
 - ``invalid``: those, and links whose ``<inertial>`` is impossible: incomplete or not numeric
   (IN003/IN004), not a possible rigid body (``MassProperties.validity``), or reported by
   IN010, IN011, IN020 (error) or IN023; and links whose tensor shows a recognised slip
