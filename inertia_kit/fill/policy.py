@@ -9,7 +9,7 @@ Which links (``fix``):
   only, are left alone.
 - ``invalid``: those, and links whose ``<inertial>`` is impossible: incomplete or not numeric
   (IN003/IN004), not a possible rigid body (``MassProperties.validity``), or reported by
-  IN010, IN011, IN020 (error) or IN023; and links whose tensor shows a recognised slip
+  IN010, IN011, or IN020/IN023 as errors; and links whose tensor shows a recognised slip
   (IN060-IN064: about the link origin, flipped product signs, other axes, a unit slip,
   transposed values), which get their declared values with the slip undone
   (:func:`inertia_kit.analysis.forensics.diagnose_link`), not the geometry's.
@@ -229,9 +229,11 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
     declared = link.declared
     if declared is None or not declared.validity().ok:
         return True  # incomplete, not numeric, or no possible rigid body
-    if any(code in codes for code in ("IN010", "IN011", "IN023")):
+    if any(code in codes for code in ("IN010", "IN011")):
         return True
-    if any(f.severity >= Severity.ERROR for f in codes.get("IN020", ())):
+    # IN020 and IN023 are errors only when the tensor is certainly impossible; a warning (a
+    # visual-only basis, an overshoot within rounding) may be a real part: kept
+    if any(f.severity >= Severity.ERROR for c in ("IN020", "IN023") for f in codes.get(c, ())):
         return True
     from inertia_kit.analysis.forensics.links import diagnose_link
 
