@@ -104,7 +104,7 @@ class Firmness:
         Beyond the bound whichever way the numbers were rounded, on geometry that holds (or
         more than :data:`GROSS` times beyond it, on any geometry).
         """
-        return self.margin.ratio > (GROSS if self.weak else 1.0)
+        return bool(self.margin.ratio > (GROSS if self.weak else 1.0))
 
     def why_not(self) -> str | None:
         """Why the verdict is a warning, not an error, in words; ``None`` when it is firm."""
