@@ -86,10 +86,11 @@ class Firmness:
       Why the geometry cannot make the verdict firm, whatever the numbers (visual geometry
       only, an open mesh); empty when it can.
     rounded : tuple of str
-      The written numbers whose rounding counts most, at most three, largest first
-      (``cylinder radius 0.035 m``, ``mass 0.089 kg``, ``<inertia> values``).
+      When they decide the verdict (no ``weak``, within the margin): the written numbers whose
+      rounding counts most, at most three, largest first (``cylinder radius 0.035 m``,
+      ``mass 0.089 kg``, ``<inertia> values``); else empty.
     facets : tuple of str
-      The meshes whose facets were allowed for (file names).
+      Likewise, the meshes whose facets count (file names).
     """
 
     excess: MomentExcess
@@ -150,6 +151,9 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     raised = found.bound * (1.0 + rounding(mass) / mass)
     lowered = found.moment - _moment_rounding(inertial, found.axis)
     margin = MomentExcess(found.axis, lowered, raised, found.r_max)
+    weak = _weak(link, solids)
+    if weak or margin.ratio > 1.0:
+        return Firmness(excess, margin, weak, (), ())  # the allowances decide nothing
     # what each allowance alone takes off the excess, for the message: a size of one shape
     # (the others as written), the mass, the <inertia> values, a mesh's facets
     shares: dict[str, float] = {}
@@ -167,7 +171,7 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     )
     rounded = tuple(t for _, t in counted if not t.startswith("facets "))
     facets = tuple(t.removeprefix("facets ") for _, t in counted if t.startswith("facets "))
-    return Firmness(excess, margin, _weak(link, solids), rounded[:3], facets)
+    return Firmness(excess, margin, weak, rounded[:3], facets)
 
 
 def _weak(link: LinkAnalysis, solids: list[Solid]) -> tuple[str, ...]:

@@ -113,8 +113,10 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     relation = f"{fmt(ratio, 3)} times" if ratio > 1 else f"1/{fmt(1 / ratio, 3)} of"
     notes = [] if mistake is None else [mistake]
     severity = None
-    excess, firmness = link.excess, link.firmness
-    if excess is not None and excess.ratio > 1.0 + BOUND_RTOL and firmness is not None:
+    excess = link.excess
+    beyond = excess is not None and excess.ratio > 1.0 + BOUND_RTOL
+    firmness = link.firmness if beyond else None
+    if firmness is not None:
         # an error only when the bound holds whichever way the written numbers were rounded,
         # on collision geometry (analysis.firmness); else a warning that says why
         if firmness.firm:
