@@ -16,12 +16,14 @@ A bound is only as firm as what it rests on:
   :data:`FACETS` about its centre;
 - **the kind of geometry**: collision shapes are what the simulator makes contact with, the
   modeller's statement of where the part is; visual geometry alone is often a schematic stand-in
-  (a cylinder drawn for a motor rotor), and an open mesh (IN032) may not hold the whole part.
+  (a cylinder drawn for a motor rotor), and an open collision mesh (IN032) may not hold the
+  whole part. Visual meshes only widen the region (the bound is taken over collision and
+  visual geometry together), so they never weaken it.
 
 A declared moment is firmly impossible when it exceeds the bound with every number rounded in its
-favour and the meshes' facets allowed for, and the link has collision geometry and no open mesh;
-on visual geometry alone or with an open mesh, only when it exceeds it more than :data:`GROSS`
-times.
+favour and the meshes' facets allowed for, and the link has collision geometry and no open
+collision mesh; on visual geometry alone or with an open collision mesh, only when it exceeds it
+more than :data:`GROSS` times.
 """
 
 from __future__ import annotations
@@ -49,10 +51,13 @@ ROUNDING_CAP = 0.05
 # how far a mesh's flat facets may lie inside the curved surface of the part, relative to its
 # size: the chords of a 16-sided polygon lie 1 - cos(π/16) = 1.9 % inside its circle
 FACETS = 0.02
-# on geometry that cannot make a verdict firm (visual only, an open mesh), a moment this many
-# times the bound is impossible all the same: a radius of gyration √10 = 3.2 times what the
+# on geometry that cannot make a verdict firm (visual only, an open collision mesh), a moment
+# this many times the bound is impossible all the same: a radius of gyration √10 = 3.2 times what the
 # geometry allows is no stand-in's inaccuracy (the placeholder ixx = 1.0 on a small link)
 GROSS = 10.0
+# a collision mesh whose convex hull's volume differs from its open surface's by more than this
+# (IN032's default tolerance) may not be the whole part
+OPEN = 0.05
 
 
 def rounding(value: float) -> float:
@@ -151,7 +156,7 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     raised = found.bound * (1.0 + rounding(mass) / mass)
     lowered = found.moment - _moment_rounding(inertial, found.axis)
     margin = MomentExcess(found.axis, lowered, raised, found.r_max)
-    weak = _weak(link, solids)
+    weak = _weak(link)
     if weak or margin.ratio > 1.0:
         return Firmness(excess, margin, weak, (), ())  # the allowances decide nothing
     # what each allowance alone takes off the excess, for the message: a size of one shape
@@ -174,14 +179,24 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     return Firmness(excess, margin, weak, rounded[:3], facets)
 
 
-def _weak(link: LinkAnalysis, solids: list[Solid]) -> tuple[str, ...]:
-    weak = []
+def _weak(link: LinkAnalysis) -> tuple[str, ...]:
+    """
+    Why the link's geometry cannot make the verdict firm. Only the collision geometry counts:
+    the bound is taken over collision and visual geometry together, never tighter than over
+    the collision geometry alone, so a visual mesh cannot weaken it.
+    """
     if not link.link.collisions:
-        weak.append("its only geometry is visual, often a schematic stand-in for the part")
-    for solid in solids:
-        if solid.mesh is not None and solid.mesh.method == "convex-hull":
-            name = Path(solid.mesh.path).name
-            weak.append(f"mesh `{name}` is open (IN032), so it may not hold the whole part")
+        return ("its only geometry is visual, often a schematic stand-in for the part",)
+    weak: list[str] = []
+    for solid in link.collision.solids:
+        mesh = solid.mesh
+        if mesh is not None and mesh.method == "convex-hull" and mesh.volume_error > OPEN:
+            text = (
+                f"collision mesh `{Path(mesh.path).name}` is open (IN032), so it may not hold "
+                "the whole part"
+            )
+            if text not in weak:
+                weak.append(text)
     return tuple(weak)
 
 
