@@ -52,8 +52,9 @@ ROUNDING_CAP = 0.05
 # size: the chords of a 16-sided polygon lie 1 - cos(π/16) = 1.9 % inside its circle
 FACETS = 0.02
 # on geometry that cannot make a verdict firm (visual only, an open collision mesh), a moment
-# this many times the bound is impossible all the same: a radius of gyration √10 = 3.2 times what the
-# geometry allows is no stand-in's inaccuracy (the placeholder ixx = 1.0 on a small link)
+# this many times the bound is impossible all the same: a radius of gyration √10 = 3.2 times
+# what the geometry allows is no stand-in's inaccuracy (the placeholder ixx = 1.0 on a small
+# link)
 GROSS = 10.0
 # a collision mesh whose convex hull's volume differs from its open surface's by more than this
 # (IN032's default tolerance) may not be the whole part
