@@ -185,14 +185,19 @@ def _base_engines(robot: RobotAnalysis, root: str, below: tuple[str, ...], membe
     )
     carried = sum((declared_mass(robot.by_name[n].link) or 0.0 for n in below), 0.0)
     # measured with drake 1.51: a free body with massive links below simulates (it only lacks
-    # its own mass); one with nothing below to give it inertia is refused at the first step
-    drake = (
-        "Drake makes it a free body without mass, so the robot moves as if it weighed only the "
-        f"{fmt(carried)} kg of the links below it"
-        if carried > 0
-        else 'Drake refuses to step it ("An internal mass matrix associated with the joint '
-        f'that connects body world to body {root} is not positive-definite")'
-    )
+    # its own mass); without mass anywhere the first step is refused, naming the joint of a
+    # massless body (of the root itself when nothing is below it)
+    if carried > 0:
+        drake = (
+            "Drake makes it a free body without mass, so the robot moves as if it weighed only "
+            f"the {fmt(carried)} kg of the links below it"
+        )
+    else:
+        joint = "connects body …" if below else f"connects body world to body {root}"
+        drake = (
+            'Drake refuses to step it ("An internal mass matrix associated with the joint that '
+            f'{joint} is not positive-definite")'
+        )
     pybullet = "gives it 1 kg" if members == 1 else f"gives each of its {members} links 1 kg"
     return (
         f'{gazebo} ("A model must have at least one link"); {drake}; PyBullet {pybullet} '
