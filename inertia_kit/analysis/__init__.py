@@ -7,6 +7,8 @@ analysis: what a robot's values and geometry mean, per link, for lint, fill and 
 - ``declared``: the declared ``<inertial>`` as mass properties.
 - ``geometry``: shapes evaluated as solids at unit density, and their union.
 - ``bounds``: convex hulls of the geometry and the hard moment bounds they set.
+- ``firmness``: whether a value beyond a bound is certainly impossible (rounding of the
+  written numbers, mesh facets, collision or visual geometry).
 - ``tensors``: comparing two tensors about every axis; when a principal moment is zero.
 - ``expected``: the geometry's tensor as a link's ``<inertia>`` would write it.
 - ``describe``: a shape in words, for messages and for the report table.

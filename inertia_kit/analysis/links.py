@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import NDArray
 
+    from inertia_kit.analysis.firmness import Firmness
     from inertia_kit.physics.meshes import MeshSolid
 
 
@@ -120,6 +121,17 @@ class LinkAnalysis:
         if self.declared is None or self.envelope is None:
             return None
         return moment_excess(self.declared, self.envelope)
+
+    @functools.cached_property
+    def firmness(self) -> Firmness | None:
+        """
+        How firm :attr:`excess` is when the declared tensor is beyond the bound (see
+        :mod:`~inertia_kit.analysis.firmness`): an error only when it holds with every written
+        number rounded in its favour, on collision geometry; ``None`` without an excess.
+        """
+        from inertia_kit.analysis.firmness import firmness
+
+        return firmness(self)
 
     @property
     def mass_share(self) -> float:

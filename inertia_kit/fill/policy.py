@@ -3,12 +3,13 @@ Which links ``inertia-fill`` fills, which it refuses, and the mass each one gets
 
 Which links (``fix``):
 
-- ``missing`` (default): the links IN001 reports (a link that moves or has collision geometry, with
-  no mass in its fixed-joint group) that have geometry. Massless frames without geometry, and
-  fixed links with visual geometry only, are left alone.
+- ``missing`` (default): the links IN001 reports (a link that moves or has collision geometry, or
+  the root above moving links, with no mass in its fixed-joint group) that have geometry (one
+  without is refused). Massless frames on fixed joints, and fixed links with visual geometry
+  only, are left alone.
 - ``invalid``: those, and links whose ``<inertial>`` is impossible: incomplete or not numeric
   (IN003/IN004), not a possible rigid body (``MassProperties.validity``), or reported by
-  IN010, IN011, IN020 (error) or IN023; and links whose tensor shows a recognised slip
+  IN010, IN011, or IN020/IN023 as errors; and links whose tensor shows a recognised slip
   (IN060-IN064: about the link origin, flipped product signs, other axes, a unit slip,
   transposed values), which get their declared values with the slip undone
   (:func:`inertia_kit.analysis.forensics.diagnose_link`), not the geometry's.
@@ -228,9 +229,11 @@ def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:
     declared = link.declared
     if declared is None or not declared.validity().ok:
         return True  # incomplete, not numeric, or no possible rigid body
-    if any(code in codes for code in ("IN010", "IN011", "IN023")):
+    if any(code in codes for code in ("IN010", "IN011")):
         return True
-    if any(f.severity >= Severity.ERROR for f in codes.get("IN020", ())):
+    # IN020 and IN023 are errors only when the tensor is certainly impossible; a warning (a
+    # visual-only basis, an overshoot within rounding) may be a real part: kept
+    if any(f.severity >= Severity.ERROR for c in ("IN020", "IN023") for f in codes.get(c, ())):
         return True
     from inertia_kit.analysis.forensics.links import diagnose_link
 
@@ -251,6 +254,12 @@ def _refusal(link: LinkAnalysis, codes: Mapping[str, list]) -> str | None:
     """Why the link's geometry cannot give its mass properties, or ``None``."""
     geometry = link.geometry
     if not geometry.solids:
+        if link.parent is None:
+            return (
+                "the robot's base has no mass (IN001) and no <visual> or <collision> geometry "
+                "to compute it from: write its <inertial> by hand, or hang the robot from a "
+                "`world` link by a fixed joint if its base is fixed"
+            )
         return (
             "it has no <visual> or <collision> geometry to compute from: write its <inertial> "
             "by hand, or give it geometry"

@@ -29,7 +29,7 @@ ROOT = REPO
 MANIFEST = ROOT / ".pre-commit-hooks.yaml"
 
 BAD = robot_lines(
-    link_lines("base"), joint_lines("base", "arm"), link_lines("arm", 0, 0.001), name="bad"
+    link_lines("world"), joint_lines("world", "arm"), link_lines("arm", 0, 0.001), name="bad"
 )
 GOOD = BAD.replace('name="bad"', 'name="good"').replace('value="0"', 'value="0.5"')
 # only IN002 runs, so that rules still being written cannot change what these tests see
@@ -194,8 +194,8 @@ def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
 
 
 MISSING = robot_lines(
-    link_lines("base"),
-    joint_lines("base", "arm"),
+    link_lines("world"),
+    joint_lines("world", "arm"),
     f'  <link name="arm">\n    {collision(box(0.1, 0.1, 0.4))}\n  </link>\n',
     name="arm",
 )

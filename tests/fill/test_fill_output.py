@@ -104,9 +104,9 @@ def test_output_fills_links_made_by_xacro_macros(tmp_path: Path):
     <link name="${name}">
       <collision><geometry><box size="${size}"/></geometry></collision></link>
   </xacro:macro>
-  <link name="base"/>
+  <link name="world"/>
   <xacro:part name="arm" size="0.1 0.1 0.4"/>
-  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+  <joint name="j" type="revolute"><parent link="world"/><child link="arm"/>
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
@@ -125,7 +125,7 @@ def test_output_fills_links_made_by_xacro_macros(tmp_path: Path):
         + "\n    <collision>\n      <geometry>\n"
         '        <box size="0.1 0.1 0.4"/>\n      </geometry>\n    </collision>\n  </link>\n'
         '  <joint name="j" type="revolute">\n'
-        '    <parent link="base"/>\n    <child link="arm"/>\n    <axis xyz="0 0 1"/>\n'
+        '    <parent link="world"/>\n    <child link="arm"/>\n    <axis xyz="0 0 1"/>\n'
         '    <limit lower="-1" upper="1" effort="1" velocity="1"/>\n  </joint>\n</robot>\n'
     )
     # run again: the same bytes, so OUT is not rewritten
@@ -147,8 +147,8 @@ def test_output_of_a_xacro_resolves_meshes_from_its_sources(tmp_path: Path):
         '    <link name="${name}"><collision><geometry><mesh filename="part.stl"/></geometry>'
         "</collision></link>\n"
         "  </xacro:macro>\n"
-        '  <link name="base"/>\n  <xacro:part name="arm"/>\n  '
-        + joint("base", "arm")
+        '  <link name="world"/>\n  <xacro:part name="arm"/>\n  '
+        + joint("world", "arm")
         + "\n</robot>\n"
     )
     out = tmp_path / "elsewhere" / "robot.urdf"

@@ -27,7 +27,7 @@ from inertia_kit.physics.formatting import xml_number
 ARM = """<?xml version="1.0"?>
 <!-- an arm: comments, odd spacing and both quote styles stay as they are -->
 <robot   name='arm'>
-  <link name="base"/>
+  <link name="world"/>
   {joint}
   <!-- the upper arm -->
   <link
@@ -38,7 +38,7 @@ ARM = """<?xml version="1.0"?>
     </collision>
   </link>
 </robot>
-""".replace("{joint}", joint("base", "upper"))
+""".replace("{joint}", joint("world", "upper"))
 
 ARM_FILLED = ARM.replace(
     "name='upper'  >\n",
@@ -48,8 +48,8 @@ ARM_FILLED = ARM.replace(
 )
 
 CRLF_TABS = (
-    '<robot name="r">\r\n\t<link name="base"/>\r\n\t'
-    + joint("base", "wheel", "continuous")
+    '<robot name="r">\r\n\t<link name="world"/>\r\n\t'
+    + joint("world", "wheel", "continuous")
     + '\r\n\t<link name="wheel">\r\n\t\t<collision>\r\n\t\t\t<geometry>'
     '<cylinder radius="0.1" length="0.05"/></geometry>\r\n\t\t</collision>\r\n\t</link>\r\n'
     "</robot>\r\n"
@@ -66,14 +66,14 @@ def crlf_filled(values):
 
 
 CROSS = """<robot name="r">
-    <link name="base"/>
+    <link name="world"/>
     {joint}
     <link name="cross">
         <collision><geometry><box size="0.2 0.1 0.1"/></geometry></collision>
         <collision><geometry><box size="0.1 0.2 0.1"/></geometry></collision>
     </link>
 </robot>
-""".replace("{joint}", joint("base", "cross"))
+""".replace("{joint}", joint("world", "cross"))
 
 
 def cross_values(density):
@@ -85,7 +85,7 @@ def cross_values(density):
 
 
 IMPOSSIBLE = """<robot name="r">
-  <link name="base"/>
+  <link name="world"/>
   {joint}
   <link name="body">
     <!-- measured on the scale -->
@@ -100,7 +100,7 @@ IMPOSSIBLE = """<robot name="r">
     </collision>
   </link>
 </robot>
-""".replace("{joint}", joint("base", "body"))
+""".replace("{joint}", joint("world", "body"))
 IMPOSSIBLE_OLD = IMPOSSIBLE[IMPOSSIBLE.index("<inertial>") : IMPOSSIBLE.index("</inertial>") + 11]
 IMPOSSIBLE_FIXED = IMPOSSIBLE.replace(
     IMPOSSIBLE_OLD,
@@ -110,7 +110,7 @@ IMPOSSIBLE_FIXED = IMPOSSIBLE.replace(
 )
 
 MISSING_MESH = """<robot name="r">
-  <link name="base"/>
+  <link name="world"/>
   {j1}
   <link name="shell">
     <collision><geometry><mesh filename="meshes/nowhere.stl"/></geometry></collision>
@@ -120,7 +120,7 @@ MISSING_MESH = """<robot name="r">
     <collision><geometry><cylinder radius="0.02" length="0.5"/></geometry></collision>
   </link>
 </robot>
-""".format(j1=joint("base", "shell"), j2=joint("base", "rod"))
+""".format(j1=joint("world", "shell"), j2=joint("world", "rod"))
 MISSING_MESH_FILLED = MISSING_MESH.replace(
     '<link name="rod">\n',
     '<link name="rod">\n'
@@ -171,8 +171,8 @@ class Case:
 
 # a byte-order mark and non-ASCII text before the link on its line: offsets are characters
 BOM = (
-    "\ufeff<robot name='r'>\n  <link name='base'/>\n  "
-    + joint("base", "ärm")
+    "\ufeff<robot name='r'>\n  <link name='world'/>\n  "
+    + joint("world", "ärm")
     + "\n  <!-- Oberarm, ä -->  <link name='ärm'>\n"
     "    <visual><geometry><box size='0.1 0.2 0.3'/></geometry></visual>\n"
     "  </link>\n</robot>\n"
@@ -186,8 +186,8 @@ BOM_FILLED = BOM.replace(
 
 # the link's content on its start tag's line
 ONE_LINE = (
-    '<robot name="r">\n  <link name="base"/>\n  '
-    + joint("base", "pin")
+    '<robot name="r">\n  <link name="world"/>\n  '
+    + joint("world", "pin")
     + '\n  <link name="pin"><collision><geometry><sphere radius="0.1"/></geometry></collision>'
     "</link>\n</robot>\n"
 )

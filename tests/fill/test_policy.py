@@ -19,7 +19,7 @@ import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
 from kit.moments import box_tensor, solid_box, solid_cylinder
-from kit.urdf import box, collision, filled_inertial, inertial, joint, moving
+from kit.urdf import box, collision, filled_inertial, inertial, joint, link, moving, robot
 from test_plan import MISSING_MESH
 
 from inertia_kit import load
@@ -296,3 +296,39 @@ def test_configured_links_under_given_masses_and_unknown_names():
     plans = [FillPlan("x.urdf", None, links=frozenset({"a", "b"}))]
     assert unknown_links(["c", "a", "nosuch"], plans) == ["c", "nosuch"]
     assert unknown_links(["c"], []) == []  # no file was read: its error is what to tell
+
+
+def test_a_massless_base_without_geometry_is_refused_with_the_way_out(tmp_path: Path):
+    """IN001 flags a massless root above moving links; with no geometry fill cannot help."""
+    text = robot(
+        link("base"),
+        joint("base", "arm"),
+        link("arm", inertial(2, 0.01), collision(box(0.1, 0.1, 0.1))),
+    )
+    path = tmp_path / "robot.urdf"
+    path.write_text(text)
+    result = CliRunner().invoke(fill_command, [str(path)])
+    assert result.exit_code == 1
+    assert f"{path}: link `base` not filled: the robot's base has no mass (IN001)" in result.stderr
+    assert "hang the robot from a `world` link by a fixed joint" in result.stderr
+    assert path.read_text() == text
+    welded = text.replace('"base"', '"world"')
+    path.write_text(welded)
+    assert CliRunner().invoke(fill_command, [str(path)]).exit_code == 0
+
+
+def test_fix_invalid_keeps_a_tensor_that_is_only_doubtfully_impossible(tmp_path: Path):
+    """IN023 as a warning (2.3 % over a rounded radius: Unitree Go1's rotors) is no licence to
+    replace a measured tensor; the same overshoot on precisely written numbers is an error."""
+    along_x = "0 1.5707963267948966 0"
+    rotor = inertial(0.089, 0.000111842, 5.9647e-05, 5.9647e-05)
+    doubtful = moving(collision('<cylinder radius="0.035" length="0.02"/>', rpy=along_x) + rotor)
+    path = tmp_path / "robot.urdf"
+    path.write_text(doubtful)
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert (result.exit_code, path.read_text()) == (0, doubtful), result.stderr
+    firm = doubtful.replace('radius="0.035" length="0.02"', 'radius="0.0349999" length="0.02"')
+    firm = firm.replace('value="0.089"', 'value="0.0890001"')
+    path.write_text(firm)
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 1 and "0.000111842" not in path.read_text(), result.stderr

@@ -134,10 +134,11 @@ def robot_lines(*parts: str, name: str = "r", head: str = "") -> str:
     return f'{head}<robot name="{name}">\n' + "".join(parts) + "</robot>\n"
 
 
-def moving(body: str, extra: str = "", *, name="arm", kind="revolute", root="base") -> str:
+def moving(body: str, extra: str = "", *, name="arm", kind="revolute", root="world") -> str:
     """
     A robot whose link ``name``, moving on a ``kind`` joint ``j`` from a massless ``root``, holds
-    ``body`` on its line; ``extra`` is written after that link (more joints and links).
+    ``body`` on its line; ``extra`` is written after that link (more joints and links). The
+    root is ``world`` (a fixed base): any other massless root above a moving link is IN001's.
     """
     return robot_lines(
         link_lines(root),

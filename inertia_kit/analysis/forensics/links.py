@@ -165,7 +165,14 @@ def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | No
     if diagnosis is None or not isinstance(diagnosis.slip, hypothesis) or inertial is None:
         return None
     excess = link.excess
-    impossible = excess is not None and excess.ratio > 1.0 + BOUND_RTOL
+    # an error, like IN023's, only when the bound holds with the numbers' rounding allowed for,
+    # on collision geometry (analysis.firmness)
+    impossible = bool(
+        excess is not None
+        and excess.ratio > 1.0 + BOUND_RTOL
+        and link.firmness is not None
+        and link.firmness.firm
+    )
     beyond = "; as written no mass inside the geometry can have it (IN023)" if impossible else ""
     wording = diagnosis.wording
     return Explanation(

@@ -17,8 +17,8 @@ Every rule has:
 ``NAME: str``
     ``"inertia-geometry-mismatch"``: kebab-case, names the flagged pattern.
 ``SEVERITY: Severity``
-    The default severity. A finding may escalate it (``ctx.finding(..., severity=...)``); a
-    configured ``severity`` always wins.
+    The default severity. A finding may set another (``ctx.finding(..., severity=...)``): an
+    impossible value escalated, a doubtful one lowered; a configured ``severity`` always wins.
 ``SCOPE: str``
     ``"link"``: ``check`` runs once per link, on its ``LinkAnalysis``; ``"robot"``: once, on
     the ``RobotAnalysis``.

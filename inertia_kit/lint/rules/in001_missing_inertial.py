@@ -4,8 +4,10 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.description.model import WORLD
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -16,18 +18,19 @@ NAME = "missing-inertial"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
 SUMMARY = (
-    "a link that moves (child of a non-fixed joint) or has collision geometry has no mass in its "
-    "fixed-joint group"
+    "a link that moves (child of a non-fixed joint) or has collision geometry, or the root above "
+    "moving links, has no mass in its fixed-joint group"
 )
 OPTIONS = (
-    # False: a massless root frame without collision geometry is taken as a fixed base (the
-    # shape KDL asks for); True: the root floats, so its group needs mass whenever links move
-    # below it
+    # True: the root is free unless a fixed joint welds it to a `world` link, as Gazebo, Drake
+    # and PyBullet read a URDF; False: the simulator fixes the base (MuJoCo's URDF import,
+    # PyBullet's useFixedBase, Drake's WeldFrames), so a massless root frame is fine there
     Option(
         "floating_base",
         bool,
-        False,
-        "treat the root as free-floating: a massless root group above moving links is flagged",
+        True,
+        "the root is free unless welded to a `world` link: a massless root group above moving "
+        "links is flagged (false: the simulator fixes the base)",
     ),
 )
 
@@ -86,7 +89,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             continue
         group = robot.group_of(link.name)
         done.update(m.name for m in group)
-        if any(m.name == "world" for m in group):
+        if any(m.name == WORLD for m in group):
             continue  # welded to the world: static, its mass is never used
         if any(m.link.inertial is not None for m in group):
             continue  # a declared mass, or a broken one that IN002/IN003/IN004 report
@@ -120,27 +123,101 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 "give it inertia)"
             )
         else:
-            moving = any(j.type != "fixed" for m in group for j in m.children)
-            if not (collision or (floating_base and moving)):
-                # a massless root frame (what KDL asks for) over moving links: the base is
-                # taken to be fixed, unless `floating_base` says otherwise
+            below = _below(robot, group)
+            if not (collision or (floating_base and below)):
+                # a massless root frame over moving links, with `floating_base = false`: the
+                # simulator is taken to fix the base (MuJoCo, useFixedBase, WeldFrames)
                 continue
             where = "is the root" if site is top else f"is welded to the root `{top.name}`"
-            reason = "has collision geometry" if collision else "carries moving links"
-            what = f"{where} and {reason}"
-            others += ", and no fixed joint attaches it to a `world` link"
-            engines = (
-                "Gazebo drops it and the whole model with it, PyBullet gives it 1 kg unless "
-                "loaded with useFixedBase, Drake leaves a massless free body, MuJoCo welds it "
-                "to the world"
+            reasons = [
+                r
+                for r, on in (
+                    ("has collision geometry", collision),
+                    ("carries moving links", below),
+                )
+                if on
+            ]
+            what = f"{where} and {' and '.join(reasons)}"
+            others += (
+                ", and no fixed joint attaches it to a `world` link, so the robot's base has no "
+                "mass"
             )
+            engines = _base_engines(robot, top.name, below, len(group))
         text, payload = _geometry_values(site.geometry)
         yield ctx.finding(
             f"link `{site.name}` {what} but has no `<inertial>`{others}: {engines}{text}",
             site.link.source,
             link=site.name,
             expected=payload,
-            help="add an <inertial> with the part's mass and tensor (`inertia-fill` writes one "
-            "from the geometry at a density you choose); a fixed base can instead hang from a "
-            "`world` link by a fixed joint",
+            help=_help(top, site, collision),
         )
+
+
+def _below(robot: RobotAnalysis, group: tuple[LinkAnalysis, ...]) -> tuple[str, ...]:
+    """Every link below ``group`` (through its moving joints and beyond), nearest first."""
+    members = {m.name for m in group}
+    found: list[str] = []
+    queue = [j.child for m in group for j in m.children if j.child and j.child not in members]
+    while queue:
+        name = queue.pop(0)
+        if name in found or name in members or name not in robot.by_name:
+            continue
+        found.append(name)
+        queue.extend(j.child for j in robot.by_name[name].children if j.child)
+    return tuple(found)
+
+
+def _names(names: tuple[str, ...], shown: int = 4) -> str:
+    """`a`, `b` and `c`; beyond ``shown`` names, `a`, `b`, `c`, `d` and 12 more."""
+    quoted = [f"`{n}`" for n in names]
+    if len(quoted) > shown:
+        return f"{', '.join(quoted[:shown])} and {len(quoted) - shown} more"
+    return quoted[0] if len(quoted) == 1 else f"{', '.join(quoted[:-1])} and {quoted[-1]}"
+
+
+def _base_engines(robot: RobotAnalysis, root: str, below: tuple[str, ...], members: int) -> str:
+    """What each engine does with a massless root body (``members`` links welded together)."""
+    gazebo = (
+        f"Gazebo drops the base and with it every link below it ({_names(below)}), leaving "
+        "nothing of the robot to simulate"
+        if below
+        else "Gazebo drops it, leaving nothing of the robot to simulate"
+    )
+    carried = sum((declared_mass(robot.by_name[n].link) or 0.0 for n in below), 0.0)
+    # measured with drake 1.51: a free body with massive links below simulates (it only lacks
+    # its own mass); without mass anywhere the first step is refused, naming the joint of a
+    # massless body (of the root itself when nothing is below it)
+    if carried > 0:
+        drake = (
+            "Drake makes it a free body without mass, so the robot moves as if it weighed only "
+            f"the {fmt(carried)} kg of the links below it"
+        )
+    else:
+        joint = "connects body …" if below else f"connects body world to body {root}"
+        drake = (
+            'Drake refuses to step it ("An internal mass matrix associated with the joint that '
+            f'{joint} is not positive-definite")'
+        )
+    pybullet = "gives it 1 kg" if members == 1 else f"gives each of its {members} links 1 kg"
+    return (
+        f'{gazebo} ("A model must have at least one link"); {drake}; PyBullet {pybullet} '
+        "unless loaded with useFixedBase; MuJoCo welds the root to the world, so the base "
+        "cannot move there"
+    )
+
+
+def _help(top: LinkAnalysis, site: LinkAnalysis, collision: bool) -> str:
+    add = "add an <inertial> with the part's mass and tensor"
+    fill = "(`inertia-fill` writes one from the geometry at a density you choose)"
+    if top.parent is not None:
+        return f"{add} {fill}"
+    text = (
+        f"add an <inertial> with the base's real mass and tensor to `{site.name}` {fill}; a "
+        "base meant to stay fixed hangs from a `world` link by a fixed joint instead"
+    )
+    if not collision:
+        text += (
+            " (or set `floating_base = false` when every simulator you use fixes the base "
+            "itself: MuJoCo, PyBullet's useFixedBase, Drake's WeldFrames; Gazebo does not)"
+        )
+    return text

@@ -58,16 +58,25 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         uniform = f"; uniform density gives {fmt(estimate, 4)} kg·m²"
     inertial = link.link.inertial
     assert inertial is not None
+    firmness = link.firmness
+    doubt = None if firmness is None else firmness.why_not()
+    if firmness is not None:
+        result["firm"] = firmness.firm
+        result["max_with_rounding"] = firmness.margin.bound
     yield ctx.finding(
         f"link `{link.name}`: {what} = {fmt(excess.moment, 4)} kg·m² (radius of gyration "
         f"{fmt(gyration, 3)} m) is more than the {fmt(excess.bound, 4)} kg·m² any "
         f"{fmt(declared.mass)} kg inside its {_envelope_text(link)} can have about that axis "
         f"through the declared centre of mass (the geometry reaches {fmt(excess.r_max, 3)} m "
-        f"from it){uniform}",
+        f"from it){uniform}" + ("" if doubt is None else f"; a warning, not an error: {doubt}"),
         inertial.inertia_source or inertial.source,
         link=link.name,
         expected=result,
         help="the tensor is impossible for this geometry: recompute it about the centre of mass "
         "(a value about the joint, in g·mm² or a placeholder like 1.0 lands here), or fix the "
-        "geometry if the part is larger than its shapes",
+        "geometry if the part is larger than its shapes"
+        if doubt is None
+        else "check the tensor against the part (recompute it about the centre of mass), or "
+        "make the collision geometry as large as the part if the tensor is right",
+        severity=None if doubt is None else Severity.WARNING,
     )

@@ -7,6 +7,7 @@ from collections.abc import Iterator
 from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.describe import geometry_summary
 from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description.model import WORLD
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -42,9 +43,35 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         return
     yield ctx.finding(
         f"link `{link.name}` has {fmt(mass)} kg and a visual shape but no <collision>: "
-        f"it falls through the floor and passes through other bodies ({geometry_summary(element)})",
+        f"{_consequence(link)} ({geometry_summary(element)})",
         element.source,
         link=link.name,
         help="add a <collision> element: the visual geometry, or a simpler box, cylinder or "
         "convex mesh around it",
+    )
+
+
+def _consequence(link: LinkAnalysis) -> str:
+    """What a body without a surface does, by its place in the robot."""
+    robot = link.robot
+    group = (link,) if robot is None else robot.group_of(link.name)
+    top = next((m for m in group if m.parent is None or m.parent.type != "fixed"), link)
+    if any(m.name == WORLD for m in group):
+        return "it is fixed to the world, so it stays put, but other bodies pass through it"
+    if top.parent is None or top.parent.type == "floating":
+        what = "the robot's free base (not welded to a `world` link)"
+        if top.parent is not None:
+            what = f"a free body (floating joint `{top.parent.name}`)"
+        return (
+            f"it is {what}: it falls through the floor unless other links hold it up, and "
+            "passes through other bodies"
+        )
+    if any(j.type != "fixed" for m in group for j in m.children):
+        return (
+            "held by its joints it does not fall, but it makes no contact: the floor, other "
+            "bodies and the robot's own links pass through it"
+        )
+    return (
+        "it ends a chain (a foot, wheel, finger or tool), so it sinks through the floor and "
+        "passes through whatever it should touch"
     )

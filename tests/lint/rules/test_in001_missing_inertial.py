@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import pytest
+from click.testing import CliRunner
+from kit import REPO
 from kit.moments import box_moments
-from kit.urdf import LIMIT, box, collision, inertial, joint, link, robot, visual
+from kit.urdf import LIMIT, box, collision, cylinder, inertial, joint, link, robot, visual
 
+from inertia_kit.cli.lint import lint_command
 from inertia_kit.physics.formatting import fmt
 
 BOX = collision(box(0.1, 0.1, 0.3))
@@ -18,7 +21,7 @@ def in001(lint, text: str, **options):
 
 
 def test_moving_link_without_inertial_gives_geometry_values(lint):
-    findings = in001(lint, robot(link("base"), joint("base", "arm", name="j"), link("arm", BOX)))
+    findings = in001(lint, robot(link("world"), joint("world", "arm", name="j"), link("arm", BOX)))
     assert [f.link for f in findings] == ["arm"]
     (finding,) = findings
     volume = 0.1 * 0.1 * 0.3
@@ -39,24 +42,24 @@ def test_moving_link_without_inertial_gives_geometry_values(lint):
 
 
 def test_without_collision_mujoco_refuses(lint):
-    (finding,) = in001(lint, robot(link("base"), joint("base", "arm", name="j"), link("arm")))
+    (finding,) = in001(lint, robot(link("world"), joint("world", "arm", name="j"), link("arm")))
     assert "mjMINVAL" in finding.message and finding.expected is None
 
 
 @pytest.mark.parametrize("kind", ["continuous", "prismatic", "floating", "planar"])
 def test_every_moving_joint_type(lint, kind):
     findings = in001(
-        lint, robot(link("base"), joint("base", "arm", kind, name="j"), link("arm", BOX))
+        lint, robot(link("world"), joint("world", "arm", kind, name="j"), link("arm", BOX))
     )
     assert [f.link for f in findings] == ["arm"]
 
 
 def test_mimic_joint_moves(lint):
     text = robot(
-        link("base"),
-        joint("base", "a", name="j"),
+        link("world"),
+        joint("world", "a", name="j"),
         link("a", MASS + BOX),
-        '<joint name="m" type="revolute"><parent link="base"/><child link="b"/>'
+        '<joint name="m" type="revolute"><parent link="world"/><child link="b"/>'
         f'<axis xyz="0 0 1"/>{LIMIT}<mimic joint="j" multiplier="1" offset="0"/></joint>',
         link("b", BOX),
     )
@@ -65,8 +68,8 @@ def test_mimic_joint_moves(lint):
 
 def test_massless_frames_on_fixed_joints_are_fine(lint):
     text = robot(
-        link("base"),
-        joint("base", "arm", name="j"),
+        link("world"),
+        joint("world", "arm", name="j"),
         link("arm", MASS + BOX),
         joint("arm", "tool0", "fixed", name="tool"),
         link("tool0"),
@@ -78,8 +81,8 @@ def test_massless_frames_on_fixed_joints_are_fine(lint):
 
 def test_massless_moving_link_welded_to_a_link_with_mass_is_lumped(lint):
     text = robot(
-        link("base"),
-        joint("base", "motor", name="j"),
+        link("world"),
+        joint("world", "motor", name="j"),
         link("motor"),
         joint("motor", "arm", "fixed", name="w"),
         link("arm", MASS + BOX),
@@ -89,8 +92,8 @@ def test_massless_moving_link_welded_to_a_link_with_mass_is_lumped(lint):
 
 def test_the_inertial_belongs_where_the_geometry_is(lint):
     text = robot(
-        link("base"),
-        joint("base", "motor", name="j"),
+        link("world"),
+        joint("world", "motor", name="j"),
         link("motor"),
         joint("motor", "shell", "fixed", name="w"),
         link("shell", BOX),
@@ -101,18 +104,91 @@ def test_the_inertial_belongs_where_the_geometry_is(lint):
     assert finding.expected["mass"] == pytest.approx(3.0)
 
 
-def test_root_frame_is_a_fixed_base_unless_told_otherwise(lint):
+# --- the root: a massless base ----------------------------------------------------------------
+
+WHEEL = inertial(0.3, 0.0004) + collision(cylinder(0.05, 0.02))
+
+
+def wheeled(base: str = "", footprint: str = "") -> str:
+    """A massless `base_footprint` with `base_link` (holding ``base``) welded to it, 2 wheels."""
+    return robot(
+        link("base_footprint", footprint),
+        joint("base_footprint", "base_link", "fixed", name="footprint_joint"),
+        link("base_link", base),
+        joint("base_link", "left_wheel", "continuous", name="left"),
+        link("left_wheel", WHEEL),
+        joint("base_link", "right_wheel", "continuous", name="right"),
+        link("right_wheel", WHEEL),
+    )
+
+
+def test_massless_base_above_wheels_says_what_each_engine_does(lint):
+    (finding,) = in001(lint, wheeled(collision(box(0.4, 0.3, 0.1))))
+    assert finding.link == "base_link" and finding.severity.name == "ERROR"
+    message = finding.message
+    assert "welded to the root `base_footprint`" in message
+    assert "so the robot's base has no mass" in message
+    assert (
+        "Gazebo drops the base and with it every link below it (`left_wheel` and "
+        "`right_wheel`), leaving nothing of the robot to simulate" in message
+    )
+    assert '"A model must have at least one link"' in message
+    assert (
+        "Drake makes it a free body without mass, so the robot moves as if it weighed only "
+        "the 0.6 kg" in message
+    )
+    assert "PyBullet gives each of its 2 links 1 kg unless loaded with useFixedBase" in message
+    assert "MuJoCo welds the root to the world" in message
+    assert finding.expected["mass"] == pytest.approx(12.0)  # the box at 1000 kg/m³
+    assert "`world` link by a fixed joint" in finding.help
+
+
+@pytest.mark.parametrize(
+    "base",
+    [visual(box(0.4, 0.3, 0.1)), ""],
+    ids=["visual-only", "no-geometry"],
+)
+def test_massless_base_without_collision_is_flagged_too(lint, base):
+    (finding,) = in001(lint, wheeled(base))
+    site = "base_link" if base else "base_footprint"
+    assert finding.link == site and "carries moving links" in finding.message
+    assert "Gazebo drops the base" in finding.message
+
+
+def test_a_massless_root_frame_above_a_base_with_mass_is_fine(lint):
+    assert in001(lint, wheeled(inertial(5, 0.05) + collision(box(0.4, 0.3, 0.1)))) == []
+
+
+def test_floating_base_false_takes_the_root_as_fixed(lint):
     text = robot(link("base"), joint("base", "arm", name="j"), link("arm", MASS + BOX))
-    assert in001(lint, text) == []
-    (finding,) = in001(lint, text, floating_base=True)
+    (finding,) = in001(lint, text)
     assert finding.link == "base" and "carries moving links" in finding.message
+    assert in001(lint, text, floating_base=False) == []
+    # collision geometry on the root still needs mass: it is a body, not a frame
+    solid = robot(link("base", BOX), joint("base", "arm", name="j"), link("arm", MASS + BOX))
+    assert [f.link for f in in001(lint, solid, floating_base=False)] == ["base"]
+
+
+def test_many_links_below_are_counted(lint):
+    chain = [link("base")]
+    for i in range(7):
+        chain += [joint("base" if i == 0 else f"l{i - 1}", f"l{i}"), link(f"l{i}", MASS + BOX)]
+    (finding,) = in001(lint, robot(*chain))
+    assert "(`l0`, `l1`, `l2`, `l3` and 3 more)" in finding.message
 
 
 def test_root_with_collision_geometry_needs_mass(lint):
-    text = robot(link("base", BOX), joint("base", "arm", name="j"), link("arm", MASS + BOX))
+    text = robot(link("base", BOX))
     (finding,) = in001(lint, text)
-    assert finding.link == "base" and "root" in finding.message
-    assert "Gazebo drops it and the whole model" in finding.message
+    assert finding.link == "base" and "is the root and has collision geometry" in finding.message
+    assert "Gazebo drops it, leaving nothing of the robot to simulate" in finding.message
+    assert "Drake refuses to step it" in finding.message and "body base is not" in finding.message
+
+
+@pytest.mark.parametrize("name", ["world"])
+def test_a_world_root_is_the_world(lint, name):
+    text = robot(link(name), joint(name, "arm", name="j"), link("arm", MASS + BOX))
+    assert in001(lint, text) == []
 
 
 def test_root_welded_to_a_world_link_is_static(lint):
@@ -126,6 +202,20 @@ def test_root_welded_to_a_world_link_is_static(lint):
     assert in001(lint, text) == []
 
 
+def test_the_seed_wheeled_robot_through_the_command(monkeypatch):
+    """The acceptance line: plain `inertia-lint` on the seed robot reports its massless base."""
+    monkeypatch.chdir(REPO)
+    result = CliRunner().invoke(
+        lint_command,
+        ["examples/my_robot_description/urdf/robot.xacro", "--output-format", "concise"],
+    )
+    assert result.exit_code == 1
+    (line,) = [x for x in result.stdout.splitlines() if " IN001 " in x]
+    assert line.startswith("examples/my_robot_description/urdf/robot.xacro:14:3: IN001 ")
+    assert "link `base_link` is welded to the root `base_footprint`" in line
+    assert "every link below it (`left_wheel_link` and `right_wheel_link`)" in line
+
+
 def test_visual_only_root_alone_is_not_simulated(lint):
     text = robot(link("deco", visual(box(1, 1, 1))))
     assert in001(lint, text) == []
@@ -133,14 +223,14 @@ def test_visual_only_root_alone_is_not_simulated(lint):
 
 def test_a_broken_inertial_is_left_to_other_rules(lint):
     zero = inertial(0, 0)
-    text = robot(link("base"), joint("base", "arm", name="j"), link("arm", zero + BOX))
+    text = robot(link("world"), joint("world", "arm", name="j"), link("arm", zero + BOX))
     assert in001(lint, text) == []
 
 
 def test_one_finding_per_body(lint):
     text = robot(
-        link("base"),
-        joint("base", "arm", name="j"),
+        link("world"),
+        joint("world", "arm", name="j"),
         link("arm", BOX),
         joint("arm", "cover", "fixed", name="w"),
         link("cover", BOX),

@@ -57,7 +57,7 @@ def test_point_mass_welded_to_a_body_is_lumped(lint):
 
 
 def test_point_mass_welded_to_nothing_with_inertia(lint):
-    text = moving(inertial(0.01, 0), kind="fixed")
+    text = moving(inertial(0.01, 0), kind="fixed", root="base")
     (finding,) = in010(lint, text)
     assert finding.link == "arm"
 

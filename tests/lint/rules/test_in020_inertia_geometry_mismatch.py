@@ -104,6 +104,28 @@ def test_error_when_also_beyond_the_hard_bound(lint):
     assert "IN023" in findings[0].message
 
 
+def test_beyond_the_bound_only_within_rounding_or_on_visual_geometry_is_a_warning(lint):
+    """A tensor far from a cylinder's and 2.3 % beyond what its mass can have inside it: an
+    error only when no rounding of the written numbers explains that, on collision geometry."""
+    along_x = "0 1.5707963267948966 0"
+    far = inertial(0.089, 0.000111842, 0.000111842, 0.000111842)  # 2× the uniform iyy
+    rounded = cylinder(0.035, 0.02)
+    (finding,) = lint(moving(collision(rounded, rpy=along_x) + far), "IN020")
+    assert finding.severity == Severity.WARNING
+    assert (
+        "; beyond what 0.089 kg inside the link's geometry can have, but 2.3% over is within "
+        "what rounding of the written cylinder radius 0.035 m and mass 0.089 kg can explain"
+    ) in finding.message
+    (finding,) = lint(moving(visual(rounded, rpy=along_x) + far), "IN020")
+    assert finding.severity == Severity.WARNING
+    assert "but its only geometry is visual, often a schematic stand-in" in finding.message
+    precise = cylinder("0.0349999", "0.0200001")
+    exact = inertial("0.0890001", 0.000111842, 0.000111842, 0.000111842)
+    (finding,) = lint(moving(collision(precise, rpy=along_x) + exact), "IN020")
+    assert finding.severity == Severity.ERROR
+    assert "no 0.089 kg inside the link's geometry can have it (IN023)" in finding.message
+
+
 def test_overlapping_collision_shapes_are_a_union(lint):
     """Two boxes overlapping by half count the shared volume once: 0.6 × 0.2 × 0.1 overall."""
     shapes = collision(box(0.4, 0.2, 0.1), xyz="-0.1 0 0") + collision(

@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+import importlib.metadata
+import json
 import math
+from collections import Counter
+from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 from kit.moments import box_moments, cylinder_moments
 from kit.urdf import box, collision, cylinder, inertial, mesh, moving, sphere, visual
 
 from inertia_kit.analysis.bounds import RIM_SIDES
+from inertia_kit.cli.lint import lint_command
 from inertia_kit.lint.findings import Severity
 
 RIM = 1.0 / math.cos(math.pi / RIM_SIDES)
@@ -93,3 +99,88 @@ def test_missing_mesh_or_inertial_is_not_its_business(lint):
     body = visual(mesh("missing.stl")) + CYLINDER
     assert lint(moving(body + inertial(1.0, 1.0, 1.0, 1.0)), "IN023") == []
     assert lint(moving(CYLINDER), "IN023") == []
+
+
+# --- severity by the firmness of the bound (analysis.firmness) ---------------------------------
+
+# Unitree Go1's rotor (example-robot-data go1.urdf): 2.3 % over m r² of its drawn cylinder
+ROTOR_RPY = "0 1.5707963267948966 0"
+ROTOR = inertial(0.089, 0.000111842, 5.9647e-05, 5.9647e-05)
+
+
+def test_go1_rotor_2_percent_over_a_rounded_radius_is_a_warning(lint):
+    shape = cylinder(0.035, 0.02)
+    (finding,) = lint(
+        moving(collision(shape, rpy=ROTOR_RPY) + visual(shape, rpy=ROTOR_RPY) + ROTOR), "IN023"
+    )
+    assert finding.severity == Severity.WARNING
+    assert finding.message.endswith(
+        "; a warning, not an error: 2.3% over is within what rounding of the written cylinder "
+        "radius 0.035 m and mass 0.089 kg can explain (the bound then reaches 0.0001131 kg·m²)"
+    )
+    assert finding.expected["firm"] is False
+    assert finding.expected["max_with_rounding"] == pytest.approx(0.0895 * (0.0355 * RIM) ** 2)
+    assert "make the collision geometry as large as the part" in finding.help
+
+
+def test_a_schematic_visual_only_rotor_is_a_warning(lint):
+    """The issue's Go1: a rotor drawn as a visual cylinder only, its moment 2 % over."""
+    shape = visual(cylinder("0.0349999", "0.0200001"), rpy=ROTOR_RPY)
+    (finding,) = lint(moving(shape + ROTOR), "IN023")
+    assert finding.severity == Severity.WARNING
+    assert "its only geometry is visual, often a schematic stand-in for the part" in (
+        finding.message
+    )
+
+
+def test_firm_overshoots_stay_errors(lint):
+    # every digit written: 2.3 % over is no rounding
+    precise = collision(cylinder("0.0349999", "0.0200001"), rpy=ROTOR_RPY)
+    mass = inertial("0.0890001", 0.000111842, 5.9647e-05, 5.9647e-05)
+    (finding,) = lint(moving(precise + mass), "IN023")
+    assert finding.severity == Severity.ERROR and "a warning" not in finding.message
+    # Unitree B1's thigh rotor (b1.urdf): 38 % over its 0.05 m cylinder, beyond any rounding
+    b1 = inertial(0.266, 0.000485657, 0.00091885, 0.000485657)
+    b1_shape = cylinder(0.05, 0.02)
+    along_y = "1.5707963267948966 0 0"
+    b1_body = collision(b1_shape, rpy=along_y) + visual(b1_shape, rpy=along_y)
+    (finding,) = lint(moving(b1_body + b1), "IN023")
+    assert finding.severity == Severity.ERROR and "iyy" in finding.message
+    # a placeholder on visual geometry only: far beyond what any stand-in allows
+    (finding,) = lint(moving(visual(b1_shape) + inertial(0.266, 1.0)), "IN023")
+    assert finding.severity == Severity.ERROR
+
+
+def test_a_configured_severity_wins(lint):
+    shape = visual(cylinder(0.035, 0.02), rpy=ROTOR_RPY)
+    (finding,) = lint(moving(shape + ROTOR), "IN023", severities={"IN023": Severity.ERROR})
+    assert finding.severity == Severity.ERROR
+
+
+def _example_robot_data(relative: str) -> Path:
+    try:
+        share = importlib.metadata.distribution("example-robot-data").locate_file(
+            "cmeel.prefix/share/example-robot-data"
+        )
+    except importlib.metadata.PackageNotFoundError:
+        pytest.skip("example-robot-data is not installed")
+    path = Path(str(share)) / relative
+    if not path.is_file():
+        pytest.skip(f"{relative} not in this example-robot-data")
+    return path
+
+
+def test_the_installed_unitree_robots_through_the_command():
+    """The issue's reproducer: Go1 gave 12 errors on its rotor links for a 2 % overshoot."""
+    go1 = _example_robot_data("robots/go1_description/urdf/go1.urdf")
+    b1 = _example_robot_data("robots/b1_description/urdf/b1.urdf")
+    result = CliRunner().invoke(
+        lint_command, ["--select", "IN023", "--output-format", "json", str(go1), str(b1)]
+    )
+    assert result.exit_code == 1, result.stderr
+    rotors = [f for f in json.loads(result.stdout) if f["link"].endswith("_rotor")]
+    go1_rotors = [f["severity"] for f in rotors if f["file"] == str(go1)]
+    assert go1_rotors == ["warning"] * 12
+    # B1's thigh and calf rotors are 38 % over their 0.05 m cylinders: still errors
+    b1_rotors = Counter(f["severity"] for f in rotors if f["file"] == str(b1))
+    assert b1_rotors == {"error": 8}

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from kit.urdf import box, box_inertial, collision, joint, link, moving, visual
+from kit.urdf import robot as robot_of
 
 SIZE = (0.1, 0.1, 0.1)
 VISUAL = visual(box(*SIZE))
@@ -57,3 +58,53 @@ def test_invalid_or_zero_mass_is_not_its_business(lint):
     assert lint(robot(VISUAL + box_inertial(0.0, SIZE)), "IN025") == []
     no_geometry = robot(box_inertial(2.7, SIZE))
     assert lint(no_geometry, "IN025") == []
+
+
+# --- the message says what the missing surface does, by the link's place -----------------------
+
+BODY = VISUAL + box_inertial(2.7, SIZE)
+
+
+def one_message(lint, text: str) -> str:
+    (finding,) = lint(text, "IN025")
+    return finding.message
+
+
+def test_a_free_base_falls_through_the_floor(lint):
+    text = robot_of(link("base", BODY), joint("base", "wheel", "continuous"), link("wheel"))
+    assert (
+        "it is the robot's free base (not welded to a `world` link): it falls through the floor "
+        "unless other links hold it up, and passes through other bodies"
+    ) in one_message(lint, text)
+    single = robot_of(link("crate", BODY))
+    assert "falls through the floor" in one_message(lint, single)
+
+
+def test_a_body_on_a_floating_joint_is_free(lint):
+    text = robot_of(
+        link("world"), joint("world", "ball", "floating", name="free"), link("ball", BODY)
+    )
+    assert "it is a free body (floating joint `free`): it falls through" in one_message(lint, text)
+
+
+def test_an_interior_link_only_makes_no_contact(lint):
+    """Unitree G1's waist, Z1's link05: held by joints on both sides, nothing to fall."""
+    text = moving(BODY, joint("arm", "tip", "revolute", name="t") + link("tip", COLLISION))
+    message = one_message(lint, text)
+    assert "falls" not in message and "sinks" not in message
+    assert (
+        "held by its joints it does not fall, but it makes no contact: the floor, other bodies "
+        "and the robot's own links pass through it"
+    ) in message
+
+
+def test_the_end_of_a_chain_sinks_through_the_floor(lint):
+    assert (
+        "it ends a chain (a foot, wheel, finger or tool), so it sinks through the floor and "
+        "passes through whatever it should touch"
+    ) in one_message(lint, robot(BODY))
+
+
+def test_a_part_fixed_to_the_world_stays_put(lint):
+    text = robot_of(link("world"), joint("world", "table", "fixed"), link("table", BODY))
+    assert "it is fixed to the world, so it stays put" in one_message(lint, text)

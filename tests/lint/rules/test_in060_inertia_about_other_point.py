@@ -57,6 +57,14 @@ def test_it_replaces_in020_only_while_enabled(lint):
     assert "(IN060)" in alone[0].message
 
 
+def test_beyond_the_bound_of_visual_geometry_only_stays_a_warning(lint):
+    """IN060 stands for IN023's error only when that error is firm (analysis.firmness)."""
+    text = moving(drum(mass=2.0, radius=0.05, length=0.4).replace("collision", "visual"))
+    (finding,) = lint(text, ("IN0",), ignore=("IN025",))
+    assert finding.code == "IN060" and finding.severity == Severity.WARNING
+    assert "(IN023)" not in finding.message
+
+
 def test_severity_is_configurable(lint):
     findings = lint(moving(drum()), "IN060", severities={"IN060": Severity.INFO})
     assert [f.severity for f in findings] == [Severity.INFO]

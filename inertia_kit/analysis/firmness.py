@@ -1,0 +1,277 @@
+"""
+How firm a hard bound is: whether a declared moment beyond what the link's geometry allows
+(:func:`~inertia_kit.analysis.bounds.moment_excess`) is certainly impossible (an error for IN020,
+IN023 and the forensic rules) or only probably wrong (a warning).
+
+A bound is only as firm as what it rests on:
+
+- **the written numbers**: a radius written ``0.035`` may be anything from 0.0345 to 0.0355 m.
+  Each number the bound scales with (the mass, the shapes' sizes, the six ``<inertia>`` values)
+  is taken at the end of its rounding interval that favours the declared tensor: half a unit in
+  its last written digit (from its shortest decimal form, so ``0.0350`` counts as ``0.035``), at
+  most :data:`ROUNDING_CAP` of it (a one-digit ``0.05`` is a chosen value more often than a
+  rounded 0.054);
+- **the facets of a mesh**: its vertices lie on the part's surface, its flat triangles inside it
+  (a 16-sided cylinder's faces sit 2 % inside the circle), so a mesh's box is enlarged by
+  :data:`FACETS` about its centre;
+- **the kind of geometry**: collision shapes are what the simulator makes contact with, the
+  modeller's statement of where the part is; visual geometry alone is often a schematic stand-in
+  (a cylinder drawn for a motor rotor), and an open collision mesh (IN032) may not hold the
+  whole part. Visual meshes only widen the region (the bound is taken over collision and
+  visual geometry together), so they never weaken it.
+
+A declared moment is firmly impossible when it exceeds the bound with every number rounded in its
+favour and the meshes' facets allowed for, and the link has collision geometry and no open
+collision mesh; on visual geometry alone or with an open collision mesh, only when it exceeds it
+more than :data:`GROSS` times.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from decimal import Decimal
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from inertia_kit.analysis.bounds import Hull, MomentExcess, moment_excess
+from inertia_kit.description import model
+from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.frames import rpy_matrix
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.geometry import Solid
+    from inertia_kit.analysis.links import LinkAnalysis
+
+# the most a written number is taken to be rounded by, relative to it
+ROUNDING_CAP = 0.05
+# how far a mesh's flat facets may lie inside the curved surface of the part, relative to its
+# size: the chords of a 16-sided polygon lie 1 - cos(π/16) = 1.9 % inside its circle
+FACETS = 0.02
+# on geometry that cannot make a verdict firm (visual only, an open collision mesh), a moment
+# this many times the bound is impossible all the same: a radius of gyration √10 = 3.2 times
+# what the geometry allows is no stand-in's inaccuracy (the placeholder ixx = 1.0 on a small
+# link)
+GROSS = 10.0
+# a collision mesh whose convex hull's volume differs from its open surface's by more than this
+# (IN032's default tolerance) may not be the whole part
+OPEN = 0.05
+
+
+def rounding(value: float) -> float:
+    """
+    Half a unit in the last digit of ``value`` as written (its shortest decimal form), at most
+    :data:`ROUNDING_CAP` of it; 0 for 0 and for non-finite values.
+
+    >>> rounding(0.035), rounding(0.000111842)
+    (0.0005, 5e-10)
+    """
+    if not math.isfinite(value) or value == 0:
+        return 0.0
+    exponent = Decimal(repr(float(value))).normalize().as_tuple().exponent
+    assert isinstance(exponent, int)
+    return min(0.5 * 10.0**exponent, ROUNDING_CAP * abs(value))
+
+
+@dataclass(frozen=True)
+class Firmness:
+    """
+    A declared tensor beyond its link's hard bound, and how firm that verdict is.
+
+    Attributes
+    ----------
+    excess : MomentExcess
+      The worst axis against the geometry as written.
+    margin : MomentExcess
+      The same with every written number rounded in the tensor's favour and the meshes' facets
+      allowed for: ``moment`` lowered, ``bound`` raised.
+    weak : tuple of str
+      Why the geometry cannot make the verdict firm, whatever the numbers (visual geometry
+      only, an open mesh); empty when it can.
+    rounded : tuple of str
+      When they decide the verdict (no ``weak``, within the margin): the written numbers whose
+      rounding counts most, at most three, largest first (``cylinder radius 0.035 m``,
+      ``mass 0.089 kg``, ``<inertia> values``); else empty.
+    facets : tuple of str
+      Likewise, the meshes whose facets count (file names).
+    """
+
+    excess: MomentExcess
+    margin: MomentExcess
+    weak: tuple[str, ...]
+    rounded: tuple[str, ...]
+    facets: tuple[str, ...]
+
+    @property
+    def firm(self) -> bool:
+        """
+        Beyond the bound whichever way the numbers were rounded, on geometry that holds (or
+        more than :data:`GROSS` times beyond it, on any geometry).
+        """
+        return bool(self.margin.ratio > (GROSS if self.weak else 1.0))
+
+    def why_not(self) -> str | None:
+        """Why the verdict is a warning, not an error, in words; ``None`` when it is firm."""
+        if self.firm:
+            return None
+        if self.weak:
+            return _listed(self.weak)
+        allowances = []
+        if self.rounded:
+            allowances.append("rounding of the written " + _listed(self.rounded))
+        if self.facets:
+            allowances.append("the facets of " + _listed(tuple(f"`{n}`" for n in self.facets)))
+        over = 100.0 * (self.excess.ratio - 1.0)
+        return (
+            f"{fmt(over, 2)}% over is within what {' and '.join(allowances) or 'rounding'} can "
+            f"explain (the bound then reaches {fmt(self.margin.bound, 4)} kg·m²)"
+        )
+
+
+def _listed(items: tuple[str, ...]) -> str:
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
+
+
+def firmness(link: LinkAnalysis) -> Firmness | None:
+    """
+    The firmness of the link's :attr:`~LinkAnalysis.excess` (see the module docstring);
+    ``None`` without one.
+    """
+    excess = link.excess
+    declared = link.declared
+    inertial = link.link.inertial
+    if excess is None or declared is None or inertial is None:
+        return None
+    solids = [s for g in (link.collision, link.visual) if g.solids for s in g.solids]
+    if not solids or any(s.hull is None for s in solids):
+        return None
+    written = [s.hull for s in solids]
+    grown = [_enlarged(s) for s in solids]
+    found = moment_excess(declared, Hull.union(grown))  # type: ignore[arg-type]
+    if found is None:
+        return None
+    mass = declared.mass
+    raised = found.bound * (1.0 + rounding(mass) / mass)
+    lowered = found.moment - _moment_rounding(inertial, found.axis)
+    margin = MomentExcess(found.axis, lowered, raised, found.r_max)
+    weak = _weak(link)
+    if weak or margin.ratio > 1.0:
+        return Firmness(excess, margin, weak, (), ())  # the allowances decide nothing
+    # what each allowance alone takes off the excess, for the message: a size of one shape
+    # (the others as written), the mass, the <inertia> values, a mesh's facets
+    shares: dict[str, float] = {}
+    for i, solid in enumerate(solids):
+        for text, hull in _one_at_a_time(solid):
+            hulls = [*written[:i], hull, *written[i + 1 :]]
+            alone = moment_excess(declared, Hull.union(hulls))  # type: ignore[arg-type]
+            if alone is not None and alone.ratio > 0:
+                shares[text] = max(shares.get(text, 0.0), excess.ratio / alone.ratio - 1.0)
+    shares[f"mass {fmt(mass)} kg"] = rounding(mass) / mass
+    if found.moment > 0:
+        shares["<inertia> values"] = 1.0 - lowered / found.moment
+    counted = sorted(
+        ((share, text) for text, share in shares.items() if share >= 1e-3), reverse=True
+    )
+    rounded = tuple(t for _, t in counted if not t.startswith("facets "))
+    facets = tuple(t.removeprefix("facets ") for _, t in counted if t.startswith("facets "))
+    return Firmness(excess, margin, weak, rounded[:3], facets)
+
+
+def _weak(link: LinkAnalysis) -> tuple[str, ...]:
+    """
+    Why the link's geometry cannot make the verdict firm. Only the collision geometry counts:
+    the bound is taken over collision and visual geometry together, never tighter than over
+    the collision geometry alone, so a visual mesh cannot weaken it.
+    """
+    if not link.link.collisions:
+        return ("its only geometry is visual, often a schematic stand-in for the part",)
+    weak: list[str] = []
+    for solid in link.collision.solids:
+        mesh = solid.mesh
+        if mesh is not None and mesh.method == "convex-hull" and mesh.volume_error > OPEN:
+            text = (
+                f"collision mesh `{Path(mesh.path).name}` is open (IN032), so it may not hold "
+                "the whole part"
+            )
+            if text not in weak:
+                weak.append(text)
+    return tuple(weak)
+
+
+_DIMENSIONS = {
+    "box": ("size x", "size y", "size z"),
+    "cylinder": ("radius", "length"),
+    "capsule": ("radius", "length"),
+    "sphere": ("radius",),
+}
+
+
+def _primitive(solid: Solid) -> tuple[float, ...] | None:
+    part = solid.part
+    if part is None or part.kind not in _DIMENSIONS:
+        return None
+    return tuple(float(v) for v in part.dimensions)
+
+
+def _grown_part(solid: Solid, sizes: tuple[float, ...]) -> Hull:
+    return Hull.of_part(dataclasses.replace(solid.part, dimensions=sizes))  # type: ignore[arg-type]
+
+
+def _grown_box(solid: Solid) -> Hull:
+    """A mesh's envelope (its box, 8 corners in the link frame) enlarged by FACETS."""
+    corners = solid.corners
+    assert corners is not None
+    centre = corners.mean(axis=0)
+    return Hull(centre + (1.0 + FACETS) * (corners - centre))
+
+
+def _enlarged(solid: Solid) -> Hull:
+    """
+    A hull containing what the solid may be: a primitive with every size at the top of its
+    rounding interval, a mesh's box enlarged by :data:`FACETS`.
+    """
+    sizes = _primitive(solid)
+    if sizes is not None:
+        return _grown_part(solid, tuple(v + rounding(v) for v in sizes))
+    if solid.part is None and solid.corners is not None:
+        return _grown_box(solid)
+    assert solid.hull is not None
+    return solid.hull
+
+
+def _one_at_a_time(solid: Solid) -> list[tuple[str, Hull]]:
+    """Each allowance of the solid alone, as (words, hull): one size rounded up, or facets."""
+    sizes = _primitive(solid)
+    if sizes is not None:
+        kind = solid.part.kind  # type: ignore[union-attr]
+        found = []
+        for i, value in enumerate(sizes):
+            if rounding(value) > 0:
+                grown = (*sizes[:i], value + rounding(value), *sizes[i + 1 :])
+                name = _DIMENSIONS[kind][i]
+                found.append((f"{kind} {name} {fmt(value)} m", _grown_part(solid, grown)))
+        return found
+    geometry = solid.shape.geometry
+    if solid.part is None and solid.corners is not None and isinstance(geometry, model.Mesh):
+        return [(f"facets {Path(geometry.filename).name}", _grown_box(solid))]
+    return []
+
+
+def _moment_rounding(inertial: model.Inertial, axis: np.ndarray) -> float:
+    """How much the written ``<inertia>`` values' rounding can move the moment about ``axis``."""
+    values = inertial.tensor_values()
+    if not all(isinstance(v, float) for v in values.values()):
+        return 0.0
+    rpy = inertial.origin.rpy
+    rotation = rpy_matrix(rpy) if isinstance(rpy, tuple) else np.eye(3)
+    b = np.abs(rotation.T @ np.asarray(axis, dtype=np.float64))  # the axis in <inertia>'s axes
+    h = {name: rounding(value) for name, value in values.items()}  # type: ignore[arg-type]
+    pairs = {"ixx": (0, 0), "iyy": (1, 1), "izz": (2, 2), "ixy": (0, 1), "ixz": (0, 2)}
+    pairs["iyz"] = (1, 2)
+    total = 0.0
+    for name, (i, j) in pairs.items():
+        total += (1.0 if i == j else 2.0) * b[i] * b[j] * h[name]
+    return total
