@@ -9,6 +9,7 @@ import click
 
 from inertia_kit.cli.options import (
     HELP,
+    NUMBER,
     UsageError,
     package_path_option,
     parse_xacro_args,
@@ -22,7 +23,7 @@ from inertia_kit.version import __version__
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option(
     "--density",
-    type=float,
+    type=NUMBER,
     default=None,
     metavar="KG_PER_M3",
     help="Uniform density for links without a known mass, kg/m³ [default: 1000].",
@@ -39,7 +40,7 @@ from inertia_kit.version import __version__
 )
 @click.option(
     "--total-mass",
-    type=float,
+    type=NUMBER,
     default=None,
     metavar="KG",
     help="The robot's total mass, kg: the links without a known mass share what the others "
@@ -100,6 +101,8 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
 
 
 def _masses(values: tuple[str, ...]) -> dict[str, float]:
+    from inertia_kit.physics.numbers import usable
+
     masses = {}
     for value in values:
         name, sep, text = value.partition("=")
@@ -107,8 +110,10 @@ def _masses(values: tuple[str, ...]) -> dict[str, float]:
             kg = float(text)
         except ValueError:
             kg = float("nan")
-        if not sep or not name or not (kg > 0 and kg != float("inf")):
-            raise UsageError(f"--mass takes LINK=KG with a positive mass, got {value!r}")
+        if not sep or not name or not (kg > 0 and usable(kg)):
+            raise UsageError(
+                f"--mass takes LINK=KG with a positive mass of at most 1e50 kg, got {value!r}"
+            )
         masses[name] = kg
     return masses
 

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from inertia_kit.cli.options import UsageError
+from inertia_kit.cli.options import NUMBER, UsageError
 
 
 @click.group("mass")
@@ -24,7 +24,7 @@ def mass_group() -> None:
 
 
 def _triple(flag: str, help: str, default: tuple[float, float, float] | None) -> Callable:
-    return click.option(flag, nargs=3, type=float, default=default, help=help)
+    return click.option(flag, nargs=3, type=NUMBER, default=default, help=help)
 
 
 # how much the part weighs, where it is placed, and about what it is reported: every sub-command
@@ -32,11 +32,11 @@ _ORIGIN = (0.0, 0.0, 0.0)
 _PART_OPTIONS = (
     click.option(
         "--density",
-        type=float,
+        type=NUMBER,
         default=None,
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
     ),
-    click.option("--mass", "mass_kg", type=float, default=None, help="Total mass, kg."),
+    click.option("--mass", "mass_kg", type=NUMBER, default=None, help="Total mass, kg."),
     _triple(
         "--xyz",
         "Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
@@ -108,7 +108,7 @@ def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Comman
         _show(part, options)
 
     own = [
-        click.option(flag, nargs=n, type=float, required=True, help=text)
+        click.option(flag, nargs=n, type=NUMBER, required=True, help=text)
         for flag, n, text in dimensions
     ]
     return click.command(shape, help=help)(_with_options(_part_options(run), own))
@@ -141,10 +141,14 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:
+    from inertia_kit.physics.numbers import usable
+
     try:
         values = [float(part) for part in text.replace(",", " ").split()]
     except ValueError:
         raise UsageError(f"--scale takes one or three numbers, got {text!r}") from None
+    if not all(usable(value) for value in values):
+        raise UsageError(f"--scale takes numbers of at most 1e50, not subnormal, got {text!r}")
     if len(values) == 1:
         values *= 3
     if len(values) != 3:

@@ -22,6 +22,30 @@ class UsageError(click.ClickException):
         click.echo(f"error: {self.format_message()}", err=True)
 
 
+class Number(click.ParamType):
+    """
+    A float option that mass properties can be computed from: finite, at most 1e50 in
+    magnitude and not subnormal (:mod:`inertia_kit.physics.numbers`); click says what is wrong.
+    """
+
+    name = "number"
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None):
+        from inertia_kit.physics.numbers import unusable
+
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        why = unusable(number)
+        if why is not None:
+            self.fail(f"{value!r} is {why}", param, ctx)
+        return number
+
+
+#: the type of every numeric option
+NUMBER = Number()
+
 package_path_option = click.option(
     "--package-path",
     "package_paths",

@@ -16,8 +16,16 @@ def run(*args: str):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["box", "--size", "1", "0", "1"], "size[1] must be a positive finite length"),
-        (["sphere", "--radius", "1", "--density", "-5"], "density -5.0 kg/m³ must be positive"),
+        (["box", "--size", "1", "0", "1"], "size[1] must be a positive length in m"),
+        (["sphere", "--radius", "1", "--density", "-5"], "density must be positive"),
+        # numbers mass properties cannot be computed from are refused as options
+        (["box", "--size", "1e308", "1e308", "1e308"], "'1e308' is beyond ±1e50"),
+        (["box", "--size", "1", "1", "1", "--about", "1e300", "0", "0"], "beyond ±1e50"),
+        (["sphere", "--radius", "1e-320"], "'1e-320' is subnormal"),
+        (["sphere", "--radius", "1", "--density", "nan"], "'nan' is not a number"),
+        # usable dimensions whose product is not: the volume is blamed, not the density
+        (["box", "--size", "1e-200", "1e-200", "1e-200"], "the volume underflows to zero"),
+        (["mesh", "x.stl", "--scale", "1e308"], "--scale takes numbers of at most 1e50"),
         (["sphere", "--radius", "1", "--density", "5", "--mass", "1"], "exactly one"),
         (["mesh", "missing.stl"], "missing.stl"),
         (["mesh", "x.stl", "--scale", "1 2"], "--scale takes one or three numbers"),
