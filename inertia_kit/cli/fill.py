@@ -7,6 +7,7 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, internal, processing
 from inertia_kit.cli.options import (
     HELP,
     NUMBER,
@@ -19,7 +20,7 @@ from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
 
 
-@click.command("fill", context_settings=HELP)
+@click.command("fill", cls=GuardedCommand, context_settings=HELP)
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option(
     "--density",
@@ -135,8 +136,7 @@ def fill(
 ) -> int:
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.errors import ConfigError, InputError
-    from inertia_kit.fill.output import write_output
-    from inertia_kit.fill.plan import apply, plan_fill
+    from inertia_kit.fill.plan import plan_fill
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config_files import ConfigFinder
 
@@ -168,15 +168,19 @@ def fill(
         "total_mass": total_mass,
     }
     for path in paths:
-        try:
-            per_file = per_link(finder.for_file(path).links, masses)
-            plans.append(plan_fill(path, output=output, **options, **per_file))
-        except ConfigError as error:
-            click.echo(f"error: {error}", err=True)
-            return 2
-        except InputError as error:
-            click.echo(f"error: {error}", err=True)
-            failed = True
+        with processing(path):
+            try:
+                per_file = per_link(finder.for_file(path).links, masses)
+                plans.append(plan_fill(path, output=output, **options, **per_file))
+            except ConfigError as error:
+                click.echo(f"error: {error}", err=True)
+                return 2
+            except InputError as error:
+                click.echo(f"error: {error}", err=True)
+                failed = True
+            except Exception as error:  # a bug: reported for this file, the others go on
+                click.echo(f"error: {internal(error, path)}", err=True)
+                failed = True
     unknown = unknown_links(masses, plans)
     if unknown:
         click.echo(f"error: --mass names no link in the files: {', '.join(unknown)}", err=True)
@@ -185,29 +189,49 @@ def fill(
     write = not (show_diff or check)
     changed = refused = False
     for plan in plans:
-        for note in plan.notes:
-            click.echo(f"note: {plan.path}: {note}", err=True)
-        if show_diff and plan.changed:
-            click.echo(plan.diff(), nl=False)
-        filled = plan.changed_links
-        if filled or (plan.input_path is not None and write):
+        with processing(plan.path):
             try:
-                if write:
-                    (apply if plan.input_path is None else write_output)(plan)
-            except InputError as error:
-                click.echo(f"error: {error}", err=True)
-                failed = True
-            else:
-                changed = changed or bool(filled)
-                click.echo(_fill_line(plan, write), err=True)
-        for refusal in plan.refused:
-            refused = True
-            click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
-            if refusal.block is not None:
-                click.echo(textwrap.indent(refusal.block, "    "), err=True)
+                outcome = _finish(plan, write, show_diff)
+            except Exception as error:  # a bug: reported for this file, the others go on
+                click.echo(f"error: {internal(error, plan.path)}", err=True)
+                outcome = (False, False, True)
+        changed, refused, failed = (
+            changed or outcome[0],
+            refused or outcome[1],
+            failed or outcome[2],
+        )
     if failed:
         return 2
     return 1 if changed or refused else 0
+
+
+def _finish(plan: Any, write: bool, show_diff: bool) -> tuple[bool, bool, bool]:
+    """Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed."""
+    from inertia_kit.errors import InputError
+    from inertia_kit.fill.output import write_output
+    from inertia_kit.fill.plan import apply
+
+    changed = failed = False
+    for note in plan.notes:
+        click.echo(f"note: {plan.path}: {note}", err=True)
+    if show_diff and plan.changed:
+        click.echo(plan.diff(), nl=False)
+    filled = plan.changed_links
+    if filled or (plan.input_path is not None and write):
+        try:
+            if write:
+                (apply if plan.input_path is None else write_output)(plan)
+        except InputError as error:
+            click.echo(f"error: {error}", err=True)
+            failed = True
+        else:
+            changed = bool(filled)
+            click.echo(_fill_line(plan, write), err=True)
+    for refusal in plan.refused:
+        click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
+        if refusal.block is not None:
+            click.echo(textwrap.indent(refusal.block, "    "), err=True)
+    return changed, bool(plan.refused), failed
 
 
 def _fill_line(plan: Any, write: bool) -> str:

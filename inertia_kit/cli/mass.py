@@ -7,10 +7,11 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
 from inertia_kit.cli.options import NUMBER, UsageError
 
 
-@click.group("mass")
+@click.group("mass", cls=GuardedGroup)
 def mass_group() -> None:
     """
     Mass properties of a primitive or a mesh: mass, centre of mass, the inertia tensor about
@@ -111,7 +112,9 @@ def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Comman
         click.option(flag, nargs=n, type=NUMBER, required=True, help=text)
         for flag, n, text in dimensions
     ]
-    return click.command(shape, help=help)(_with_options(_part_options(run), own))
+    return click.command(shape, cls=GuardedCommand, help=help)(
+        _with_options(_part_options(run), own)
+    )
 
 
 for _shape, (_help, _dimensions) in _PRIMITIVES.items():
@@ -133,11 +136,12 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
     from inertia_kit.errors import MeshError
     from inertia_kit.report.mass import mesh_part
 
-    try:
-        part = mesh_part(path, factors)
-    except MeshError as error:
-        raise UsageError(str(error)) from None
-    _show(part, options)
+    with processing(path):
+        try:
+            part = mesh_part(path, factors)
+        except MeshError as error:
+            raise UsageError(str(error)) from None
+        _show(part, options)
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:

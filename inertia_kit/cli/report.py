@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, processing
 from inertia_kit.cli.options import (
     UsageError,
     package_path_option,
@@ -12,7 +13,7 @@ from inertia_kit.cli.options import (
 )
 
 
-@click.command("report")
+@click.command("report", cls=GuardedCommand)
 @click.argument("path", type=click.Path(dir_okay=False))
 @click.option(
     "--format",
@@ -60,17 +61,19 @@ def report_command(
     except ValueError as error:
         raise UsageError(f"--engine: {error}") from None
 
-    try:
-        robot = load(path, xacro_args=parse_xacro_args(xacro_args), package_paths=package_paths)
-    except InputError as error:
-        raise UsageError(str(error)) from None
-    if robot.fragment:
-        click.echo(
-            f"{path}: a xacro fragment (macros and properties only, to be included): no links",
-            err=True,
-        )
-        return
-    if lumped:
-        click.echo(render_lumped(robot, chosen, output_format))
-    else:
-        click.echo(render(robot, output_format))
+    with processing(path):
+        try:
+            robot = load(path, xacro_args=parse_xacro_args(xacro_args), package_paths=package_paths)
+        except InputError as error:
+            raise UsageError(str(error)) from None
+        if robot.fragment:
+            click.echo(
+                f"{path}: a xacro fragment (macros and properties only, to be included): no links",
+                err=True,
+            )
+            return
+        if lumped:
+            text = render_lumped(robot, chosen, output_format)
+        else:
+            text = render(robot, output_format)
+    click.echo(text)

@@ -55,7 +55,14 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
     except LookupError:
         raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
     try:
-        root = etree.fromstring(data, safe, base_url=None)
+        try:
+            root = etree.fromstring(data, safe, base_url=None)
+        except etree.XMLSyntaxError as error:
+            if encoding is not None or "Unsupported encoding" not in str(error.msg):
+                raise
+            # an encoding libxml2 does not know: TinyXML2 (urdfdom, Gazebo, PyBullet, MuJoCo,
+            # Drake) ignores the declaration and reads the bytes as UTF-8; so do we
+            root = etree.fromstring(data, parser(remove_pis=True, encoding="utf-8"))
     except etree.XMLSyntaxError as error:
         line, column = error.position if error.position else (None, None)
         message = re.sub(r",? line \d+, column \d+$", "", str(error.msg or error))

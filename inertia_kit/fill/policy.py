@@ -248,7 +248,10 @@ def unwritable(properties: MassProperties) -> str | None:
                     f"linter refuses (IN004); {hint}"
                 )
     if not properties.mass > 0:
-        return f"its computed mass is {properties.mass} kg; {hint}"
+        return (
+            f"its computed mass is {properties.mass} kg (the density times the volume "
+            f"underflows); {hint}"
+        )
     return None
 
 

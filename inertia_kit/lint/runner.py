@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
-from inertia_kit.errors import InputError
+from inertia_kit.errors import InputError, InternalError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -152,15 +152,16 @@ def lint_robot(
 @dataclass
 class FileResult:
     """
-    What linting one file gave: its findings, or the error that kept it from being read, or
-    that it is a xacro fragment (nothing to lint on its own). ``notes`` are things to tell the
+    What linting one file gave: its findings, or the error that kept it from being read (or
+    an internal error, a bug, in the command line's results), or that it is a xacro fragment
+    (nothing to lint on its own). ``notes`` are things to tell the
     user that are not findings (a suppression comment we do not understand); ``fail_on`` is the
     lowest severity that counts for the exit code.
     """
 
     path: str
     findings: list[Finding] = field(default_factory=list)
-    error: InputError | None = None
+    error: InputError | InternalError | None = None
     fragment: bool = False
     notes: list[str] = field(default_factory=list)
     fail_on: Severity = DEFAULT_FAIL_ON
@@ -245,6 +246,7 @@ def lint_paths(
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
     engines: Sequence[str] | None = None,
+    on_error: Callable[[Path, Exception], FileResult] | None = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -254,6 +256,9 @@ def lint_paths(
 
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
+    ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
+    (a bug: the command line reports it for that file and lints the others); without it, the
+    exception propagates.
     """
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.config_files import ConfigFinder
@@ -279,13 +284,18 @@ def lint_paths(
     plan = [(file, finder.for_file(file)) for file in expand_paths(paths)]
     results = []
     for file, found in plan:
-        result = lint_file(
-            file,
-            selection_for(found, select, ignore, engines),
-            xacro_args=xacro_args,
-            package_paths=package_paths,
-            load_mesh=load_mesh,
-        )
+        try:
+            result = lint_file(
+                file,
+                selection_for(found, select, ignore, engines),
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                load_mesh=load_mesh,
+            )
+        except Exception as error:
+            if on_error is None:
+                raise
+            result = on_error(file, error)
         # not `or`: Severity.INFO is 0
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
         results.append(result)

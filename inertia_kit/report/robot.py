@@ -28,9 +28,7 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 "principal_moments": None
                 if properties is None
                 else properties.principal_moments.tolist(),
-                "inertial": "none"
-                if link.inertial is None
-                else ("complete" if properties else "incomplete"),
+                "inertial": _state(link.inertial, properties),
                 "geometry": geometry_summary(link),
                 "file": source.path,
                 "line": source.line,
@@ -40,6 +38,16 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
             }
         )
     return rows
+
+
+def _state(inertial: model.Inertial | None, properties: object) -> str:
+    """``none``, ``complete``, ``invalid`` (a value not usable, IN004) or ``incomplete``."""
+    if inertial is None:
+        return "none"
+    if properties is not None:
+        return "complete"
+    values = (inertial.mass, *inertial.tensor_values().values(), *vars(inertial.origin).values())
+    return "invalid" if any(isinstance(v, model.Invalid) for v in values) else "incomplete"
 
 
 def total_mass(rows: list[dict[str, Any]]) -> float:
