@@ -189,28 +189,27 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
             return Solid(
                 shape, None, None, problem=("degenerate", "its mesh scale has a zero factor")
             )
-        try:
-            solid = load_mesh(geometry.path, scale)
-        except MeshError as error:
-            kind = {"not-found": "mesh-not-found", "empty": "mesh-empty"}.get(
-                error.kind, "mesh-unreadable"
-            )
-            return Solid(shape, None, None, problem=(kind, error.message))
-        unit = solid.mass_properties(density=1.0).transformed(pose)
-        corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
+        # a usable scale on usable file coordinates can still overflow: checked below
+        with np.errstate(over="ignore", invalid="ignore"):
+            try:
+                solid = load_mesh(geometry.path, scale)
+            except MeshError as error:
+                kind = {"not-found": "mesh-not-found", "empty": "mesh-empty"}.get(
+                    error.kind, "mesh-unreadable"
+                )
+                return Solid(shape, None, None, problem=(kind, error.message))
+            unit = solid.mass_properties(density=1.0).transformed(pose)
+            corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
         if _overflows(unit) or not np.isfinite(corners).all():
             return Solid(shape, None, None, problem=("degenerate", _OVERFLOW))
-        if unit.mass < MIN_LENGTH**3:
-            return Solid(
-                shape,
-                None,
-                None,
-                problem=(
-                    "mesh-empty",
-                    f"it encloses {fmt(unit.mass)} m³, less than a cube of {fmt(MIN_LENGTH)} m "
-                    "(the size of an atom)",
-                ),
+        thinnest = float(np.min(solid.bounds[1] - solid.bounds[0]))
+        if thinnest < MIN_LENGTH or unit.mass < MIN_LENGTH**3:
+            what = (
+                f"it is {fmt(thinnest)} m thin, thinner than an atom (1e-10 m)"
+                if thinnest < MIN_LENGTH
+                else f"it encloses {fmt(unit.mass)} m³, less than an atom (1e-10 m) cubed"
             )
+            return Solid(shape, None, None, problem=("mesh-empty", f"{what}: no solid"))
         return Solid(shape, unit, corners, mesh=solid)
     if isinstance(geometry, model.Box):
         size = geometry.size
