@@ -40,7 +40,8 @@ class MeshError(InertiaKitError):
     """
     A mesh file that yields no mass properties.
 
-    ``kind`` is ``not-found``, ``unreadable`` (corrupt or unsupported) or ``empty`` (no volume).
+    ``kind`` is ``not-found``, ``unreadable`` (corrupt or unsupported), ``empty`` (no volume) or
+    ``overflow`` (its volume or moments, scaled, leave double precision).
     """
 
     def __init__(self, path: str | Path, kind: str, message: str):

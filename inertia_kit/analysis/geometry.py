@@ -194,9 +194,11 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
             try:
                 solid = load_mesh(geometry.path, scale)
             except MeshError as error:
-                kind = {"not-found": "mesh-not-found", "empty": "mesh-empty"}.get(
-                    error.kind, "mesh-unreadable"
-                )
+                kind = {
+                    "not-found": "mesh-not-found",
+                    "empty": "mesh-empty",
+                    "overflow": "degenerate",
+                }.get(error.kind, "mesh-unreadable")
                 return Solid(shape, None, None, problem=(kind, error.message))
             unit = solid.mass_properties(density=1.0).transformed(pose)
             corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]

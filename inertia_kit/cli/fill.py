@@ -10,7 +10,7 @@ import click
 from inertia_kit.cli.guard import GuardedCommand, internal, processing
 from inertia_kit.cli.options import (
     HELP,
-    NUMBER,
+    SCALE,
     UsageError,
     package_path_option,
     parse_xacro_args,
@@ -24,7 +24,7 @@ from inertia_kit.version import __version__
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option(
     "--density",
-    type=NUMBER,
+    type=SCALE,
     default=None,
     metavar="KG_PER_M3",
     help="Uniform density for links without a known mass, kg/m³ [default: 1000].",
@@ -41,7 +41,7 @@ from inertia_kit.version import __version__
 )
 @click.option(
     "--total-mass",
-    type=NUMBER,
+    type=SCALE,
     default=None,
     metavar="KG",
     help="The robot's total mass, kg: the links without a known mass share what the others "
@@ -111,9 +111,9 @@ def _masses(values: tuple[str, ...]) -> dict[str, float]:
             kg = float(text)
         except ValueError:
             kg = float("nan")
-        if not sep or not name or not (kg > 0 and usable(kg)):
+        if not sep or not name or not (kg > 0 and usable(kg, scale=True)):
             raise UsageError(
-                f"--mass takes LINK=KG with a positive mass of at most 1e50 kg, got {value!r}"
+                f"--mass takes LINK=KG with a positive mass from 1e-50 to 1e50 kg, got {value!r}"
             )
         masses[name] = kg
     return masses

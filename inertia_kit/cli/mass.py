@@ -8,7 +8,7 @@ from typing import Any
 import click
 
 from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
-from inertia_kit.cli.options import NUMBER, UsageError
+from inertia_kit.cli.options import NUMBER, SCALE, UsageError
 
 
 @click.group("mass", cls=GuardedGroup)
@@ -33,11 +33,11 @@ _ORIGIN = (0.0, 0.0, 0.0)
 _PART_OPTIONS = (
     click.option(
         "--density",
-        type=NUMBER,
+        type=SCALE,
         default=None,
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
     ),
-    click.option("--mass", "mass_kg", type=NUMBER, default=None, help="Total mass, kg."),
+    click.option("--mass", "mass_kg", type=SCALE, default=None, help="Total mass, kg."),
     _triple(
         "--xyz",
         "Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",

@@ -30,6 +30,9 @@ class Number(click.ParamType):
 
     name = "number"
 
+    def __init__(self, scale: bool = False):
+        self.scale = scale  # a density or a mass: non-zero below 1e-50 is refused too
+
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None):
         from inertia_kit.physics.numbers import unusable
 
@@ -37,14 +40,15 @@ class Number(click.ParamType):
             number = float(value)
         except (TypeError, ValueError):
             self.fail(f"{value!r} is not a number", param, ctx)
-        why = unusable(number)
+        why = unusable(number, self.scale)
         if why is not None:
             self.fail(f"{value!r} is {why}", param, ctx)
         return number
 
 
-#: the type of every numeric option
+#: the type of every numeric option; SCALE for a density or a mass
 NUMBER = Number()
+SCALE = Number(scale=True)
 
 package_path_option = click.option(
     "--package-path",

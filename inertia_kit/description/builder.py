@@ -24,6 +24,8 @@ _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\
 # Elements whose numbers are only compared, never multiplied: finite is enough (``1e16`` is a
 # common "unlimited"); every other number must be usable in mass-property arithmetic
 _COMPARED_ONLY = frozenset({"limit", "dynamics", "mimic"})
+# values other values are divided by: a tiny one is unusable too (physics/numbers.py)
+_SCALES = frozenset({("mass", "value"), ("inertia", "ixx"), ("inertia", "iyy"), ("inertia", "izz")})
 
 
 class Builder:
@@ -76,7 +78,11 @@ class Builder:
         if text is None:
             return None
         value = float(text) if _NUMBER.fullmatch(text) else math.nan
-        if not (usable(value) or (math.isfinite(value) and self.tag(element) in _COMPARED_ONLY)):
+        tag = self.tag(element)
+        if not (
+            usable(value, (tag, attribute) in _SCALES)
+            or (math.isfinite(value) and tag in _COMPARED_ONLY)
+        ):
             return self.invalid_value(text, attribute, element)
         return value
 

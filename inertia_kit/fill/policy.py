@@ -70,11 +70,11 @@ def density_option(density: float | None, material: str | None, total_mass: floa
     if total_mass is not None:
         if density is not None:
             raise ValueError("give --total-mass or --density/--material, not both")
-        if not (total_mass > 0 and usable(total_mass)):
+        if not (total_mass > 0 and usable(total_mass, scale=True)):
             raise ValueError(f"--total-mass must be a positive number of kg, got {total_mass}")
     if density is None:
         density = 1000.0
-    if not (density > 0 and usable(density)):
+    if not (density > 0 and usable(density, scale=True)):
         raise ValueError(f"--density must be a positive number of kg/m³, got {density}")
     return density
 
@@ -121,17 +121,17 @@ class MassChoice:
         total_mass: float | None = None,
     ) -> MassChoice:
         """``ValueError`` for a density, mass or total that is not a positive finite number."""
-        if not (usable(density) and density > 0):
+        if not (usable(density, scale=True) and density > 0):
             raise ValueError(f"density must be a positive number of kg/m³, got {density}")
-        if total_mass is not None and not (usable(total_mass) and total_mass > 0):
+        if total_mass is not None and not (usable(total_mass, scale=True) and total_mass > 0):
             raise ValueError(f"the total mass must be a positive number of kg, got {total_mass}")
         masses = dict(masses or {})
         for name, kg in masses.items():
-            if not (usable(kg) and kg > 0):
+            if not (usable(kg, scale=True) and kg > 0):
                 raise ValueError(f"the mass of `{name}` must be a positive number of kg, got {kg}")
         densities = dict(densities or {})
         for name, value in densities.items():
-            if not (usable(value) and value > 0):
+            if not (usable(value, scale=True) and value > 0):
                 raise ValueError(f"the density of `{name}` must be a positive number, got {value}")
         return cls(density, masses, densities, total_mass)
 
@@ -240,7 +240,7 @@ def unwritable(properties: MassProperties) -> str | None:
         return f"its computed mass properties are not finite numbers; {hint}"
     for attribute, text in written_values(properties).items():
         for piece in text.split():
-            why = unusable(float(piece))
+            why = unusable(float(piece), attribute in ("mass", "ixx", "iyy", "izz"))
             if why is not None:
                 what = "centre of mass" if attribute == "xyz" else attribute
                 return (

@@ -274,8 +274,8 @@ class _Where:
         from inertia_kit.physics.numbers import usable
 
         ok, number = convert(value, float)
-        if not ok or not usable(number) or number <= 0:
-            self.fail(key, f"expected a positive number of at most 1e50, got {_shown(value)}")
+        if not ok or not usable(number, scale=True) or number <= 0:
+            self.fail(key, f"expected a positive number from 1e-50 to 1e50, got {_shown(value)}")
         return number
 
 

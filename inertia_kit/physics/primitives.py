@@ -37,14 +37,14 @@ def _extents(values: ArrayLike, name: str) -> tuple[float, float, float]:
 def body_mass(volume: float, density: float | None, mass: float | None) -> float:
     """
     The mass of a solid of ``volume`` m³ from exactly one of ``density`` or ``mass``, each
-    positive, at most 1e50 and not subnormal (:mod:`.numbers`).
+    from 1e-50 to 1e50 (:mod:`.numbers`).
     """
     if (density is None) == (mass is None):
         raise ValueError("give exactly one of density (kg/m³) or mass (kg)")
     for name, unit, given in (("density", "kg/m³", density), ("mass", "kg", mass)):
-        if given is not None and not (usable(float(given)) and given > 0):
+        if given is not None and not (usable(float(given), scale=True) and given > 0):
             raise ValueError(
-                f"{name} must be positive, at most 1e50 and not subnormal, got {given} {unit}"
+                f"{name} must be positive, from 1e-50 to 1e50 {unit}, got {given} {unit}"
             )
     if not (math.isfinite(volume) and volume >= MIN_NORMAL):
         # each dimension is usable: only their product left double precision

@@ -128,21 +128,28 @@ def test_fill_refuses_a_subnormal_dimension(tmp_path, fix):
 
 
 def test_fill_refuses_what_the_linter_would_refuse(tmp_path):
-    """A usable density and volume whose product underflows: the link is refused, not written."""
+    """Usable density and sizes whose product is not: the link is refused, not written."""
     text = moving(collision(box(1e-10, 1e-10, 1e-10)))
     path = write(tmp_path / "robot.urdf", text)
-    result = CliRunner().invoke(fill_main, ["--density", "1e-300", str(path)])
+    result = CliRunner().invoke(fill_main, ["--density", "1e-20", str(path)])
     assert result.exit_code == 1
-    assert "link `arm` not filled: its computed mass is 0.0 kg" in result.stderr
+    assert (
+        "link `arm` not filled: its computed mass would be written as 1e-50 (" not in result.stderr
+    )
+    assert (
+        "link `arm` not filled: its computed ixx would be written as 1.66667e-71 (non-zero below "
+        "1e-50), a number the linter refuses (IN004)" in result.stderr
+    )
     assert path.read_text() == text
 
 
 def test_fill_writes_at_the_edge(tmp_path):
+    """An atom-sized cube of water: 1e-27 kg, 1.7e-48 kg·m², written and read back clean."""
     path = write(tmp_path / "robot.urdf", moving(collision(box(1e-10, 1e-10, 1e-10))))
-    result = CliRunner().invoke(fill_main, ["--density", "1e-30", str(path)])
+    result = CliRunner().invoke(fill_main, ["--density", "1000", str(path)])
     assert result.exit_code == 1
-    assert '<mass value="1e-60"/>' in path.read_text()
-    again = lint(path, "--select", "IN004", "--output-format", "json")
+    assert '<mass value="1e-27"/>' in path.read_text()
+    again = lint(path, "--select", "IN004,IN026", "--output-format", "json")
     assert json.loads(again.stdout) == []
 
 
@@ -152,7 +159,8 @@ def test_fill_writes_at_the_edge(tmp_path):
         (["--density", "1e308"], "'1e308' is beyond ±1e50"),
         (["--density", "nan"], "'nan' is not a number"),
         (["--total-mass", "1e-320"], "'1e-320' is subnormal"),
-        (["--mass", "arm=1e300"], "--mass takes LINK=KG with a positive mass of at most 1e50 kg"),
+        (["--mass", "arm=1e300"], "--mass takes LINK=KG with a positive mass from 1e-50 to 1e50"),
+        (["--density", "1e-51"], "'1e-51' is non-zero below 1e-50"),
     ],
 )
 def test_fill_options_take_usable_numbers(tmp_path, args, message):

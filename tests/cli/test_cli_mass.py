@@ -17,7 +17,8 @@ def run(*args: str):
     ("args", "message"),
     [
         (["box", "--size", "1", "0", "1"], "size[1] must be a positive length in m"),
-        (["sphere", "--radius", "1", "--density", "-5"], "density must be positive"),
+        (["sphere", "--radius", "1", "--density", "-5"], "density must be positive, from 1e-50"),
+        (["sphere", "--radius", "1", "--density", "1e-60"], "'1e-60' is non-zero below 1e-50"),
         # numbers mass properties cannot be computed from are refused as options
         (["box", "--size", "1e308", "1e308", "1e308"], "'1e308' is beyond ±1e50"),
         (["box", "--size", "1", "1", "1", "--about", "1e300", "0", "0"], "beyond ±1e50"),

@@ -87,7 +87,10 @@ def origins(draw) -> str:
     return f"<origin{_attribute('xyz', xyz)}{_attribute('rpy', rpy)}/>"
 
 
-MESH_NAMES = ("mesh0.stl", "mesh0.stl", "mesh1.obj", "missing.stl", "package://nopkg/x.stl", "")
+MESH_NAMES = (
+    "mesh0.stl", "mesh0.stl", "mesh1.obj", "mesh2.dae", "mesh3.ply", "missing.stl",
+    "package://nopkg/x.stl", "file:///nonexistent/x.stl", "",
+)  # fmt: skip
 
 
 @st.composite
@@ -278,7 +281,11 @@ ENCODINGS = (
     ("ascii", "utf-8"),
     ("cp1252", "cp1252"),
 )
-COMMENTS = ("", "arm", "bras articulé", "ロボットの腕", "Ω ≤ 1e308", "\u2028", "--")
+COMMENTS = (
+    "", "arm", "bras articulé", "ロボットの腕", "Ω ≤ 1e308", "\u2028", "--",
+    "inertia-lint: ignore[IN004]", "inertia-lint: ignore[", "inertia-lint: disable-file",
+    "inertia-lint: ignore[IN999, nonsense]",
+)  # fmt: skip
 
 
 def _mesh_files(draw) -> dict[str, bytes]:
@@ -307,7 +314,13 @@ def _mesh_files(draw) -> dict[str, bytes]:
         stl = b""
     else:
         stl = draw(st.binary(max_size=200))
-    return {"mesh0.stl": stl, "mesh1.obj": obj(np.asarray(triangles) * 1.0).encode("ascii")}
+    other = draw(st.sampled_from([b"", b"<COLLADA>", b"ply\nformat ascii 1.0\nend_header\n"]))
+    return {
+        "mesh0.stl": stl,
+        "mesh1.obj": obj(np.asarray(triangles) * 1.0).encode("ascii"),
+        "mesh2.dae": other if draw(st.booleans()) else draw(st.binary(max_size=100)),
+        "mesh3.ply": other,
+    }
 
 
 @dataclass

@@ -116,9 +116,11 @@ def test_bad_dimensions_are_named(bad):
         # the dimensions are usable, their product is not: the volume is named, not the density
         (lambda: box((1e-200, 1e-200, 1e-200), density=1.0), "the volume underflows to zero"),
         (lambda: sphere(1e-300, mass=1.0), "the volume underflows to zero"),
-        (lambda: box((1e-10,) * 3, density=1e-300), "the mass, density 1e-300 kg/m³"),
-        (lambda: box((1, 1, 1), density=1e308), "density must be positive, at most 1e50"),
-        (lambda: box((1, 1, 1), mass=5e-324), "mass must be positive, at most 1e50"),
+        (lambda: box((1e-200,) * 3, density=1e-50), "the volume underflows"),
+        (lambda: box((1e-100,) * 3, density=1e-50), "the mass, density 1e-50 kg/m³"),
+        (lambda: box((1, 1, 1), density=1e308), "density must be positive, from 1e-50 to 1e50"),
+        (lambda: box((1, 1, 1), density=1e-51), "density must be positive, from 1e-50 to 1e50"),
+        (lambda: box((1, 1, 1), mass=5e-324), "mass must be positive, from 1e-50 to 1e50 kg"),
     ],
 )
 def test_out_of_range_results_blame_the_right_input(make, message):

@@ -118,15 +118,20 @@ def _places(robot: model.Robot) -> dict[int, Place]:
     return found
 
 
-def _extreme(text: str) -> str | None:
+# values other values are divided by (physics/numbers.py: a tiny one is unusable too)
+_SCALES = ("<mass value>", "<inertia ixx>", "<inertia iyy>", "<inertia izz>")
+
+
+def _extreme(text: str, scale: bool = False) -> str | None:
     """
     Why a number URDF reads (finite, plain decimal) cannot be computed with (beyond ±1e50,
-    subnormal: :mod:`inertia_kit.physics.numbers`), or ``None`` for any other text.
+    subnormal, or for a ``scale`` below 1e-50: :mod:`inertia_kit.physics.numbers`), or
+    ``None`` for any other text.
     """
     pieces = text.split()
     if not pieces or not all(_PLAIN.fullmatch(piece) for piece in pieces):
         return None
-    reasons = [(piece, unusable(float(piece))) for piece in pieces]
+    reasons = [(piece, unusable(float(piece), scale)) for piece in pieces]
     if any(why in ("not a number", "infinite") for _, why in reasons):
         return None
     bad = dict.fromkeys((piece, why) for piece, why in reasons if why)
@@ -135,8 +140,8 @@ def _extreme(text: str) -> str | None:
     return ", ".join(f"{piece} is {why}" for piece, why in bad) or None
 
 
-def _describe(text: str, vector: bool) -> str:
-    extreme = _extreme(text)
+def _describe(text: str, vector: bool, scale: bool = False) -> str:
+    extreme = _extreme(text, scale)
     if extreme is not None and (not vector or len(text.split()) == 3):
         return extreme
     if vector:
@@ -177,19 +182,20 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             place = places.get(id(invalid), Place(f"<… {invalid.attribute}>"))
             if place.owner not in owners:
                 owners.append(place.owner)
-            items.append(
-                f"`{place.element}` = {invalid.text!r} ({_describe(invalid.text, place.vector)})"
-            )
-            if _extreme(invalid.text) is None:
+            scale = place.element in _SCALES
+            described = _describe(invalid.text, place.vector, scale)
+            items.append(f"`{place.element}` = {invalid.text!r} ({described})")
+            if _extreme(invalid.text, scale) is None:
                 pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
         first = places.get(id(invalids[0]), Place(""))
         if not pybullet:
             # every value reads as a number, one no robot has and no arithmetic keeps
             yield ctx.finding(
                 f"{' and '.join(owners)}: {'; '.join(items)}: no robot has such a value, and "
-                "mass properties are products of up to six numbers, which overflow or vanish in "
-                "double precision beyond ±1e50 and below 2.2e-308; the simulators read it and "
-                "compute with it (MuJoCo, Drake), inertia-kit skips the checks that need it",
+                "mass properties multiply and divide up to six numbers, which overflow or vanish "
+                "in double precision beyond ±1e50 (and for a mass or moment, below 1e-50); the "
+                "simulators read it and compute with it (MuJoCo, Drake), inertia-kit skips the "
+                "checks that need it",
                 invalids[0].source,
                 link=first.link,
                 joint=first.joint,

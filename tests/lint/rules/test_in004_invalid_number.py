@@ -101,6 +101,12 @@ def test_strtod_nan():
     [
         (SIX.replace('izz="0.005"', 'izz="-1e308"'), "`<inertia izz>` = '-1e308' (beyond ±1e50)"),
         (SIX.replace('ixy="0"', 'ixy="1e-320"'), "`<inertia ixy>` = '1e-320' (subnormal: "),
+        # found by hypothesis: a normal but tiny moment overflowed the tensor comparison
+        (
+            SIX.replace('ixx="0.025"', 'ixx="2.2250738585072014e-308"'),
+            "`<inertia ixx>` = '2.2250738585072014e-308' (non-zero below 1e-50)",
+        ),
+        (SIX.replace('izz="0.005"', 'izz="-1e-60"'), "`<inertia izz>` = '-1e-60' (non-zero below"),
     ],
 )
 def test_numbers_no_arithmetic_can_use(lint, six, item):
@@ -115,6 +121,13 @@ def test_vectors_name_the_unusable_values(lint):
     assert "`<joint><origin xyz>` = '1e308 1e308 1e308' (beyond ±1e50)" in finding.message
     (finding,) = in004(lint, robot(origin="0 1e51 5e-324"))
     assert "(1e51 is beyond ±1e50, 5e-324 is subnormal" in finding.message
+
+
+def test_a_tiny_mass_is_unusable_a_tiny_product_is_not(lint):
+    """A mass or a moment is divided by; a product of inertia only adds to the tensor."""
+    (finding,) = in004(lint, robot(mass="2.2250738585072014e-308"))
+    assert "`<mass value>` = '2.2250738585072014e-308' (non-zero below 1e-50)" in finding.message
+    assert in004(lint, robot(six=SIX.replace('ixy="0"', 'ixy="1e-300"'))) == []
 
 
 def test_cad_noise_for_zero_is_quiet(lint):
