@@ -32,13 +32,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from inertia_kit.fill.materials import MATERIALS
 from inertia_kit.fill.sites import Target
 from inertia_kit.lint.findings import Severity
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.physics.numbers import unusable, usable
+from inertia_kit.physics.numbers import usable
 
 if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -224,35 +222,18 @@ def choose(analysis: RobotAnalysis, choice: MassChoice, fix: str) -> Choices:
 
 def unwritable(properties: MassProperties) -> str | None:
     """
-    Why ``properties`` cannot be written (a value the linter would refuse, IN004: not finite,
-    beyond ±1e50 or subnormal; or no positive mass), or ``None``: fill never writes a number
-    it would report.
+    Why fill must not write ``properties`` (:func:`~inertia_kit.description.inertial_xml.
+    unwritable`: it never writes a number the linter refuses), with what to do, or ``None``.
     """
-    from inertia_kit.fill.sites import written_values
+    from inertia_kit.description.inertial_xml import unwritable as why
 
-    finite = (
-        np.isfinite(properties.mass)
-        and np.isfinite(properties.com).all()
-        and np.isfinite(properties.inertia).all()
+    problem = why(properties)
+    if problem is None:
+        return None
+    return (
+        f"{problem.replace('its ', 'its computed ', 1)}; check the geometry's dimensions, the "
+        "density and the mass, then run again"
     )
-    hint = "check the geometry's dimensions, the density and the mass, then run again"
-    if not finite:
-        return f"its computed mass properties are not finite numbers; {hint}"
-    for attribute, text in written_values(properties).items():
-        for piece in text.split():
-            why = unusable(float(piece), attribute in ("mass", "ixx", "iyy", "izz"))
-            if why is not None:
-                what = "centre of mass" if attribute == "xyz" else attribute
-                return (
-                    f"its computed {what} would be written as {piece} ({why}), a number the "
-                    f"linter refuses (IN004); {hint}"
-                )
-    if not properties.mass > 0:
-        return (
-            f"its computed mass is {properties.mass} kg (the density times the volume "
-            f"underflows); {hint}"
-        )
-    return None
 
 
 def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:

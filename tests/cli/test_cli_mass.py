@@ -52,3 +52,17 @@ def test_console_scripts_exist_and_fill_has_help():
     )
     assert done.returncode == 0
     assert "density 1000 kg/m³" in done.stdout
+
+
+def test_no_urdf_block_the_linter_would_refuse(tmp_path):
+    """A mesh of 1e38 m coordinates: its values are shown, its block is not (IN004)."""
+    from kit.meshes import box_triangles, write_binary_stl
+
+    path = write_binary_stl(tmp_path / "huge.stl", box_triangles([1e38, 1e38, 1e38]))
+    result = run("mesh", str(path))
+    assert result.exit_code == 0
+    assert "URDF: none: its mass would be written as 1e117 (beyond ±1e50)" in result.output
+    result = run("mesh", str(path), "--scale", "1e30")
+    assert (
+        result.exit_code == 2 and "its volume or moments overflow double precision" in result.output
+    )
