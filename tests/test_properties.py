@@ -63,7 +63,8 @@ def _api(case: Case, folder: Path) -> None:
     if robot is not None and not robot.fragment:
         for output_format in ("text", "markdown", "json"):
             report(robot, output_format)
-        render_lumped(robot, ENGINES, "json")
+        for output_format in ("text", "markdown", "json"):
+            render_lumped(robot, ENGINES, output_format)
     for fix in ("missing", "invalid", "all"):
         copy = folder / f"copy-{fix}"
         shutil.copytree(folder, copy, ignore=shutil.ignore_patterns("copy-*"))

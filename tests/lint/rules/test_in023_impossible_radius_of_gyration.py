@@ -93,3 +93,17 @@ def test_missing_mesh_or_inertial_is_not_its_business(lint):
     body = visual(mesh("missing.stl")) + CYLINDER
     assert lint(moving(body + inertial(1.0, 1.0, 1.0, 1.0)), "IN023") == []
     assert lint(moving(CYLINDER), "IN023") == []
+
+
+def test_a_tensor_that_is_no_rigid_body_far_from_its_geometry(lint):
+    """Found by hypothesis: not positive definite, and a bound of 0 for a box 1.9e8 m away."""
+    import warnings
+
+    body = (
+        '<inertial><origin rpy="1 1 0.5"/><mass value="1"/>'
+        '<inertia ixx="1" ixy="1" ixz="1" iyy="0.5" iyz="1.0" izz="1"/></inertial>'
+        '<visual><origin xyz="1 189812532.0 1"/><geometry><box size="1 1 1"/></geometry></visual>'
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert lint(moving(body), "IN023") == []
