@@ -8,13 +8,29 @@ test module is imported by its file name, which must therefore be unique across 
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, settings
 from kit import write
 
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.runner import Selection, lint_file
+
+# Hypothesis (tests/test_properties.py): in CI a fixed set of examples, the same every run and
+# bounded in time; INERTIA_KIT_HYPOTHESIS_EXAMPLES=N runs N random examples per test instead,
+# and keeps failing ones in .hypothesis/ to replay them
+_QUIET = [HealthCheck.function_scoped_fixture, HealthCheck.too_slow, HealthCheck.data_too_large]
+settings.register_profile(
+    "ci", max_examples=200, derandomize=True, database=None, deadline=None,
+    suppress_health_check=_QUIET, print_blob=True,
+)  # fmt: skip
+settings.register_profile(
+    "long", max_examples=int(os.environ.get("INERTIA_KIT_HYPOTHESIS_EXAMPLES") or 0) or 1,
+    deadline=None, suppress_health_check=_QUIET, print_blob=True,
+)  # fmt: skip
+settings.load_profile("long" if os.environ.get("INERTIA_KIT_HYPOTHESIS_EXAMPLES") else "ci")
 
 
 def lint_text(

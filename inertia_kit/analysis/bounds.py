@@ -258,7 +258,11 @@ class MomentExcess:
 
     @property
     def ratio(self) -> float:
-        return self.moment / self.bound if self.bound > 0 else math.inf
+        """``moment / bound``; beyond any bound when the bound is 0, unless the moment is not
+        positive either (a zero or negative moment is IN010's, never an excess)."""
+        if self.bound > 0:
+            return self.moment / self.bound
+        return math.inf if self.moment > 0 else 0.0
 
 
 def moment_excess(declared: MassProperties, hull: Hull) -> MomentExcess | None:

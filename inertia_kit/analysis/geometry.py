@@ -21,7 +21,9 @@ from numpy.typing import NDArray
 from inertia_kit.analysis.bounds import Hull, box_corners
 from inertia_kit.analysis.describe import describe_geometry
 from inertia_kit.description import model
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.numbers import MIN_LENGTH
 
 if TYPE_CHECKING:
     from inertia_kit.physics.meshes import MeshSolid
@@ -143,10 +145,36 @@ def absent_sizes(geometry: model.Geometry) -> tuple[str, ...]:
     return tuple(name for name in SIZES.get(type(geometry), ()) if getattr(geometry, name) is None)
 
 
-def _positive(values: tuple[model.Number, ...]) -> tuple[float, ...] | None:
-    if not all(isinstance(v, float) for v in values):
-        return None
-    return tuple(values) if all(v > 0 for v in values) else ()  # type: ignore[return-value]
+def _thin(values: tuple[float, ...]) -> str | None:
+    """Why dimensions (m) make no solid: zero or negative, or thinner than an atom."""
+    if not all(v > 0 for v in values):
+        return "a dimension is zero or negative"
+    thinnest = min(values)
+    if thinnest < MIN_LENGTH:
+        return (
+            f"a dimension of {fmt(thinnest)} m is below {fmt(MIN_LENGTH)} m, the size of an "
+            "atom: no solid is that thin"
+        )
+    return None
+
+
+def _overflows(unit: MassProperties) -> bool:
+    return not (
+        np.isfinite(unit.mass) and np.isfinite(unit.com).all() and np.isfinite(unit.inertia).all()
+    )
+
+
+def _not_numeric(geometry: model.Geometry) -> str:
+    """``its <cylinder length> is '1e-320' (IN004)``: the attributes that are not usable."""
+    bad = [v for v in vars(geometry).values() if isinstance(v, model.Invalid)]
+    if not bad:
+        return "a dimension is not numeric"
+    tag = type(geometry).__name__.lower()
+    what = ", ".join(f"its <{tag} {v.attribute}> is {v.text!r}" for v in bad)
+    return f"{what}, not a usable number (IN004)"
+
+
+_OVERFLOW = "its volume or moments overflow double precision: the shape is far too large"
 
 
 def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_loader) -> Solid:
@@ -179,39 +207,58 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
             return Solid(
                 shape, None, None, problem=("degenerate", "its mesh scale has a zero factor")
             )
-        try:
-            solid = load_mesh(geometry.path, scale)
-        except MeshError as error:
-            kind = {"not-found": "mesh-not-found", "empty": "mesh-empty"}.get(
-                error.kind, "mesh-unreadable"
+        # a usable scale on usable file coordinates can still overflow: checked below
+        with np.errstate(over="ignore", invalid="ignore"):
+            try:
+                solid = load_mesh(geometry.path, scale)
+            except MeshError as error:
+                kind = {
+                    "not-found": "mesh-not-found",
+                    "empty": "mesh-empty",
+                    "overflow": "degenerate",
+                }.get(error.kind, "mesh-unreadable")
+                return Solid(shape, None, None, problem=(kind, error.message))
+            if pose is None:
+                return unplaced
+            unit = solid.mass_properties(density=1.0).transformed(pose)
+            corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
+        if _overflows(unit) or not np.isfinite(corners).all():
+            return Solid(shape, None, None, problem=("degenerate", _OVERFLOW))
+        thinnest = float(np.min(solid.bounds[1] - solid.bounds[0]))
+        if thinnest < MIN_LENGTH or unit.mass < MIN_LENGTH**3:
+            what = (
+                f"it is {fmt(thinnest)} m thin, thinner than an atom (1e-10 m)"
+                if thinnest < MIN_LENGTH
+                else f"it encloses {fmt(unit.mass)} m³, less than an atom (1e-10 m) cubed"
             )
-            return Solid(shape, None, None, problem=(kind, error.message))
-        if pose is None:
-            return unplaced
-        unit = solid.mass_properties(density=1.0).transformed(pose)
-        corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
+            return Solid(shape, None, None, problem=("mesh-empty", f"{what}: no solid"))
         return Solid(shape, unit, corners, mesh=solid)
     if isinstance(geometry, model.Box):
         size = geometry.size
-        dims = None if not isinstance(size, tuple) else _positive(size)
+        dims = size if isinstance(size, tuple) else None
         make = lambda d: Part.box(d, pose)  # noqa: E731
     elif isinstance(geometry, model.Cylinder):
-        dims = _positive((geometry.radius, geometry.length))
+        dims = (geometry.radius, geometry.length)
         make = lambda d: Part.cylinder(*d, pose)  # noqa: E731
     elif isinstance(geometry, model.Capsule):
-        dims = _positive((geometry.radius, geometry.length))
+        dims = (geometry.radius, geometry.length)
         make = lambda d: Part.capsule(*d, pose)  # noqa: E731
     else:  # Sphere
-        dims = _positive((geometry.radius,))
+        dims = (geometry.radius,)
         make = lambda d: Part.sphere(d[0], pose)  # noqa: E731
-    if dims is None:
-        return Solid(shape, None, None, problem=("invalid-number", "a dimension is not numeric"))
-    if dims == ():
-        return Solid(shape, None, None, problem=("degenerate", "a dimension is zero or negative"))
+    if dims is None or not all(isinstance(v, float) for v in dims):
+        return Solid(shape, None, None, problem=("invalid-number", _not_numeric(geometry)))
+    thin = _thin(dims)  # type: ignore[arg-type]
+    if thin is not None:
+        return Solid(shape, None, None, problem=("degenerate", thin))
     if pose is None:
         return unplaced
     part = make(dims)
-    return Solid(shape, part.mass_properties(density=1.0), box_corners(part.bounds), part=part)
+    unit = part.mass_properties(density=1.0)
+    corners = box_corners(part.bounds)
+    if _overflows(unit) or not np.isfinite(corners).all():
+        return Solid(shape, None, None, problem=("degenerate", _OVERFLOW))
+    return Solid(shape, unit, corners, part=part)
 
 
 def evaluate_geometry(

@@ -3,7 +3,8 @@ Command-line entry points: ``inertia-kit`` (this group of commands), and ``inert
 ``inertia-fill``, its ``lint`` and ``fill`` commands as scripts of their own. One module per
 command, each thin: parse the options, call the layer below, map the outcome to an exit code.
 The CLI is the only layer that knows exit codes: 0 success, 1 findings (lint) or changes (fill),
-2 bad input or usage.
+2 bad input, usage or an internal error, 130 Ctrl-C (:mod:`.guard`, the last resort of every
+command).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.guard import GuardedGroup
 from inertia_kit.cli.options import HELP
 from inertia_kit.version import __version__
 
@@ -37,7 +39,7 @@ def _command(name: str) -> click.Command:
     return getattr(importlib.import_module(module), attribute)
 
 
-class _LazyGroup(click.Group):
+class _LazyGroup(GuardedGroup):
     """A group whose sub-commands are imported when used (click's lazy-loading pattern)."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:

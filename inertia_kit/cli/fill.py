@@ -7,8 +7,10 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, internal, processing
 from inertia_kit.cli.options import (
     HELP,
+    SCALE,
     UsageError,
     package_path_option,
     parse_xacro_args,
@@ -20,11 +22,11 @@ from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
 
 
-@click.command("fill", context_settings=HELP)
+@click.command("fill", cls=GuardedCommand, context_settings=HELP)
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option(
     "--density",
-    type=float,
+    type=SCALE,
     default=None,
     metavar="KG_PER_M3",
     help="Uniform density for links without a known mass, kg/m³ [default: 1000].",
@@ -41,7 +43,7 @@ from inertia_kit.version import __version__
 )
 @click.option(
     "--total-mass",
-    type=float,
+    type=SCALE,
     default=None,
     metavar="KG",
     help="The robot's total mass, kg: the links without a known mass share what the others "
@@ -103,6 +105,8 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
 
 
 def _masses(values: tuple[str, ...]) -> dict[str, float]:
+    from inertia_kit.physics.numbers import usable
+
     masses = {}
     for value in values:
         name, sep, text = value.partition("=")
@@ -110,8 +114,10 @@ def _masses(values: tuple[str, ...]) -> dict[str, float]:
             kg = float(text)
         except ValueError:
             kg = float("nan")
-        if not sep or not name or not (kg > 0 and kg != float("inf")):
-            raise UsageError(f"--mass takes LINK=KG with a positive mass, got {value!r}")
+        if not sep or not name or not (kg > 0 and usable(kg, scale=True)):
+            raise UsageError(
+                f"--mass takes LINK=KG with a positive mass from 1e-50 to 1e50 kg, got {value!r}"
+            )
         masses[name] = kg
     return masses
 
@@ -135,8 +141,7 @@ def fill(
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
-    from inertia_kit.fill.output import write_output
-    from inertia_kit.fill.plan import apply, links_followed, plan_fill, remove_stale
+    from inertia_kit.fill.plan import plan_fill
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config_files import ConfigFinder
 
@@ -169,17 +174,23 @@ def fill(
         "total_mass": total_mass,
     }
     for path in paths:
-        try:
-            found = finder.for_file(path)
-            per_file = per_link(found.links, masses)
-            bounds = XacroLimits.resolve(found.xacro, limits)
-            plans.append(plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file))
-        except ConfigError as error:
-            click.echo(f"error: {error}", err=True)
-            return 2
-        except InputError as error:
-            click.echo(f"error: {error}", err=True)
-            failed = True
+        with processing(path):
+            try:
+                found = finder.for_file(path)
+                per_file = per_link(found.links, masses)
+                bounds = XacroLimits.resolve(found.xacro, limits)
+                plans.append(
+                    plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file)
+                )
+            except ConfigError as error:
+                click.echo(f"error: {error}", err=True)
+                return 2
+            except InputError as error:
+                click.echo(f"error: {error}", err=True)
+                failed = True
+            except Exception as error:  # a bug: reported for this file, the others go on
+                click.echo(f"error: {internal(error, path)}", err=True)
+                failed = True
     unknown = unknown_links(masses, plans)
     if unknown:
         click.echo(f"error: --mass names no link in the files: {', '.join(unknown)}", err=True)
@@ -188,43 +199,63 @@ def fill(
     write = not (show_diff or check)
     changed = refused = False
     for plan in plans:
-        for note in plan.notes:
-            click.echo(f"note: {plan.path}: {note}", err=True)
-        if write:
-            for stale in remove_stale(plan):
-                click.echo(
-                    f"note: removed {stale}, a temporary file left by an inertia-fill that "
-                    "was killed while writing",
-                    err=True,
-                )
-        if show_diff and plan.changed:
-            click.echo(plan.diff(), nl=False)
-        filled = plan.changed_links
-        if filled or (plan.input_path is not None and write):
-            followed = links_followed(plan) if write else []
+        with processing(plan.path):
             try:
-                if write:
-                    (apply if plan.input_path is None else write_output)(plan)
-            except InputError as error:
-                click.echo(f"error: {error}", err=True)
-                failed = True
-            else:
-                changed = changed or bool(filled)
-                click.echo(_fill_line(plan, write), err=True)
-                for name, real in followed:
-                    click.echo(
-                        f"note: {name} is a symbolic link: the file it points to, {real}, "
-                        "was written and the link kept",
-                        err=True,
-                    )
-        for refusal in plan.refused:
-            refused = True
-            click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
-            if refusal.block is not None:
-                click.echo(textwrap.indent(refusal.block, "    "), err=True)
+                outcome = _finish(plan, write, show_diff)
+            except Exception as error:  # a bug: reported for this file, the others go on
+                click.echo(f"error: {internal(error, plan.path)}", err=True)
+                outcome = (False, False, True)
+        changed, refused, failed = (
+            changed or outcome[0],
+            refused or outcome[1],
+            failed or outcome[2],
+        )
     if failed:
         return 2
     return 1 if changed or refused else 0
+
+
+def _finish(plan: Any, write: bool, show_diff: bool) -> tuple[bool, bool, bool]:
+    """Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed."""
+    from inertia_kit.errors import InputError
+    from inertia_kit.fill.output import write_output
+    from inertia_kit.fill.plan import apply, links_followed, remove_stale
+
+    changed = failed = False
+    for note in plan.notes:
+        click.echo(f"note: {plan.path}: {note}", err=True)
+    if write:
+        for stale in remove_stale(plan):
+            click.echo(
+                f"note: removed {stale}, a temporary file left by an inertia-fill that "
+                "was killed while writing",
+                err=True,
+            )
+    if show_diff and plan.changed:
+        click.echo(plan.diff(), nl=False)
+    filled = plan.changed_links
+    if filled or (plan.input_path is not None and write):
+        followed = links_followed(plan) if write else []
+        try:
+            if write:
+                (apply if plan.input_path is None else write_output)(plan)
+        except InputError as error:
+            click.echo(f"error: {error}", err=True)
+            failed = True
+        else:
+            changed = bool(filled)
+            click.echo(_fill_line(plan, write), err=True)
+            for name, real in followed:
+                click.echo(
+                    f"note: {name} is a symbolic link: the file it points to, {real}, "
+                    "was written and the link kept",
+                    err=True,
+                )
+    for refusal in plan.refused:
+        click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
+        if refusal.block is not None:
+            click.echo(textwrap.indent(refusal.block, "    "), err=True)
+    return changed, bool(plan.refused), failed
 
 
 def _fill_line(plan: Any, write: bool) -> str:

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import Any
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
     UsageError,
@@ -35,7 +37,7 @@ def _colour() -> bool | None:
     return None
 
 
-@click.command("lint", context_settings=HELP)
+@click.command("lint", cls=GuardedCommand, context_settings=HELP)
 @click.argument("paths", nargs=-1, type=click.Path())
 @click.option(
     "--output-format",
@@ -143,13 +145,17 @@ def lint(
         click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
         return 2
 
-    from inertia_kit.errors import ConfigError
+    from inertia_kit.errors import ConfigError, InternalError
     from inertia_kit.lint.findings import Severity
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
     from inertia_kit.lint.output.summary import summary
-    from inertia_kit.lint.runner import lint_paths
+    from inertia_kit.lint.runner import FileResult, lint_paths
+
+    def crashed(file: Path, error: Exception) -> FileResult:
+        # a bug in one file's linting: reported for it (exit 2), the other files are linted
+        return FileResult(str(file), error=internal(error, file))
 
     try:
         results = lint_paths(
@@ -162,6 +168,7 @@ def lint(
             xacro_args=parse_xacro_args(xacro_args),
             package_paths=package_paths,
             xacro_limits=parse_xacro_limits(xacro_limits),
+            on_error=crashed,
         )
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)
@@ -180,7 +187,8 @@ def lint(
     else:
         output = render(run.findings, output_format, errors=run.errors, style=click.style)
     click.echo(output, nl=False, color=_colour())
-    click.echo(summary(run.findings, run.checked, len(run.errors)), err=True)
+    crashes = sum(isinstance(error, InternalError) for error in run.errors)
+    click.echo(summary(run.findings, run.checked, len(run.errors) - crashes, crashes), err=True)
     if run.errors:
         return 2
     return 1 if run.failing and not exit_zero else 0

@@ -7,10 +7,11 @@ from typing import Any
 
 import click
 
-from inertia_kit.cli.options import UsageError
+from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
+from inertia_kit.cli.options import NUMBER, SCALE, UsageError
 
 
-@click.group("mass")
+@click.group("mass", cls=GuardedGroup)
 def mass_group() -> None:
     """
     Mass properties of a primitive or a mesh: mass, centre of mass, the inertia tensor about
@@ -24,7 +25,7 @@ def mass_group() -> None:
 
 
 def _triple(flag: str, help: str, default: tuple[float, float, float] | None) -> Callable:
-    return click.option(flag, nargs=3, type=float, default=default, help=help)
+    return click.option(flag, nargs=3, type=NUMBER, default=default, help=help)
 
 
 # how much the part weighs, where it is placed, and about what it is reported: every sub-command
@@ -32,11 +33,11 @@ _ORIGIN = (0.0, 0.0, 0.0)
 _PART_OPTIONS = (
     click.option(
         "--density",
-        type=float,
+        type=SCALE,
         default=None,
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
     ),
-    click.option("--mass", "mass_kg", type=float, default=None, help="Total mass, kg."),
+    click.option("--mass", "mass_kg", type=SCALE, default=None, help="Total mass, kg."),
     _triple(
         "--xyz",
         "Place the shape: its origin in the link frame, m (as a URDF <origin xyz>).",
@@ -108,10 +109,12 @@ def _primitive_command(shape: str, help: str, dimensions: tuple) -> click.Comman
         _show(part, options)
 
     own = [
-        click.option(flag, nargs=n, type=float, required=True, help=text)
+        click.option(flag, nargs=n, type=NUMBER, required=True, help=text)
         for flag, n, text in dimensions
     ]
-    return click.command(shape, help=help)(_with_options(_part_options(run), own))
+    return click.command(shape, cls=GuardedCommand, help=help)(
+        _with_options(_part_options(run), own)
+    )
 
 
 for _shape, (_help, _dimensions) in _PRIMITIVES.items():
@@ -133,18 +136,23 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
     from inertia_kit.errors import MeshError
     from inertia_kit.report.mass import mesh_part
 
-    try:
-        part = mesh_part(path, factors)
-    except MeshError as error:
-        raise UsageError(str(error)) from None
-    _show(part, options)
+    with processing(path):
+        try:
+            part = mesh_part(path, factors)
+        except MeshError as error:
+            raise UsageError(str(error)) from None
+        _show(part, options)
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:
+    from inertia_kit.physics.numbers import usable
+
     try:
         values = [float(part) for part in text.replace(",", " ").split()]
     except ValueError:
         raise UsageError(f"--scale takes one or three numbers, got {text!r}") from None
+    if not all(usable(value) for value in values):
+        raise UsageError(f"--scale takes numbers of at most 1e50, not subnormal, got {text!r}")
     if len(values) == 1:
         values *= 3
     if len(values) != 3:

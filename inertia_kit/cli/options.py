@@ -22,6 +22,34 @@ class UsageError(click.ClickException):
         click.echo(f"error: {self.format_message()}", err=True)
 
 
+class Number(click.ParamType):
+    """
+    A float option that mass properties can be computed from: finite, at most 1e50 in
+    magnitude and not subnormal (:mod:`inertia_kit.physics.numbers`); click says what is wrong.
+    """
+
+    name = "number"
+
+    def __init__(self, scale: bool = False):
+        self.scale = scale  # a density or a mass: non-zero below 1e-50 is refused too
+
+    def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None):
+        from inertia_kit.physics.numbers import unusable
+
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        why = unusable(number, self.scale)
+        if why is not None:
+            self.fail(f"{value!r} is {why}", param, ctx)
+        return number
+
+
+#: the type of every numeric option; SCALE for a density or a mass
+NUMBER = Number()
+SCALE = Number(scale=True)
+
 package_path_option = click.option(
     "--package-path",
     "package_paths",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from inertia_kit.cli.guard import GuardedCommand, processing
 from inertia_kit.cli.options import (
     UsageError,
     package_path_option,
@@ -14,7 +15,7 @@ from inertia_kit.cli.options import (
 )
 
 
-@click.command("report")
+@click.command("report", cls=GuardedCommand)
 @click.argument("path", type=click.Path(dir_okay=False))
 @click.option(
     "--format",
@@ -66,25 +67,27 @@ def report_command(
     except ValueError as error:
         raise UsageError(f"--engine: {error}") from None
 
-    try:
-        # the xacro limits of the nearest configuration, as inertia-lint takes them
-        configured = ConfigFinder().for_file(path).xacro
-        limits = XacroLimits.resolve(configured, parse_xacro_limits(xacro_limits))
-        robot = load(
-            path,
-            xacro_args=parse_xacro_args(xacro_args),
-            package_paths=package_paths,
-            xacro_limits=limits,
-        )
-    except (InputError, ConfigError) as error:
-        raise UsageError(str(error)) from None
-    if robot.fragment:
-        click.echo(
-            f"{path}: a xacro fragment (macros and properties only, to be included): no links",
-            err=True,
-        )
-        return
-    if lumped:
-        click.echo(render_lumped(robot, chosen, output_format))
-    else:
-        click.echo(render(robot, output_format))
+    with processing(path):
+        try:
+            # the xacro limits of the nearest configuration, as inertia-lint takes them
+            configured = ConfigFinder().for_file(path).xacro
+            limits = XacroLimits.resolve(configured, parse_xacro_limits(xacro_limits))
+            robot = load(
+                path,
+                xacro_args=parse_xacro_args(xacro_args),
+                package_paths=package_paths,
+                xacro_limits=limits,
+            )
+        except (InputError, ConfigError) as error:
+            raise UsageError(str(error)) from None
+        if robot.fragment:
+            click.echo(
+                f"{path}: a xacro fragment (macros and properties only, to be included): no links",
+                err=True,
+            )
+            return
+        if lumped:
+            text = render_lumped(robot, chosen, output_format)
+        else:
+            text = render(robot, output_format)
+    click.echo(text)

@@ -1,7 +1,9 @@
 """
 The model from a parsed ``<robot>`` element tree, URDF or expanded xacro: each element to its
 model type with its source location, numbers read as urdfdom reads them, and every value that
-is not a finite number recorded (``Robot.invalid``, in document order) instead of raised.
+is not a usable number (not finite, or beyond what mass-property arithmetic can take:
+:mod:`inertia_kit.physics.numbers`) recorded (``Robot.invalid``, in document order) instead of
+raised.
 """
 
 from __future__ import annotations
@@ -15,9 +17,15 @@ from lxml import etree
 
 from inertia_kit.description import model
 from inertia_kit.errors import InputError
+from inertia_kit.physics.numbers import usable
 
 # What urdfdom, Gazebo and Drake read as a number: ASCII digits only, no "1_000", no hex
 _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\s*")
+# Elements whose numbers are only compared, never multiplied: finite is enough (``1e16`` is a
+# common "unlimited"); every other number must be usable in mass-property arithmetic
+_COMPARED_ONLY = frozenset({"limit", "dynamics", "mimic"})
+# values other values are divided by: a tiny one is unusable too (physics/numbers.py)
+_SCALES = frozenset({("mass", "value"), ("inertia", "ixx"), ("inertia", "iyy"), ("inertia", "izz")})
 
 
 class Builder:
@@ -70,7 +78,11 @@ class Builder:
         if text is None:
             return None
         value = float(text) if _NUMBER.fullmatch(text) else math.nan
-        if not math.isfinite(value):
+        tag = self.tag(element)
+        if not (
+            usable(value, (tag, attribute) in _SCALES)
+            or (math.isfinite(value) and tag in _COMPARED_ONLY)
+        ):
             return self.invalid_value(text, attribute, element)
         return value
 
@@ -82,7 +94,7 @@ class Builder:
             return default
         parts = text.split()
         values = tuple(float(p) if _NUMBER.fullmatch(p) else math.nan for p in parts)
-        if len(values) != 3 or not all(math.isfinite(v) for v in values):
+        if len(values) != 3 or not all(usable(v) for v in values):
             return self.invalid_value(text, attribute, element)
         return values  # type: ignore[return-value]
 

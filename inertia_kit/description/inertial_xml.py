@@ -7,6 +7,7 @@ from numpy.typing import ArrayLike
 
 from inertia_kit.physics.formatting import xml_number
 from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.numbers import unusable
 
 # significant digits written: CAD tools report about six; more only adds churn
 DIGITS = 6
@@ -77,3 +78,30 @@ def inertial_block(
             f"{outer}</inertial>",
         ]
     )
+
+
+def unwritable(properties: MassProperties, rpy: ArrayLike = (0.0, 0.0, 0.0)) -> str | None:
+    """
+    Why the ``<inertial>`` of ``properties`` must not be written: a value not finite, or one
+    the linter refuses (IN004: beyond ±1e50, subnormal, a mass or moment below 1e-50, as
+    written to :data:`DIGITS` digits), or no positive mass; ``None`` when it can be.
+    """
+    finite = (
+        np.isfinite(properties.mass)
+        and np.isfinite(properties.com).all()
+        and np.isfinite(properties.inertia).all()
+    )
+    if not finite:
+        return "its mass properties are not finite numbers"
+    for attribute, text in inertial_values(properties, rpy=rpy).items():
+        for piece in text.split():
+            why = unusable(float(piece), attribute in ("mass", "ixx", "iyy", "izz"))
+            if why is not None:
+                what = "centre of mass" if attribute == "xyz" else attribute
+                return (
+                    f"its {what} would be written as {piece} ({why}), a number the linter "
+                    "refuses (IN004)"
+                )
+    if not properties.mass > 0:
+        return f"its mass is {properties.mass} kg"
+    return None

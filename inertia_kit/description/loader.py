@@ -36,7 +36,18 @@ def needs_expansion(data: bytes) -> bool:
     """
     from inertia_kit.description.xacro_expand import is_xacro
 
+    data = _narrow(data)
     return is_xacro(data) and _XACRO_AT_WORK.search(data) is not None
+
+
+def _narrow(data: bytes) -> bytes:
+    """UTF-16/32 text (by byte-order mark) as UTF-8, to look for xacro in; other data as it is."""
+    for mark, codec in ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32")):
+        if data.startswith(mark):
+            return data.decode(codec, "replace").encode("utf-8")
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return data.decode("utf-16", "replace").encode("utf-8")
+    return data
 
 
 def load(

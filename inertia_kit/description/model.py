@@ -2,8 +2,9 @@
 The robot model: frozen dataclasses for what a URDF says, each element with its source location.
 
 Missing values stay ``None``, never a default: a made-up ``ixx = 1.0`` is exactly what the linter
-exists to catch. A value that is present but not a finite number is kept as :class:`Invalid`,
-with its location, so one bad attribute does not hide every other finding.
+exists to catch. A value that is present but not a usable number (not finite, beyond ±1e50, or
+subnormal: :mod:`inertia_kit.physics.numbers`) is kept as :class:`Invalid`, with its location,
+so one bad attribute does not hide every other finding.
 """
 
 from __future__ import annotations
@@ -42,7 +43,10 @@ class Source:
 
 @dataclass(frozen=True)
 class Invalid:
-    """A numeric attribute whose text is not a finite number (``abc``, ``nan``, ``inf``)."""
+    """
+    A numeric attribute whose text is not a usable number (``abc``, ``nan``, ``inf``,
+    ``1e308``, ``1e-320``).
+    """
 
     text: str
     attribute: str

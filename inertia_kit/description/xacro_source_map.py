@@ -12,6 +12,7 @@ reads, with a map from each lxml element to its :class:`~inertia_kit.description
 from __future__ import annotations
 
 import dataclasses
+import re
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
@@ -87,8 +88,15 @@ def parse_stamped(data: bytes, shown: str, on_element: Callable[[], None] | None
             if on_element is not None:
                 on_element()
 
+    # xacro opens every file as text in Python's default encoding (UTF-8) and gives expat the
+    # text, so expat ignores the declared encoding: the same here, from the bytes we checked
     try:
-        return Builder().parseString(data)
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = data.count(b"\n", 0, error.start) + 1
+        raise InputError(_not_utf8(data, error), shown, line) from None
+    try:
+        return Builder().parseString(text)
     except expat.ExpatError as error:
         message = expat.ErrorString(error.code)
         if message == expat.errors.XML_ERROR_UNBOUND_PREFIX:
@@ -103,6 +111,26 @@ def parse_stamped(data: bytes, shown: str, on_element: Callable[[], None] | None
             error.lineno,
             error.offset + 1,
         ) from None
+
+
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*?\bencoding\s*=\s*["']([^"']*)["']""")
+_WIDE_MARKS = (b"\xff\xfe", b"\xfe\xff", b"<\x00", b"\x00<")
+
+
+def _not_utf8(data: bytes, error: UnicodeDecodeError) -> str:
+    """Why xacro cannot read ``data``, which is not UTF-8, and what to do."""
+    if data.startswith(_WIDE_MARKS):
+        what = "is UTF-16 or UTF-32"
+    else:
+        found = _DECLARED_ENCODING.match(data.removeprefix(b"\xef\xbb\xbf"))
+        declared = (
+            f', declared encoding="{found.group(1).decode("ascii", "replace")}"' if found else ""
+        )
+        what = f"is not UTF-8 (byte 0x{data[error.start]:02x}{declared})"
+    return (
+        f"{what}: xacro reads every file as UTF-8, whatever it declares, and fails on this "
+        'one; save it as UTF-8 (and declare encoding="UTF-8")'
+    )
 
 
 def serialise(root, fallback: Source) -> tuple[str, list[Source]]:

@@ -58,7 +58,14 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
         if b"\x00" in data[end:]:
             data = data[:end]
     try:
-        root = fromstring(data, remove_pis=True, encoding=encoding)
+        try:
+            root = fromstring(data, remove_pis=True, encoding=encoding)
+        except etree.XMLSyntaxError as error:
+            if encoding is not None or "Unsupported encoding" not in str(error.msg):
+                raise
+            # an encoding libxml2 does not know: TinyXML2 (urdfdom, Gazebo, PyBullet, MuJoCo,
+            # Drake) ignores the declaration and reads the bytes as UTF-8; so do we
+            root = fromstring(data, remove_pis=True, encoding="utf-8")
     except LookupError:
         raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
     except etree.XMLSyntaxError as error:

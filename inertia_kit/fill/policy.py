@@ -29,7 +29,6 @@ a ``scale`` (IN031), or a shape with bad dimensions.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -38,6 +37,7 @@ from inertia_kit.fill.materials import MATERIALS
 from inertia_kit.fill.sites import Target
 from inertia_kit.lint.findings import Severity
 from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.numbers import usable
 
 if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -69,11 +69,11 @@ def density_option(density: float | None, material: str | None, total_mass: floa
     if total_mass is not None:
         if density is not None:
             raise ValueError("give --total-mass or --density/--material, not both")
-        if not (total_mass > 0 and total_mass != float("inf")):
+        if not (total_mass > 0 and usable(total_mass, scale=True)):
             raise ValueError(f"--total-mass must be a positive number of kg, got {total_mass}")
     if density is None:
         density = 1000.0
-    if not (density > 0 and density != float("inf")):
+    if not (density > 0 and usable(density, scale=True)):
         raise ValueError(f"--density must be a positive number of kg/m³, got {density}")
     return density
 
@@ -120,17 +120,17 @@ class MassChoice:
         total_mass: float | None = None,
     ) -> MassChoice:
         """``ValueError`` for a density, mass or total that is not a positive finite number."""
-        if not (math.isfinite(density) and density > 0):
+        if not (usable(density, scale=True) and density > 0):
             raise ValueError(f"density must be a positive number of kg/m³, got {density}")
-        if total_mass is not None and not (math.isfinite(total_mass) and total_mass > 0):
+        if total_mass is not None and not (usable(total_mass, scale=True) and total_mass > 0):
             raise ValueError(f"the total mass must be a positive number of kg, got {total_mass}")
         masses = dict(masses or {})
         for name, kg in masses.items():
-            if not (math.isfinite(kg) and kg > 0):
+            if not (usable(kg, scale=True) and kg > 0):
                 raise ValueError(f"the mass of `{name}` must be a positive number of kg, got {kg}")
         densities = dict(densities or {})
         for name, value in densities.items():
-            if not (math.isfinite(value) and value > 0):
+            if not (usable(value, scale=True) and value > 0):
                 raise ValueError(f"the density of `{name}` must be a positive number, got {value}")
         return cls(density, masses, densities, total_mass)
 
@@ -213,8 +213,28 @@ def choose(analysis: RobotAnalysis, choice: MassChoice, fix: str) -> Choices:
         unit = link.geometry.unit
         assert unit is not None and mass is not None
         properties = corrected.get(name) or unit.with_mass(mass)
+        problem = unwritable(properties)
+        if problem is not None:
+            choices.refused.append((name, problem))
+            continue
         choices.targets.append(Target(link, properties, basis))
     return choices
+
+
+def unwritable(properties: MassProperties) -> str | None:
+    """
+    Why fill must not write ``properties`` (:func:`~inertia_kit.description.inertial_xml.
+    unwritable`: it never writes a number the linter refuses), with what to do, or ``None``.
+    """
+    from inertia_kit.description.inertial_xml import unwritable as why
+
+    problem = why(properties)
+    if problem is None:
+        return None
+    return (
+        f"{problem.replace('its ', 'its computed ', 1)}; check the geometry's dimensions, the "
+        "density and the mass, then run again"
+    )
 
 
 def _targeted(link: LinkAnalysis, codes: Mapping[str, list], fix: str) -> bool:

@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import difflib
 import functools
-import math
 import os
 import re
 import typing
@@ -295,9 +294,11 @@ class _Where:
         return converted
 
     def positive(self, value: Any, key: str) -> float:
+        from inertia_kit.physics.numbers import usable
+
         ok, number = convert(value, float)
-        if not ok or not math.isfinite(number) or number <= 0:
-            self.fail(key, f"expected a positive number, got {_shown(value)}")
+        if not ok or not usable(number, scale=True) or number <= 0:
+            self.fail(key, f"expected a positive number from 1e-50 to 1e50, got {_shown(value)}")
         return number
 
 

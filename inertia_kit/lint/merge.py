@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from inertia_kit.errors import InputError
+    from inertia_kit.errors import InputError, InternalError
     from inertia_kit.lint.findings import Finding
     from inertia_kit.lint.runner import FileResult
 
@@ -29,7 +29,7 @@ class Merged:
     """
 
     findings: list[Finding]
-    errors: list[InputError]
+    errors: list[InputError | InternalError]
     messages: list[tuple[str, str]]
     failing: bool
     checked: int

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -23,7 +23,7 @@ from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.description.xacro_limits import XacroLimits
-from inertia_kit.errors import InputError
+from inertia_kit.errors import InputError, InternalError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -153,15 +153,16 @@ def lint_robot(
 @dataclass
 class FileResult:
     """
-    What linting one file gave: its findings, or the error that kept it from being read, or
-    that it is a xacro fragment (nothing to lint on its own). ``notes`` are things to tell the
+    What linting one file gave: its findings, or the error that kept it from being read (or
+    an internal error, a bug, in the command line's results), or that it is a xacro fragment
+    (nothing to lint on its own). ``notes`` are things to tell the
     user that are not findings (a suppression comment we do not understand); ``fail_on`` is the
     lowest severity that counts for the exit code.
     """
 
     path: str
     findings: list[Finding] = field(default_factory=list)
-    error: InputError | None = None
+    error: InputError | InternalError | None = None
     fragment: bool = False
     notes: list[str] = field(default_factory=list)
     fail_on: Severity = DEFAULT_FAIL_ON
@@ -250,6 +251,7 @@ def lint_paths(
     load_mesh: MeshLoader | None = None,
     engines: Sequence[str] | None = None,
     xacro_limits: Mapping[str, float] | None = None,
+    on_error: Callable[[Path, Exception], FileResult] | None = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -260,6 +262,9 @@ def lint_paths(
 
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
+    ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
+    (a bug: the command line reports it for that file and lints the others); without it, the
+    exception propagates.
     """
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.config_files import ConfigFinder
@@ -286,14 +291,19 @@ def lint_paths(
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
     for file, found in plan:
-        result = lint_file(
-            file,
-            selection_for(found, select, ignore, engines),
-            xacro_args=xacro_args,
-            package_paths=package_paths,
-            load_mesh=load_mesh,
-            xacro_limits=limits[found.path],
-        )
+        try:
+            result = lint_file(
+                file,
+                selection_for(found, select, ignore, engines),
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                load_mesh=load_mesh,
+                xacro_limits=limits[found.path],
+            )
+        except Exception as error:
+            if on_error is None:
+                raise
+            result = on_error(file, error)
         # not `or`: Severity.INFO is 0
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
         results.append(result)

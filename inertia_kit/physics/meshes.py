@@ -17,10 +17,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from inertia_kit.errors import MeshError
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.mesh_closure import Method, classify
 from inertia_kit.physics.mesh_formats import read_surface
+from inertia_kit.physics.numbers import MIN_NORMAL
 from inertia_kit.physics.volume_moments import VolumeMoments
 
 
@@ -212,9 +214,11 @@ def mesh_solid(path: str | Path, scale: ArrayLike = (1.0, 1.0, 1.0)) -> MeshSoli
             f"scale must be three finite non-zero factors, got {scale!r}; "
             "use a negative factor to mirror"
         )
-    integrator, triangles, unit_scale = read_surface(path)
-    file = Path(path)
-    classified = classify(file, integrator, triangles)
+    # non-finite coordinates: the readers refuse non-finite integrals, without warnings
+    with np.errstate(over="ignore", invalid="ignore"):
+        integrator, triangles, unit_scale = read_surface(path)
+        file = Path(path)
+        classified = classify(file, integrator, triangles)
     return scaled_solid(
         file,
         classified.moments,
@@ -245,12 +249,32 @@ def scaled_solid(
     same arithmetic, so a hit equals a read to the last bit.
     """
     factors = unit_scale * np.asarray(scale)
-    scaled_bounds = np.sort(bounds * factors, axis=0)
+    with np.errstate(over="ignore", invalid="ignore"):  # checked below
+        scaled_bounds = np.sort(bounds * factors, axis=0)
+        scaled = moments.scaled(factors)
+        # the mass properties are computed from these, with a centroid and a tensor
+        finite = (
+            np.isfinite(scaled.centroid).all()
+            and np.isfinite(
+                [scaled.volume, *scaled.first, *scaled.second.ravel(), *scaled_bounds.ravel()]
+            ).all()
+        )
+    if not finite:
+        raise MeshError(
+            path,
+            "overflow",
+            f"its volume or moments overflow double precision: coordinates up to "
+            f"{np.abs(bounds).max():.3g} file units, times {np.abs(factors).max():.3g}",
+        )
+    if not abs(scaled.volume) >= MIN_NORMAL:
+        raise MeshError(
+            path, "empty", f"its volume, {scaled.volume:.3g} m³, underflows double precision"
+        )
     scaled_bounds.flags.writeable = False
     return MeshSolid(
         path=str(Path(path)),
         scale=scale,
-        moments=moments.scaled(factors),
+        moments=scaled,
         bounds=scaled_bounds,
         unit_scale=unit_scale,
         **fields,

@@ -14,12 +14,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.numbers import MIN_NORMAL, usable
 
 
 def _dimension(value: float, name: str) -> float:
     value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a positive finite length in m, got {value}")
+    if not (usable(value) and value > 0):
+        raise ValueError(
+            f"{name} must be a positive length in m, at most 1e50 and not subnormal, got {value}"
+        )
     return value
 
 
@@ -32,13 +35,26 @@ def _extents(values: ArrayLike, name: str) -> tuple[float, float, float]:
 
 
 def body_mass(volume: float, density: float | None, mass: float | None) -> float:
-    """The mass of a solid of ``volume`` m³ from exactly one of ``density`` or ``mass``."""
+    """
+    The mass of a solid of ``volume`` m³ from exactly one of ``density`` or ``mass``, each
+    from 1e-50 to 1e50 (:mod:`.numbers`).
+    """
     if (density is None) == (mass is None):
         raise ValueError("give exactly one of density (kg/m³) or mass (kg)")
+    for name, unit, given in (("density", "kg/m³", density), ("mass", "kg", mass)):
+        if given is not None and not (usable(float(given), scale=True) and given > 0):
+            raise ValueError(
+                f"{name} must be positive, from 1e-50 to 1e50 {unit}, got {given} {unit}"
+            )
+    if not (math.isfinite(volume) and volume >= MIN_NORMAL):
+        # each dimension is usable: only their product left double precision
+        how = "overflows to infinity" if volume > 1 else "underflows to zero"
+        raise ValueError(
+            f"the volume {how}: the dimensions are beyond what double precision can multiply"
+        )
     value = float(mass) if mass is not None else float(density) * volume  # type: ignore[arg-type]
-    if not (math.isfinite(value) and value > 0):
-        what = f"mass {mass} kg" if mass is not None else f"density {density} kg/m³"
-        raise ValueError(f"{what} must be positive and finite")
+    if not value >= MIN_NORMAL:  # at most 1e50 × 1e150: only an underflow is possible
+        raise ValueError(f"the mass, density {density} kg/m³ × {volume:g} m³, underflows to zero")
     return value
 
 

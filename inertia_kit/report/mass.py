@@ -77,7 +77,7 @@ def render(
     """
     import numpy as np
 
-    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.description.inertial_xml import inertial_block, unwritable
     from inertia_kit.physics.frames import rpy_matrix
     from inertia_kit.physics.primitives import body_mass
 
@@ -88,7 +88,8 @@ def render(
     point = None if about is None and about_rpy is None else np.asarray(about or (0.0, 0.0, 0.0))
     axes = None if about_rpy is None else rpy_matrix(about_rpy)
     about_tensor = None if point is None else body.inertia_about(point, axes)
-    block = inertial_block(body)
+    problem = unwritable(body)
+    block = inertial_block(body) if problem is None else None
 
     if output_format == "json":
         payload = {
@@ -133,7 +134,7 @@ def render(
             f"inertia about {_vector(point)} m{axes_note} (kg·m²):",
             *_tensor_rows(about_tensor),
         ]
-    lines += ["URDF:", block]
+    lines += ["URDF:", block] if block is not None else [f"URDF: none: {problem}"]
     return "\n".join(lines)
 
 

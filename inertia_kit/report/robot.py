@@ -28,9 +28,7 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 "principal_moments": None
                 if properties is None
                 else properties.principal_moments.tolist(),
-                "inertial": "none"
-                if link.inertial is None
-                else ("complete" if properties else "incomplete"),
+                "inertial": _state(link.inertial, properties),
                 "geometry": geometry_summary(link),
                 "meshes": _meshes(link),
                 "file": source.path,
@@ -63,6 +61,16 @@ def _found_by(meshes: list[dict[str, Any]]) -> str:
     """The report's ``mesh found by`` cell: each rule once, in order; ``not found``; ``-``."""
     rules = dict.fromkeys(m["rule"] or "not found" for m in meshes)
     return ", ".join(rules) or "-"
+
+
+def _state(inertial: model.Inertial | None, properties: object) -> str:
+    """``none``, ``complete``, ``invalid`` (a value not usable, IN004) or ``incomplete``."""
+    if inertial is None:
+        return "none"
+    if properties is not None:
+        return "complete"
+    values = (inertial.mass, *inertial.tensor_values().values(), *vars(inertial.origin).values())
+    return "invalid" if any(isinstance(v, model.Invalid) for v in values) else "incomplete"
 
 
 def total_mass(rows: list[dict[str, Any]]) -> float:

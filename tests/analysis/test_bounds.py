@@ -143,3 +143,14 @@ def test_moment_excess_of_the_uniform_tensor_is_within_the_bound():
     assert excess is not None
     # a uniform box has a third of the corner bound about each axis: (b² + c²)/3 vs b² + c²
     assert excess.ratio == pytest.approx(1 / 3)
+
+
+def test_a_negative_moment_is_no_excess_of_a_zero_bound():
+    """Found by hypothesis: a ratio of inf sent IN023 to the square root of a negative moment."""
+    from inertia_kit.analysis.bounds import MomentExcess
+
+    axis = np.array([0.0, 1.0, 0.0])
+    assert MomentExcess(axis, -0.026, 0.0, 0.0).ratio == 0.0
+    assert MomentExcess(axis, 0.0, 0.0, 0.0).ratio == 0.0
+    assert MomentExcess(axis, 0.01, 0.0, 0.0).ratio == math.inf
+    assert MomentExcess(axis, 0.01, 0.02, 1.0).ratio == 0.5

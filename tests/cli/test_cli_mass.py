@@ -16,8 +16,17 @@ def run(*args: str):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["box", "--size", "1", "0", "1"], "size[1] must be a positive finite length"),
-        (["sphere", "--radius", "1", "--density", "-5"], "density -5.0 kg/m³ must be positive"),
+        (["box", "--size", "1", "0", "1"], "size[1] must be a positive length in m"),
+        (["sphere", "--radius", "1", "--density", "-5"], "density must be positive, from 1e-50"),
+        (["sphere", "--radius", "1", "--density", "1e-60"], "'1e-60' is non-zero below 1e-50"),
+        # numbers mass properties cannot be computed from are refused as options
+        (["box", "--size", "1e308", "1e308", "1e308"], "'1e308' is beyond ±1e50"),
+        (["box", "--size", "1", "1", "1", "--about", "1e300", "0", "0"], "beyond ±1e50"),
+        (["sphere", "--radius", "1e-320"], "'1e-320' is subnormal"),
+        (["sphere", "--radius", "1", "--density", "nan"], "'nan' is not a number"),
+        # usable dimensions whose product is not: the volume is blamed, not the density
+        (["box", "--size", "1e-200", "1e-200", "1e-200"], "the volume underflows to zero"),
+        (["mesh", "x.stl", "--scale", "1e308"], "--scale takes numbers of at most 1e50"),
         (["sphere", "--radius", "1", "--density", "5", "--mass", "1"], "exactly one"),
         (["mesh", "missing.stl"], "missing.stl"),
         (["mesh", "x.stl", "--scale", "1 2"], "--scale takes one or three numbers"),
@@ -43,3 +52,17 @@ def test_console_scripts_exist_and_fill_has_help():
     )
     assert done.returncode == 0
     assert "density 1000 kg/m³" in done.stdout
+
+
+def test_no_urdf_block_the_linter_would_refuse(tmp_path):
+    """A mesh of 1e38 m coordinates: its values are shown, its block is not (IN004)."""
+    from kit.meshes import box_triangles, write_binary_stl
+
+    path = write_binary_stl(tmp_path / "huge.stl", box_triangles([1e38, 1e38, 1e38]))
+    result = run("mesh", str(path))
+    assert result.exit_code == 0
+    assert "URDF: none: its mass would be written as 1e117 (beyond ±1e50)" in result.output
+    result = run("mesh", str(path), "--scale", "1e30")
+    assert (
+        result.exit_code == 2 and "its volume or moments overflow double precision" in result.output
+    )

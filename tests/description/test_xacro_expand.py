@@ -410,13 +410,14 @@ def test_entity_declarations_are_refused(tmp_path, template, included):
     assert "entity declarations are not allowed: nothing was expanded" in caught.value.message
 
 
-def test_entity_declaration_in_utf16_is_refused_by_the_parser(tmp_path):
+def test_entity_declaration_in_utf16_is_refused_unread(tmp_path):
+    """xacro reads files as UTF-8: a UTF-16 one is refused before any entity is looked at."""
     text = XXE.replace("{uri}", "file:///etc/hostname").replace(
         ' version="1.0"', ' version="1.0" encoding="UTF-16"'
     )
     evil = tmp_path / "evil16.xacro"
     evil.write_bytes(text.encode("utf-16"))
-    with pytest.raises(InputError, match="entity declarations are not allowed"):
+    with pytest.raises(InputError, match="is UTF-16 or UTF-32: xacro reads every file as UTF-8"):
         expand(evil)
 
 

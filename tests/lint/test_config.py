@@ -155,11 +155,18 @@ def test_every_key_of_pyproject(tmp_path):
         ),
         (
             "[tool.inertia-kit.links.arm]\nmass = -2\n",
-            "`tool.inertia-kit.links.arm.mass`: expected a positive number, got -2",
+            "`tool.inertia-kit.links.arm.mass`: expected a positive number from 1e-50 to 1e50, "
+            "got -2",
         ),
         (
             "[tool.inertia-kit.links.arm]\ndensity = inf\n",
-            "`tool.inertia-kit.links.arm.density`: expected a positive number, got inf",
+            "`tool.inertia-kit.links.arm.density`: expected a positive number from 1e-50 to 1e50, "
+            "got inf",
+        ),
+        (
+            "[tool.inertia-kit.links.arm]\ndensity = 1e-320\n",
+            "`tool.inertia-kit.links.arm.density`: expected a positive number from 1e-50 to 1e50, "
+            "got 1e-320",
         ),
         (
             '[tool.inertia-kit.per-file-ignores]\n" " = ["IN098"]\n',

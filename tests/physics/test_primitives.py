@@ -102,9 +102,33 @@ def test_density_or_mass_exactly_one(make):
         make(density=float("nan"))
 
 
-@pytest.mark.parametrize("bad", [0.0, -0.1, float("inf"), float("nan")])
+@pytest.mark.parametrize("bad", [0.0, -0.1, float("inf"), float("nan"), 1e51, 1e-320])
 def test_bad_dimensions_are_named(bad):
-    with pytest.raises(ValueError, match="radius must be a positive finite length"):
+    with pytest.raises(ValueError, match="radius must be a positive length in m, at most 1e50"):
         cylinder(bad, 1.0, mass=1)
     with pytest.raises(ValueError, match=r"size\[1\]"):
         box((1, bad, 1), mass=1)
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        # the dimensions are usable, their product is not: the volume is named, not the density
+        (lambda: box((1e-200, 1e-200, 1e-200), density=1.0), "the volume underflows to zero"),
+        (lambda: sphere(1e-300, mass=1.0), "the volume underflows to zero"),
+        (lambda: box((1e-200,) * 3, density=1e-50), "the volume underflows"),
+        (lambda: box((1e-100,) * 3, density=1e-50), "the mass, density 1e-50 kg/m³"),
+        (lambda: box((1, 1, 1), density=1e308), "density must be positive, from 1e-50 to 1e50"),
+        (lambda: box((1, 1, 1), density=1e-51), "density must be positive, from 1e-50 to 1e50"),
+        (lambda: box((1, 1, 1), mass=5e-324), "mass must be positive, from 1e-50 to 1e50 kg"),
+    ],
+)
+def test_out_of_range_results_blame_the_right_input(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_the_largest_usable_inputs_give_finite_values():
+    """Six factors of at most 1e50 stay below 1e300: nothing overflows (physics/numbers.py)."""
+    for body in (box((1e50,) * 3, density=1e50), cylinder(1e50, 1e50, density=1e50)):
+        assert np.isfinite(body.inertia).all() and np.isfinite(body.principal_moments).all()

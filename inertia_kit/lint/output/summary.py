@@ -23,8 +23,13 @@ def _count(n: int, word: str, plural: str | None = None) -> str:
     return f"{n} {word if n == 1 else plural or word + 's'}"
 
 
-def summary(findings: Sequence[Finding], checked: int, unreadable: int = 0) -> str:
-    """``Found 3 errors, 1 warning in 2 files.`` or ``No findings in 4 files.``"""
+def summary(
+    findings: Sequence[Finding], checked: int, unreadable: int = 0, internal: int = 0
+) -> str:
+    """
+    ``Found 3 errors, 1 warning in 2 files.`` or ``No findings in 4 files.``, and the files that
+    could not be read or met an internal error (a bug).
+    """
     if findings:
         by_severity = Counter(f.severity for f in findings)
         words = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "info"}
@@ -39,4 +44,6 @@ def summary(findings: Sequence[Finding], checked: int, unreadable: int = 0) -> s
         text = f"No findings in {_count(checked, 'file')}"
     if unreadable:
         text += f"; {_count(unreadable, 'file')} could not be read"
+    if internal:
+        text += f"; an internal error in {_count(internal, 'file')}"
     return text + "."

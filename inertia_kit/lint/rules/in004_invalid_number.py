@@ -12,13 +12,19 @@ from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.numbers import unusable
 
 CODE = "IN004"
 NAME = "invalid-number"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
-SUMMARY = "a numeric attribute is not a finite number (`abc`, `nan`, `inf`, `1,5`, `2kg`)"
+SUMMARY = (
+    "a numeric attribute is not a number mass properties can be computed from (`abc`, `nan`, "
+    "`inf`, `1,5`, `2kg`, `1e308`, `1e-320`)"
+)
 
+# a number as URDF writes it (urdfdom reads it): digits, a dot, an exponent
+_PLAIN = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 # what C's strtod (which PyBullet's URDF reader uses) takes from the start of a text
 _STRTOD = re.compile(
     r"\s*[+-]?(?:inf(?:inity)?|nan|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)", re.IGNORECASE
@@ -112,7 +118,32 @@ def _places(robot: model.Robot) -> dict[int, Place]:
     return found
 
 
-def _describe(text: str, vector: bool) -> str:
+# values other values are divided by (physics/numbers.py: a tiny one is unusable too)
+_SCALES = ("<mass value>", "<inertia ixx>", "<inertia iyy>", "<inertia izz>")
+
+
+def _extreme(text: str, scale: bool = False) -> str | None:
+    """
+    Why a number URDF reads (finite, plain decimal) cannot be computed with (beyond ±1e50,
+    subnormal, or for a ``scale`` below 1e-50: :mod:`inertia_kit.physics.numbers`), or
+    ``None`` for any other text.
+    """
+    pieces = text.split()
+    if not pieces or not all(_PLAIN.fullmatch(piece) for piece in pieces):
+        return None
+    reasons = [(piece, unusable(float(piece), scale)) for piece in pieces]
+    if any(why in ("not a number", "infinite") for _, why in reasons):
+        return None
+    bad = dict.fromkeys((piece, why) for piece, why in reasons if why)
+    if len(bad) == 1 and all(why for _, why in reasons):
+        return next(iter(bad))[1]  # one number, or three alike
+    return ", ".join(f"{piece} is {why}" for piece, why in bad) or None
+
+
+def _describe(text: str, vector: bool, scale: bool = False) -> str:
+    extreme = _extreme(text, scale)
+    if extreme is not None and (not vector or len(text.split()) == 3):
+        return extreme
     if vector:
         count = len(text.split())
         return f"{count} values, not 3" if count != 3 else "not three plain numbers"
@@ -151,11 +182,27 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             place = places.get(id(invalid), Place(f"<… {invalid.attribute}>"))
             if place.owner not in owners:
                 owners.append(place.owner)
-            items.append(
-                f"`{place.element}` = {invalid.text!r} ({_describe(invalid.text, place.vector)})"
-            )
-            pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
+            scale = place.element in _SCALES
+            described = _describe(invalid.text, place.vector, scale)
+            items.append(f"`{place.element}` = {invalid.text!r} ({described})")
+            if _extreme(invalid.text, scale) is None:
+                pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
         first = places.get(id(invalids[0]), Place(""))
+        if not pybullet:
+            # every value reads as a number, one no robot has and no arithmetic keeps
+            yield ctx.finding(
+                f"{' and '.join(owners)}: {'; '.join(items)}: no robot has such a value, and "
+                "mass properties multiply and divide up to six numbers, which overflow or vanish "
+                "in double precision beyond ±1e50 (and for a mass or moment, below 1e-50); the "
+                "simulators read it and compute with it (MuJoCo, Drake), inertia-kit skips the "
+                "checks that need it",
+                invalids[0].source,
+                link=first.link,
+                joint=first.joint,
+                help="write the value in SI units (kg, m, kg·m²), and a value meant to be zero "
+                "as 0; in xacro, check the expression or property that produced it",
+            )
+            continue
         mujoco = (
             "MuJoCo reads nan/inf as they are"
             if all(_special(i.text) for i in invalids)

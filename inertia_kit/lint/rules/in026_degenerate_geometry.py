@@ -1,4 +1,5 @@
-"""IN026 degenerate-geometry: a shape with a zero or negative size, or a mesh with no volume."""
+"""IN026 degenerate-geometry: a shape with a zero or negative size, or thinner than an atom
+(1e-10 m, physics/numbers.py), or a mesh with no volume, or one whose moments overflow."""
 
 from __future__ import annotations
 
@@ -13,7 +14,10 @@ CODE = "IN026"
 NAME = "degenerate-geometry"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
-SUMMARY = "a visual/collision shape has a zero or negative size, or a mesh encloses no volume"
+SUMMARY = (
+    "a visual/collision shape has a zero or negative size, or one below 1e-10 m, or a mesh "
+    "encloses no volume"
+)
 
 # Solid.problem kinds this rule reports; the others belong to IN004 (invalid-number), IN030
 # (mesh-not-found) and IN034 (mesh-unreadable)

@@ -94,3 +94,60 @@ def test_strtod_reads_the_numeric_prefix(text, value):
 
 def test_strtod_nan():
     assert math.isnan(strtod("nan"))
+
+
+@pytest.mark.parametrize(
+    ("six", "item"),
+    [
+        (SIX.replace('izz="0.005"', 'izz="-1e308"'), "`<inertia izz>` = '-1e308' (beyond ±1e50)"),
+        (SIX.replace('ixy="0"', 'ixy="1e-320"'), "`<inertia ixy>` = '1e-320' (subnormal: "),
+        # found by hypothesis: a normal but tiny moment overflowed the tensor comparison
+        (
+            SIX.replace('ixx="0.025"', 'ixx="2.2250738585072014e-308"'),
+            "`<inertia ixx>` = '2.2250738585072014e-308' (non-zero below 1e-50)",
+        ),
+        (SIX.replace('izz="0.005"', 'izz="-1e-60"'), "`<inertia izz>` = '-1e-60' (non-zero below"),
+    ],
+)
+def test_numbers_no_arithmetic_can_use(lint, six, item):
+    (finding,) = in004(lint, robot(six=six))
+    assert item in finding.message
+    assert "no robot has such a value" in finding.message
+    assert "refuse the file" not in finding.message  # every parser reads it
+
+
+def test_vectors_name_the_unusable_values(lint):
+    (finding,) = in004(lint, robot(origin="1e308 1e308 1e308"))
+    assert "`<joint><origin xyz>` = '1e308 1e308 1e308' (beyond ±1e50)" in finding.message
+    (finding,) = in004(lint, robot(origin="0 1e51 5e-324"))
+    assert "(1e51 is beyond ±1e50, 5e-324 is subnormal" in finding.message
+
+
+def test_a_tiny_mass_is_unusable_a_tiny_product_is_not(lint):
+    """A mass or a moment is divided by; a product of inertia only adds to the tensor."""
+    (finding,) = in004(lint, robot(mass="2.2250738585072014e-308"))
+    assert "`<mass value>` = '2.2250738585072014e-308' (non-zero below 1e-50)" in finding.message
+    assert in004(lint, robot(six=SIX.replace('ixy="0"', 'ixy="1e-300"'))) == []
+
+
+def test_cad_noise_for_zero_is_quiet(lint):
+    """iCub (example-robot-data) writes xyz="0.032 -2.67276e-51 0" and rpy 5.77686e-66."""
+    text = robot(origin="0.032 -2.67276e-51 0", six=SIX.replace('ixy="0"', 'ixy="2.40741e-35"'))
+    assert in004(lint, text.replace("<origin xyz=", '<origin rpy="0 5.77686e-66 0" xyz=')) == []
+
+
+def test_joint_limits_only_need_to_be_finite(lint):
+    assert in004(lint, robot(limit="1e308")) == []
+    (finding,) = in004(lint, robot(limit="1e999"))
+    assert "(infinite)" in finding.message
+
+
+def test_a_broken_and_an_extreme_value_together(lint):
+    six = SIX.replace('ixx="0.025"', 'ixx="a"').replace('iyy="0.025"', 'iyy="1e308"')
+    (finding,) = in004(lint, robot(six=six))
+    assert "`<inertia iyy>` = '1e308' (beyond ±1e50)" in finding.message
+    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.message
+    assert (
+        "PyBullet silently reads 'a' as 0" in finding.message
+        and "'1e308' as" not in finding.message
+    )

@@ -184,3 +184,17 @@ def test_the_installed_unitree_robots_through_the_command():
     # B1's thigh and calf rotors are 38 % over their 0.05 m cylinders: still errors
     b1_rotors = Counter(f["severity"] for f in rotors if f["file"] == str(b1))
     assert b1_rotors == {"error": 8}
+
+
+def test_a_tensor_that_is_no_rigid_body_far_from_its_geometry(lint):
+    """Found by hypothesis: not positive definite, and a bound of 0 for a box 1.9e8 m away."""
+    import warnings
+
+    body = (
+        '<inertial><origin rpy="1 1 0.5"/><mass value="1"/>'
+        '<inertia ixx="1" ixy="1" ixz="1" iyy="0.5" iyz="1.0" izz="1"/></inertial>'
+        '<visual><origin xyz="1 189812532.0 1"/><geometry><box size="1 1 1"/></geometry></visual>'
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert lint(moving(body), "IN023") == []

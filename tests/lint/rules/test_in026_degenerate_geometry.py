@@ -57,3 +57,33 @@ def test_zero_size_visual_of_a_colliding_link_is_a_warning(lint):
 def test_other_problems_belong_to_other_rules(lint):
     assert lint(moving(collision(mesh("missing.stl")) + INERTIAL), "IN026") == []
     assert lint(moving(collision(box(0.1, "abc", 0.1)) + INERTIAL), "IN026") == []
+
+
+def test_thinner_than_an_atom_is_degenerate(lint):
+    """Below 1e-10 m (physics/numbers.py): no solid; Drake's 1e-7 m contact spheres pass."""
+    findings = lint(moving(collision(cylinder(0.1, "1e-11")) + INERTIAL), "IN026")
+    (finding,) = findings
+    assert "a dimension of 1e-11 m is below 1e-10 m, the size of an atom" in finding.message
+    for geometry in (sphere("1e-7"), box("1e-10", 1, 1)):
+        assert lint(moving(collision(geometry) + INERTIAL), "IN026") == [], geometry
+
+
+def test_a_mesh_thinner_than_an_atom_is_empty(lint, tmp_path):
+    from kit.meshes import box_triangles, write_binary_stl
+
+    write_binary_stl(tmp_path / "speck.stl", box_triangles([1, 1, 1]))
+    for scale in ("1e-11 1 1", "1 1e-11 1e-9"):
+        body = collision(mesh("speck.stl", scale=scale)) + INERTIAL
+        (finding,) = lint(moving(body), "IN026")
+        assert "it is 1e-11 m thin, thinner than an atom (1e-10 m): no solid" in finding.message
+
+
+def test_a_mesh_whose_moments_overflow_is_degenerate(lint, tmp_path):
+    """Float32 STL coordinates of 1e38 are usable, scaled by 1e30 their moments overflow."""
+    from kit.meshes import box_triangles, write_binary_stl
+
+    write_binary_stl(tmp_path / "huge.stl", box_triangles([1e38, 1e38, 1e38]))
+    (finding,) = lint(
+        moving(collision(mesh("huge.stl", scale="1e30 1e30 1e30")) + INERTIAL), "IN026"
+    )
+    assert "its volume or moments overflow double precision" in finding.message

@@ -1,0 +1,83 @@
+"""
+The last resort of every command, so that a crash never reads as findings.
+
+Exit codes are only 0, 1 (findings, changes), 2 (bad input, usage, or an internal error) and
+130 (Ctrl-C). Every command's class is :class:`GuardedCommand` (groups :class:`GuardedGroup`):
+
+- an exception inertia-kit did not foresee becomes ``error: FILE: internal error: ...`` with
+  the file being processed (:func:`processing`) and a request to report it, and exit 2;
+- Ctrl-C (``KeyboardInterrupt``) becomes ``interrupted`` and exit 130, without a traceback;
+- click's own exits, usage errors and a closed pipe pass through unchanged.
+
+Commands that work file by file (lint, fill) go on with the other files after an internal
+error in one (:func:`internal`), and still exit 2. ``INERTIA_KIT_TRACEBACK=1`` prints the
+traceback of each internal error, for the bug report.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+import os
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import click
+
+from inertia_kit.errors import InternalError
+
+#: the exit code of an interrupted command: 128 + SIGINT, as shells report it
+INTERRUPTED = 130
+
+_processing: contextvars.ContextVar[str | None] = contextvars.ContextVar(
+    "inertia_kit_processing", default=None
+)
+
+
+@contextlib.contextmanager
+def processing(path: str | Path) -> Iterator[None]:
+    """Name ``path`` in an internal error raised while the block runs."""
+    token = _processing.set(str(path))
+    yield
+    # not on an exception: the command's guard still has to name the file
+    _processing.reset(token)
+
+
+def internal(error: BaseException, path: str | Path | None = None) -> InternalError:
+    """``error``, unforeseen while processing ``path``, as an :class:`InternalError`."""
+    if os.environ.get("INERTIA_KIT_TRACEBACK"):
+        import traceback
+
+        traceback.print_exception(type(error), error, error.__traceback__, file=sys.stderr)
+    return InternalError(error, path)
+
+
+class _Guard:
+    """The mixin: :meth:`invoke` turns the unforeseen into exit 2 and Ctrl-C into exit 130."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        _processing.set(None)
+        try:
+            return super().invoke(ctx)  # type: ignore[misc]
+        except (click.exceptions.Exit, click.ClickException, click.Abort):
+            raise
+        except KeyboardInterrupt:
+            click.echo("interrupted", err=True)
+            raise click.exceptions.Exit(INTERRUPTED) from None
+        except BrokenPipeError:
+            raise  # the reader went away (`| head`): click exits quietly
+        except Exception as error:
+            click.echo(f"error: {internal(error, _processing.get())}", err=True)
+            raise click.exceptions.Exit(2) from None
+
+
+class GuardedCommand(_Guard, click.Command):
+    """A command with the last-resort handler."""
+
+
+class GuardedGroup(_Guard, click.Group):
+    """A group of commands with the last-resort handler; its sub-commands are guarded too."""
+
+    command_class = GuardedCommand

@@ -1,0 +1,176 @@
+"""
+The last resort of every command (cli/guard.py): an exception inertia-kit did not foresee is
+exit 2 with "internal error" and the file, never 1 (findings); Ctrl-C is exit 130; never a
+traceback. Faults are injected by replacing a function the command calls.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+from click.testing import CliRunner
+from kit import write
+from kit.urdf import box, collision, inertial, joint, link, robot
+
+from inertia_kit.cli import fill_main, lint_main, main
+
+GOOD = robot(link("base"), joint("base", "arm"), link("arm", inertial(0, 0.01)))
+EMPTY_ARM = robot(link("base"), joint("base", "arm"), link("arm", collision(box(0.1, 0.1, 0.1))))
+
+
+def boom(*_args, **_kwargs):
+    raise RuntimeError("boom")
+
+
+def failing_for(name, original):
+    """``original``, raising ``RuntimeError("boom")`` when its first argument names ``name``."""
+
+    def wrapper(first, *args, **kwargs):
+        if name in str(getattr(getattr(first, "source", None), "path", first)):
+            raise RuntimeError("boom")
+        return original(first, *args, **kwargs)
+
+    return wrapper
+
+
+@pytest.fixture
+def two_files(tmp_path):
+    return write(tmp_path / "bad.urdf", GOOD), write(tmp_path / "good.urdf", GOOD)
+
+
+@pytest.mark.parametrize("output_format", ["full", "concise", "json", "github", "sarif"])
+def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
+    two_files, monkeypatch, output_format
+):
+    from inertia_kit.lint import runner
+
+    monkeypatch.setattr(runner, "lint_robot", failing_for("bad.urdf", runner.lint_robot))
+    bad, good = two_files
+    result = CliRunner().invoke(
+        lint_main, ["--select", "IN002", "--output-format", output_format, str(bad), str(good)]
+    )
+    assert result.exit_code == 2  # never 1: a crash is not a finding
+    assert f"error: {bad}: internal error: RuntimeError: boom; this is a bug" in result.stderr
+    assert "please report it" in result.stderr and "Traceback" not in result.output
+    assert "IN002" in result.stdout and str(good) in result.stdout  # the other file was linted
+    assert "an internal error in 1 file" in result.stderr
+    if output_format == "json":
+        assert [f["file"] for f in json.loads(result.stdout)] == [str(good)]
+    if output_format == "sarif":
+        (invocation,) = json.loads(result.stdout)["runs"][0]["invocations"]
+        assert invocation["executionSuccessful"] is False
+        (note,) = invocation["toolExecutionNotifications"]
+        assert note["message"]["text"].startswith("internal error: RuntimeError: boom")
+
+
+def test_an_internal_error_outside_a_file_is_exit_2_too(two_files, monkeypatch):
+    from inertia_kit.lint import merge
+
+    monkeypatch.setattr(merge, "merge", boom)
+    result = CliRunner().invoke(main, ["lint", str(two_files[1])])
+    assert result.exit_code == 2
+    assert result.stderr.startswith("error: internal error: RuntimeError: boom")
+
+
+def test_traceback_on_request(two_files, monkeypatch):
+    from inertia_kit.lint import runner
+
+    monkeypatch.setattr(runner, "lint_robot", boom)
+    monkeypatch.setenv("INERTIA_KIT_TRACEBACK", "1")
+    result = CliRunner().invoke(lint_main, [str(two_files[0])])
+    assert result.exit_code == 2
+    assert "Traceback (most recent call last)" in result.stderr
+    assert "RuntimeError: boom" in result.stderr
+
+
+@pytest.mark.parametrize("command", [lint_main, fill_main])
+def test_ctrl_c_is_exit_130_without_a_traceback(two_files, monkeypatch, command):
+    from inertia_kit.description import loader
+
+    def interrupted(*_args, **_kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(loader, "load", interrupted)
+    result = CliRunner().invoke(command, [str(two_files[0])])
+    assert (result.exit_code, result.stderr) == (130, "interrupted\n")
+
+
+def test_fill_reports_an_internal_error_for_its_file_and_fills_the_others(tmp_path, monkeypatch):
+    from inertia_kit.fill import plan
+
+    bad = write(tmp_path / "bad.urdf", EMPTY_ARM)
+    good = write(tmp_path / "good.urdf", EMPTY_ARM)
+    monkeypatch.setattr(plan, "plan_fill", failing_for("bad.urdf", plan.plan_fill))
+    result = CliRunner().invoke(main, ["fill", str(bad), str(good)])
+    assert result.exit_code == 2
+    assert f"error: {bad}: internal error: RuntimeError: boom" in result.stderr
+    assert f"Filled 1 link in {good}" in result.stderr
+    assert bad.read_text() == EMPTY_ARM and "<inertial>" in good.read_text()
+
+
+def test_fill_an_internal_error_while_writing(tmp_path, monkeypatch):
+    from inertia_kit.fill import plan
+
+    path = write(tmp_path / "robot.urdf", EMPTY_ARM)
+    monkeypatch.setattr(plan, "apply", boom)
+    result = CliRunner().invoke(fill_main, [str(path)])
+    assert result.exit_code == 2
+    assert f"error: {path}: internal error: RuntimeError: boom" in result.stderr
+    assert path.read_text() == EMPTY_ARM
+
+
+def test_report_names_the_file(two_files, monkeypatch):
+    from inertia_kit.report import robot as report
+
+    monkeypatch.setattr(report, "render", boom)
+    result = CliRunner().invoke(main, ["report", str(two_files[0])])
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"error: {two_files[0]}: internal error: RuntimeError: boom")
+
+
+def test_mass_is_guarded(monkeypatch):
+    from inertia_kit.report import mass
+
+    monkeypatch.setattr(mass, "render", boom)
+    result = CliRunner().invoke(main, ["mass", "sphere", "--radius", "0.1"])
+    assert result.exit_code == 2
+    assert result.stderr.startswith("error: internal error: RuntimeError: boom")
+
+
+def test_usage_errors_keep_their_own_exit_code():
+    result = CliRunner().invoke(main, ["mass", "sphere"])
+    assert result.exit_code == 2 and "Missing option '--radius'" in result.output
+    assert CliRunner().invoke(main, ["--version"]).exit_code == 0
+
+
+# the real process: its exit status and stderr, as a shell or CI sees them
+_INJECT = """
+import sys
+from inertia_kit.description import loader
+def fault(*args, **kwargs):
+    raise {error}
+loader.load = fault
+from inertia_kit.cli import lint_main
+sys.argv = ["inertia-lint", {path!r}]
+lint_main()
+"""
+
+
+@pytest.mark.parametrize(
+    ("error", "status", "stderr"),
+    [
+        ("KeyboardInterrupt", 130, "interrupted\n"),
+        ("ZeroDivisionError('x')", 2, "internal error: ZeroDivisionError: x"),
+    ],
+)
+def test_in_a_real_process(two_files, error, status, stderr):
+    code = _INJECT.format(error=error, path=str(two_files[0]))
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=os.environ.copy()
+    )
+    assert done.returncode == status
+    assert stderr in done.stderr and "Traceback" not in done.stderr
