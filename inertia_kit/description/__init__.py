@@ -7,7 +7,8 @@ and text edits back on the original bytes.
   ``xacro_source_map`` and ``xacro_errors``): xacro through the real package, with a source map,
   within the time, memory and element limits of ``xacro_limits`` (in a forked child process:
   ``xacro_sandbox``);
-  ``packages``: ``$(find)`` and ``package://`` without ROS.
+  ``packages``: ``$(find)`` and ``package://`` without ROS (finding packages:
+  ``package_lookup``; file checks, ``package.xml`` names and bounded walks: ``package_files``).
 - ``model``: the frozen dataclasses (Robot, Link, Joint, Inertial, ... each with its ``Source``).
 - ``inertial_xml``: an ``<inertial>`` block as text; ``xmlspan``: where an element stands in the
   original text; ``edits``: text edits on the original bytes, and atomic writes (through
