@@ -14,7 +14,8 @@ from xacro import substitution_args
 
 from inertia_kit.description.model import Source
 from inertia_kit.description.packages import PackageResolver
-from inertia_kit.description.xacro_expand import _LOCK, _patched, _Session, expand, is_xacro
+from inertia_kit.description.xacro_expand import _LOCK, expand, is_xacro
+from inertia_kit.description.xacro_session import Session, patched
 from inertia_kit.errors import InputError
 
 EXAMPLES = REPO / "examples"
@@ -42,8 +43,8 @@ def plain_xacro(path: Path, resolver: PackageResolver, **kwargs) -> etree._Eleme
     collected: the reference our stamped expansion is compared with. It reaches into the
     expansion's private session because only this comparison needs plain xacro routed so.
     """
-    session = _Session(".", resolver)
-    with _LOCK, _patched(xacro, session, stamping=False):
+    session = Session(".", resolver)
+    with _LOCK, patched(xacro, session, stamping=False):
         doc = xacro.process_file(str(path), **kwargs)
     return etree.fromstring(doc.documentElement.toxml().encode())
 

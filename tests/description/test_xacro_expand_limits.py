@@ -227,14 +227,14 @@ def test_the_example_robots_expand_within_a_twentieth_of_the_element_limit(path,
     # counted in-process, where the meter can be read; the largest robot installed from PyPI,
     # rtb-data's dual_panda_example, counts 826 elements (README: "Bounded xacro expansion")
     counts = []
-    session = xacro_expand._Session
+    session = xacro_expand.Session
 
     class Counting(session):
         def result(self, *args, **kwargs):
             counts.append(self.meter.elements)
             return super().result(*args, **kwargs)
 
-    monkeypatch.setattr(xacro_expand, "_Session", Counting)
+    monkeypatch.setattr(xacro_expand, "Session", Counting)
     default = XacroLimits()
     expand(path, limits=XacroLimits(timeout=0, memory=0, elements=default.elements // 20))
     assert counts and counts[0] <= default.elements // 20
