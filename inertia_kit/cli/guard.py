@@ -21,12 +21,14 @@ import contextvars
 import os
 import sys
 from collections.abc import Iterator
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
-from inertia_kit.errors import InternalError
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from inertia_kit.errors import InternalError
 
 #: the exit code of an interrupted command: 128 + SIGINT, as shells report it
 INTERRUPTED = 130
@@ -47,6 +49,8 @@ def processing(path: str | Path) -> Iterator[None]:
 
 def internal(error: BaseException, path: str | Path | None = None) -> InternalError:
     """``error``, unforeseen while processing ``path``, as an :class:`InternalError`."""
+    from inertia_kit.errors import InternalError
+
     if os.environ.get("INERTIA_KIT_TRACEBACK"):
         import traceback
 

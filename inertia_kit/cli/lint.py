@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -19,6 +18,9 @@ from inertia_kit.cli.options import (
     xacro_limit_option,
 )
 from inertia_kit.version import __version__
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif")
 

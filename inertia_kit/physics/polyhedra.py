@@ -335,8 +335,11 @@ def _float64_words(
     multiplication: negating x flips the sign bits of both its rounding and its residual, and
     without the fold those two flips cancel, so that x and -x hash alike.
     """
-    np.copyto(single, values, casting="same_kind")
-    sub(values, single, residual.view(np.float64))
+    # beyond float32's range (3.4e38) the rounding is ±inf: such a surface is refused later as
+    # overflowing (MeshError), its words only need to exist
+    with np.errstate(over="ignore", invalid="ignore"):
+        np.copyto(single, values, casting="same_kind")
+        sub(values, single, residual.view(np.float64))
     shr(residual, _S32, shifted)
     xor(residual, shifted, residual)
     mul(residual, _K_RESIDUAL, residual)

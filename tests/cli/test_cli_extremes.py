@@ -11,7 +11,7 @@ import json
 import pytest
 from click.testing import CliRunner
 from kit import write
-from kit.urdf import box, collision, cylinder, inertial, joint, link, robot_lines
+from kit.urdf import box, collision, cylinder, inertial, joint, link, robot_lines, visual
 
 from inertia_kit.cli import fill_main, lint_main, main
 
@@ -230,3 +230,17 @@ def test_urdf_declaring_an_unknown_encoding_is_read_as_tinyxml2_reads_it(tmp_pat
     result = CliRunner().invoke(fill_main, ["--fix", "all", str(path)])
     assert result.exit_code == 2
     assert f"error: {path}: cannot decode as no-such-encoding" in result.stderr
+
+
+def test_a_sphere_at_the_edge_of_float32_no_warning(tmp_path):
+    """Found by hypothesis: the union of a 3.4e38 m sphere and a box warned of a float32 cast."""
+    import warnings
+
+    from inertia_kit.lint.runner import Selection, lint_file
+
+    shapes = visual('<sphere radius="3.4016088931775435e+38"/>') + visual(box(1, 1, 1))
+    path = write(tmp_path / "robot.urdf", moving(inertial(1, 0.01), shapes))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        result = lint_file(path, Selection(select=("IN0",)))
+    assert result.error is None and "IN022" in {f.code for f in result.findings}

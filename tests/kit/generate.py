@@ -289,6 +289,11 @@ COMMENTS = (
 
 
 def _mesh_files(draw) -> dict[str, bytes]:
+    with np.errstate(over="ignore"):  # float32 makes 3.4e38 × 3 infinite: a file to read
+        return _meshes(draw)
+
+
+def _meshes(draw) -> dict[str, bytes]:
     size = draw(
         st.one_of(
             st.sampled_from([1.0, 0.1, 1e-3, 1e30, 1e-30, 1e38, 3.4e38, 1e-45]),
@@ -298,8 +303,7 @@ def _mesh_files(draw) -> dict[str, bytes]:
     triangles = box_triangles([size, size * 2, size * 3], low=[-size, 0, size])
     kind = draw(st.sampled_from(["binary", "ascii", "open", "inverted", "empty", "garbage"]))
     if kind == "binary":
-        with np.errstate(over="ignore"):  # float32 makes 1e38 × 3 infinite: a file to read
-            stl = binary_stl(triangles)
+        stl = binary_stl(triangles)
     elif kind == "ascii":
         text = ascii_stl(triangles)
         if draw(st.booleans()):
