@@ -84,19 +84,25 @@ def principal_moments(tensor: NDArray[np.float64]) -> NDArray[np.float64]:
     ``CalcPrincipalMomentsOfInertia``: the sorted diagonal when every product is within
     4ε·trace/2 of 0, else the eigenvalues (ascending).
     """
-    tolerance = 4 * EPSILON * 0.5 * abs(float(np.trace(tensor)))
+    tolerance = 4 * EPSILON * 0.5 * abs(_trace(tensor))
     products = (tensor[1, 0], tensor[2, 0], tensor[2, 1])
     if all(abs(p) <= tolerance for p in products):
         return np.sort(np.diag(tensor))
     return np.linalg.eigvalsh(tensor)
 
 
+def _trace(tensor: NDArray[np.float64]) -> float:
+    """The trace in Python floats: inf past double precision, as C++ sums it, and no warning."""
+    return float(tensor[0, 0]) + float(tensor[1, 1]) + float(tensor[2, 2])
+
+
 def could_be_physically_valid(tensor: NDArray[np.float64]) -> bool:
     """``RotationalInertia::CouldBePhysicallyValid`` for a (3, 3) tensor."""
     if not np.isfinite(tensor).all():
         return False
-    epsilon = 16 * EPSILON * max(1.0, 0.5 * abs(float(np.trace(tensor))))
-    a, b, c = principal_moments(tensor)
+    epsilon = 16 * EPSILON * max(1.0, 0.5 * abs(_trace(tensor)))
+    # Python floats: a sum past 1.8e308 is inf, as in Drake's C++, without numpy's warning
+    a, b, c = (float(m) for m in principal_moments(tensor))
     near_positive = a + epsilon >= 0 and b + epsilon >= 0 and c + epsilon >= 0
     return bool(near_positive and a + b + epsilon >= c and b + c + epsilon >= a)
 

@@ -87,3 +87,18 @@ def test_invalid_inertia_message_is_drakes():
     negative = invalid_inertia_message(np.diag([-0.01, 0.01, 0.01]))
     assert negative.endswith("-0.01  0.01  0.01\nare invalid since at least one is negative.")
     assert "[-0.01      0      0]" in negative
+
+
+def test_a_moment_at_the_edge_of_double_precision_warns_nothing(lint):
+    """Found by hypothesis: Drake's validity sum overflowed with a numpy warning."""
+    import warnings
+
+    body = (
+        '<link name="world"/><joint name="j" type="fixed"><parent link="world"/>'
+        '<child link="l"/></joint><link name="l"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1.7976931348623157e308"/>'
+        "</inertial></link>"
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        lint(f'<robot name="r">{body}</robot>', "IN0", engines=("drake",))
