@@ -33,8 +33,11 @@ _FLOATS = st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True)
 
 
 def chance(percent: int) -> st.SearchStrategy[bool]:
-    """True in about ``percent`` % of draws (``st.floats(0, 1) < p`` is not: 0 comes often)."""
-    return st.sampled_from(range(100)).map(lambda i: i < percent)
+    """
+    True in about ``percent`` % of draws. Hypothesis draws the simplest value (0) far more
+    often than its share, so that value means False: the rare case stays rare.
+    """
+    return st.sampled_from(range(100)).map(lambda i: i >= 100 - percent)
 
 
 def _wild() -> st.SearchStrategy[str]:
@@ -355,7 +358,7 @@ def cases(draw) -> Case:
         + "\n</robot>\n"
     )
     data = text.encode(codec, errors="replace")
-    if draw(chance(5)):
-        data = data[: len(data) * draw(st.integers(0, 9)) // 10]  # a truncated file
+    if draw(chance(3)):
+        data = data[: len(data) * draw(st.integers(1, 9)) // 10]  # a truncated file
     main = "robot.urdf.xacro" if xacro else draw(st.sampled_from(["robot.urdf", "robot.xacro"]))
     return Case(main, {main: data, **_mesh_files(draw)})
