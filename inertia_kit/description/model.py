@@ -97,7 +97,7 @@ class Mesh:
     """
     A ``<mesh filename scale>``. ``path`` is the resolved file, or ``None`` when the URI did not
     resolve (``problem`` then says why). ``rule`` names the package resolution rule that found
-    it (:data:`~inertia_kit.description.packages.RULES`); ``searched`` lists the places looked
+    it (:data:`~inertia_kit.description.package_lookup.RULES`); ``searched`` lists the places looked
     at before (all of them when nothing was found).
     """
 

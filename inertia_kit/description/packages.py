@@ -3,11 +3,12 @@ ROS package and mesh URI resolution without ROS: ``$(find pkg)``, ``package://pk
 ``file://`` URIs and paths relative to the file that names them, as ROS, Pinocchio and PyBullet
 users have them.
 
-A package is looked for by every rule below, in this order (:data:`RULES`); each rule may give
-candidate folders:
+A package is looked for by every rule below, in this order
+(:data:`~.package_lookup.RULES`); each rule may give candidate folders:
 
 1. ``package-path``: the explicit package paths (``--package-path``). Each entry is a package
-   folder itself or a folder holding packages, searched to :data:`MAX_DEPTH` levels; a
+   folder itself or a folder holding packages, searched to
+   :data:`~.package_files.MAX_DEPTH` levels; a
    ``package.xml`` whose ``<name>`` is the package wins, and, because many published
    descriptions ship without one, a folder named after the package with no ``package.xml``
    counts (the entry itself or a child of it);
@@ -33,9 +34,9 @@ file exists wins; when none has it, the first is reported, with every place sear
 here touches the network, and nothing raises on a missing package or file.
 
 This module resolves URIs (:class:`PackageResolver`, rules 5 and 6 and the choice among
-candidates); finding packages (rules 1 to 4, :data:`RULES`) is :mod:`.package_lookup`, the file
-checks, ``package.xml`` names and bounded walks are :mod:`.package_files`. Every public name of
-those is importable from here, where the rest of inertia-kit imports it.
+candidates); finding packages (rules 1 to 4, :data:`~.package_lookup.RULES`) is
+:mod:`.package_lookup`; the file checks, ``package.xml`` names and bounded walks are
+:mod:`.package_files`. Each name is imported from the module that defines it.
 """
 
 from __future__ import annotations
@@ -45,37 +46,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote
 
-from inertia_kit.description.package_files import (
-    AMENT_INDEX,
-    MAX_DEPTH,
-    MAX_FOLDERS,
-    MAX_PACKAGE_XML_BYTES,
-    exists,
-    is_dir,
-    is_file,
-    normal,
-    package_name,
-)
-from inertia_kit.description.package_lookup import RULES, Candidate, Lookup, PackageFinder
-
-# the names the rest of inertia-kit (and its users) import from here
-__all__ = [
-    "AMENT_INDEX",
-    "MAX_DEPTH",
-    "MAX_FOLDERS",
-    "MAX_PACKAGE_XML_BYTES",
-    "RULES",
-    "Candidate",
-    "Lookup",
-    "PackageFinder",
-    "PackageResolver",
-    "Resolution",
-    "exists",
-    "is_dir",
-    "is_file",
-    "package_name",
-    "resolve_uri",
-]
+from inertia_kit.description.package_files import exists, is_file, normal
+from inertia_kit.description.package_lookup import Candidate, PackageFinder
 
 _FIND = re.compile(r"^\$\(find\s+([^\s)]+)\s*\)(.*)$", re.DOTALL)
 _SCHEME = re.compile(r"^([A-Za-z][A-Za-z0-9+.-]*)://")

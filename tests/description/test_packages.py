@@ -9,7 +9,8 @@ import pytest
 from kit import REPO
 from kit.meshes import write_box_stl
 
-from inertia_kit.description.packages import PackageResolver, package_name, resolve_uri
+from inertia_kit.description.package_files import package_name
+from inertia_kit.description.packages import PackageResolver, resolve_uri
 
 EXAMPLES = REPO / "examples"
 
@@ -347,7 +348,7 @@ def test_rule_absolute(tmp_path, robot_file):
 
 
 def test_rules_are_documented_in_order():
-    from inertia_kit.description.packages import RULES
+    from inertia_kit.description.package_lookup import RULES
 
     assert list(RULES) == [
         "package-path",

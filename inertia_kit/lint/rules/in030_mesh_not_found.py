@@ -9,7 +9,7 @@ from pathlib import Path
 
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
-from inertia_kit.description.packages import exists, is_dir, is_file, package_name
+from inertia_kit.description.package_files import exists, is_dir, is_file, package_name
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
