@@ -4,7 +4,7 @@ on the original bytes (every byte outside the edited spans stays as it was), the
 atomically.
 
 A plan is made in three steps: :mod:`~inertia_kit.fill.policy` chooses the links and their
-values, :mod:`~inertia_kit.fill.sites` finds where each link's values are written (in xacro,
+values, :mod:`~inertia_kit.fixes.sites` finds where each link's values are written (in xacro,
 perhaps a macro body or a macro call) and the edits there, and :class:`FillPlan` holds the
 result: the edits, the refusals with their reasons, the diff. For ``-o OUT``,
 :mod:`~inertia_kit.fill.output` says what is filled and writes it.
@@ -220,7 +220,7 @@ def plan_robot(
 ) -> FillPlan:
     """The fill plan of ``robot``, whose elements are written literally in ``source``."""
     from inertia_kit.analysis.links import analyse
-    from inertia_kit.fill.sites import Files, place
+    from inertia_kit.fixes.sites import Files, place
 
     names = frozenset(link.name for link in robot.links)
     if robot.fragment:

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from inertia_kit.fill.materials import MATERIALS
-from inertia_kit.fill.sites import Target
+from inertia_kit.fixes.sites import Target
 from inertia_kit.lint.findings import Severity
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.numbers import usable

@@ -31,8 +31,8 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.model import Inertial
-from inertia_kit.fill.files import Files, Key, key, location
-from inertia_kit.fill.xacro_macros import (
+from inertia_kit.fixes.files import Files, Key, key, location
+from inertia_kit.fixes.xacro_macros import (
     child,
     enclosing_macro,
     macro_of,
