@@ -34,6 +34,11 @@ class Span:
     empty: bool  # written as <tag .../>
 
 
+def tokens(text: str):
+    """Every markup token of ``text`` in order (comments, start and end tags, ...), as matches."""
+    return _TOKEN.finditer(text)
+
+
 def element_span(text: str, start: int) -> Span:
     """
     The span of the element whose start tag begins at ``start`` (the offset of its ``<``).

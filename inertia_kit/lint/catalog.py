@@ -62,6 +62,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in072_drake_verdict,
     in073_pybullet_verdict,
     in074_kdl_verdict,
+    in090_unused_suppression,
 )
 
 _RULE_MODULES = "inertia_kit.lint.rules."

@@ -111,10 +111,16 @@ def run_rules(
     analysis: RobotAnalysis,
     selection: Selection = Selection(),
     rules: Sequence[ModuleType] | None = None,
+    superseded: list[Finding] | None = None,
 ) -> list[Finding]:
-    """Every finding of the enabled rules on one analysed robot, sorted, duplicates once."""
+    """
+    Every finding of the enabled rules on one analysed robot, sorted, duplicates once; the
+    findings another rule's replaced are added to ``superseded`` when it is given.
+    """
     findings: dict[tuple, Finding] = {}
+    # rules of scope "suppressions" (IN090) judge the comments after the others: lint.unused
     enabled = selection.enabled(catalog.RULES if rules is None else rules)
+    enabled = [rule for rule in enabled if rule.SCOPE in ("link", "robot")]
     # code -> the codes whose findings on the same link it replaces (IN06x explains an IN020)
     supersedes = {rule.CODE: catalog.supersedes(rule) for rule in enabled}
     for rule in enabled:
@@ -133,6 +139,8 @@ def run_rules(
         (code, f.link) for f in findings.values() if f.link for code in supersedes.get(f.code, ())
     }
     kept = [findings[key] for key in sorted(findings)]
+    if superseded is not None:
+        superseded.extend(f for f in kept if (f.code, f.link) in replaced)
     return [f for f in kept if (f.code, f.link) not in replaced]
 
 
@@ -144,10 +152,11 @@ def lint_robot(
     robot: model.Robot,
     selection: Selection = Selection(),
     load_mesh: MeshLoader | None = None,
+    superseded: list[Finding] | None = None,
 ) -> list[Finding]:
     """The findings of a loaded robot (suppression comments and per-file ignores not applied)."""
     analysis = analyse(robot) if load_mesh is None else analyse(robot, load_mesh)
-    return run_rules(analysis, selection)
+    return run_rules(analysis, selection, superseded=superseded)
 
 
 @dataclass
@@ -167,6 +176,9 @@ class FileResult:
     notes: list[str] = field(default_factory=list)
     fail_on: Severity = DEFAULT_FAIL_ON
     disabled: bool = False  # by `<!-- inertia-lint: disable-file -->`
+    # the suppression comments' use (lint.unused), to judge a fragment over all its robots
+    uses: Any = None
+    selection: Selection | None = None
 
     @property
     def failing(self) -> list[Finding]:
@@ -188,6 +200,7 @@ def lint_file(
     per-file ignores are applied.
     """
     from inertia_kit.description.loader import load
+    from inertia_kit.lint import unused
     from inertia_kit.lint.suppress import directives, suppressed
 
     if directives(path).disabled:
@@ -205,12 +218,17 @@ def lint_file(
         for found in map(directives, robot.files or (str(path),))
         for line, text in found.problems
     ]
-    findings = [
-        finding if finding.path else dataclasses.replace(finding, path=str(path))
-        for finding in lint_robot(robot, selection, load_mesh)
-    ]
+    replaced: list[Finding] = []  # a comment that covers one of these is not unused
+    found = lint_robot(robot, selection, load_mesh, replaced)
+    findings, replaced = (
+        [f if f.path else dataclasses.replace(f, path=str(path)) for f in each]
+        for each in (found, replaced)
+    )
     kept = [f for f in findings if not selection.ignored(f, path) and not suppressed(f)]
-    return FileResult(str(path), kept, notes=notes)
+    ran = selection.enabled(catalog.RULES)
+    uses = unused.track(robot.files or (str(path),), findings + replaced, ran)
+    kept += unused.report(uses, selection, path)
+    return FileResult(str(path), kept, notes=notes, uses=uses, selection=selection)
 
 
 def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:
@@ -267,6 +285,7 @@ def lint_paths(
     exception propagates.
     """
     from inertia_kit.errors import ConfigError
+    from inertia_kit.lint import unused
     from inertia_kit.lint.config_files import ConfigFinder
 
     known = catalog.names()
@@ -307,4 +326,5 @@ def lint_paths(
         # not `or`: Severity.INFO is 0
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
         results.append(result)
+    unused.judge_shared(results)
     return results

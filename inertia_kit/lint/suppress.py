@@ -8,7 +8,9 @@ code prefixes and rule names are accepted; text after the ``]`` is a free reason
 
 A finding is covered when its location is: the file and line it is reported at, or, for an
 element a xacro macro produced, the element's line in the macro body (so a comment in a macro
-covers every instance, and a comment before a macro call covers that call). Each file's
+covers every instance, and a comment before a macro call covers that call). A finding without
+a line (about the robot as a whole) is covered by a comment before the root ``<robot>`` of the
+file it is reported in. Each file's
 comments are read once (per content: the cache is keyed on size and modification time).
 """
 
@@ -37,11 +39,14 @@ class Ignore:
     first: int
     last: int
     line: int  # of the comment
+    root: bool = False  # it stands before the root element: it also covers findings without a line
 
-    def covers(self, finding: Finding, line: int) -> bool:
-        return self.first <= line <= self.last and catalog.selects(
-            self.selectors, finding.code, finding.name
-        )
+    def holds(self, line: int | None) -> bool:
+        """Whether the element it covers holds ``line`` (``None``: the robot as a whole)."""
+        return self.root if line is None else self.first <= line <= self.last
+
+    def covers(self, finding: Finding, line: int | None) -> bool:
+        return self.holds(line) and catalog.selects(self.selectors, finding.code, finding.name)
 
 
 @dataclass(frozen=True)
@@ -56,7 +61,7 @@ class Directives:
     def covers(self, finding: Finding, line: int | None) -> bool:
         if self.disabled:
             return True
-        return line is not None and any(ignore.covers(finding, line) for ignore in self.ignores)
+        return any(ignore.covers(finding, line) for ignore in self.ignores)
 
 
 def directives(path: str | Path) -> Directives:
@@ -75,6 +80,23 @@ def suppressed(finding: Finding) -> bool:
     return bool(finding.macro_path) and directives(finding.macro_path).covers(  # type: ignore[arg-type]
         finding, finding.macro_line
     )
+
+
+def covering(finding: Finding) -> list[tuple[str, Ignore]]:
+    """
+    Every ``ignore[...]`` comment (with its file) that covers ``finding``, whether or not a
+    ``disable-file`` does too: what :mod:`inertia_kit.lint.unused` counts as used.
+    """
+    places = [(finding.path, finding.line)]
+    if finding.macro_path:
+        places.append((finding.macro_path, finding.macro_line))
+    return [
+        (path, ignore)
+        for path, line in places
+        if path
+        for ignore in directives(path).ignores
+        if ignore.covers(finding, line)
+    ]
 
 
 @functools.lru_cache(maxsize=512)
@@ -138,7 +160,8 @@ def _scan(path: str, root) -> Directives:
         if target is None:
             problems.append((line, "`ignore[...]` is not followed by an element it could cover"))
         elif selectors:
-            ignores.append(Ignore(tuple(selectors), first, _last_line(target), line))
+            root = target.getparent() is None
+            ignores.append(Ignore(tuple(selectors), first, _last_line(target), line, root))
     return Directives(path, disabled, tuple(ignores), tuple(problems))
 
 

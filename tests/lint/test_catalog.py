@@ -27,7 +27,7 @@ def test_registry_codes_and_names_are_unique_and_complete():
     for rule in rules:
         assert re.fullmatch(r"IN\d{3}", rule.CODE)
         assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", rule.NAME)
-        assert rule.SCOPE in ("link", "robot")
+        assert rule.SCOPE in ("link", "robot", "suppressions")
         module = rule.__name__.rsplit(".", 1)[1]
         assert module.startswith(rule.CODE.lower() + "_")
 

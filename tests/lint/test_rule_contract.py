@@ -105,8 +105,8 @@ def violations(rule: ModuleType) -> list[str]:
             problems.append(f"docstring: does not start with `{code} {name}: `")
     if not isinstance(rule.SEVERITY, Severity):
         problems.append(f"SEVERITY: {rule.SEVERITY!r} is no Severity")
-    if rule.SCOPE not in ("link", "robot"):
-        problems.append(f'SCOPE: {rule.SCOPE!r} is neither "link" nor "robot"')
+    if rule.SCOPE not in ("link", "robot", "suppressions"):
+        problems.append(f'SCOPE: {rule.SCOPE!r} is not "link", "robot" or "suppressions"')
     if not isinstance(rule.SUMMARY, str) or not rule.SUMMARY or "\n" in rule.SUMMARY:
         problems.append("SUMMARY: not one line of text")
     if not callable(rule.check) or len(inspect.signature(rule.check).parameters) != 2:
@@ -195,7 +195,11 @@ def test_the_checker_passes_a_good_rule(tmp_path):
         ('"a factor"', '""', "OPTIONS: `factor` has no one-line help"),
         ('Option("factor"', 'Option("Factor"', "OPTIONS: `Factor` is not snake_case"),
         ('("IN020",)', '("IN098",)', "SUPERSEDES: ('IN098',) is no tuple"),
-        ('SCOPE = "link"', 'SCOPE = "file"', 'SCOPE: \'file\' is neither "link" nor "robot"'),
+        (
+            'SCOPE = "link"',
+            'SCOPE = "file"',
+            'SCOPE: \'file\' is not "link", "robot" or "suppressions"',
+        ),
         ("Severity.WARNING", '"warning"', "SEVERITY: 'warning' is no Severity"),
         ('CODE = "IN098"', 'CODE = "IN98"', "CODE: 'IN98' is no code like IN020"),
         ('NAME = "stub-rule"', 'NAME = "stub_rule"', "NAME: 'stub_rule' is not kebab-case"),

@@ -21,7 +21,9 @@ Every rule has:
     impossible value escalated, a doubtful one lowered; a configured ``severity`` always wins.
 ``SCOPE: str``
     ``"link"``: ``check`` runs once per link, on its ``LinkAnalysis``; ``"robot"``: once, on
-    the ``RobotAnalysis``.
+    the ``RobotAnalysis``; ``"suppressions"``: once, after every other rule, on the use of
+    the robot's suppression comments (a list of :class:`inertia_kit.lint.unused.CommentUse`;
+    IN090 is the one such rule).
 ``SUMMARY: str``
     One line: what the rule flags (SARIF's short description of the rule).
 ``check(target, ctx: RuleContext) -> Iterator[Finding]``
