@@ -96,6 +96,15 @@ def _colour() -> bool | None:
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@click.option(
+    "--add-noqa",
+    "--add-suppressions",
+    "add_noqa",
+    is_flag=True,
+    help="Write an `ignore[...]` comment before the element of every current finding (honouring "
+    "--select, --ignore and the configuration), so that only new findings fail; a comment "
+    "already there gains the codes. Prints how many were written where.",
+)
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -132,6 +141,7 @@ def lint(
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
     explain: str | None = None,
+    add_noqa: bool = False,
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
     if explain is not None:
@@ -159,8 +169,8 @@ def lint(
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
         return FileResult(str(file), error=internal(error, file))
 
-    try:
-        results = lint_paths(
+    def lint_all() -> list[FileResult]:
+        return lint_paths(
             paths,
             config=config_path,
             select=_codes(select),
@@ -172,11 +182,18 @@ def lint(
             xacro_limits=parse_xacro_limits(xacro_limits),
             on_error=crashed,
         )
+
+    try:
+        results = lint_all()
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)
         click.echo(f"error: {message}", err=True)
         return 2
 
+    if add_noqa:
+        from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
+
+        return write_suppressions(paths, results, lint_all)
     run = merge(results)
     for level, text in run.messages:
         click.echo(f"{level}: {text}", err=True)

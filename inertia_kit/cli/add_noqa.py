@@ -1,0 +1,87 @@
+"""
+``inertia-lint --add-noqa``: write a suppression comment for every current finding, so that a
+repository adopts the linter today and only new findings fail (ruff's ``--add-noqa``).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import click
+
+if TYPE_CHECKING:
+    from inertia_kit.lint.runner import FileResult
+
+# installed packages: their macros are not ours to annotate
+_INSTALLED = ("site-packages", "dist-packages")
+
+
+def writable_under(paths: Sequence[str]) -> Callable[[str], bool]:
+    """
+    Which files ``--add-noqa`` may edit: those under a folder given (for a file given, its
+    folder; and the current folder when every path given lies in it), never inside an
+    installed package or a hidden folder (``.venv``).
+    """
+    here = Path.cwd().resolve()
+    given = [Path(p).resolve() for p in paths]
+    roots = [p if p.is_dir() else p.parent for p in given]
+    if all(p.is_relative_to(here) for p in given):
+        roots.append(here)
+
+    def writable(path: str) -> bool:
+        file = Path(path).resolve()
+        for root in roots:
+            if file.is_relative_to(root):
+                inside = file.relative_to(root).parts[:-1]
+                return not any(p in _INSTALLED or p.startswith(".") for p in inside)
+        return False
+
+    return writable
+
+
+def add_noqa(
+    paths: Sequence[str], results: Sequence[FileResult], relint: Callable[[], list[FileResult]]
+) -> int:
+    """Write the comments, lint again to prove them, say what was done; the exit code."""
+    from inertia_kit.description.edits import write_all_atomic
+    from inertia_kit.errors import InputError
+    from inertia_kit.lint.add_noqa import plan
+    from inertia_kit.lint.merge import merge
+
+    run = merge(results)
+    planned = plan(run.findings, writable_under(paths))
+    writes = [(path, old.encode(new), old.original) for path, (old, new) in planned.texts.items()]
+    try:
+        write_all_atomic(writes)
+    except InputError as error:
+        click.echo(f"error: {error}; no file was changed", err=True)
+        return 2
+    total = sum(planned.added.values())
+    where = "" if not total else f" in {_count(len(planned.added), 'file')}"
+    click.echo(f"Added {_count(total, 'suppression comment')}{where}.", err=True)
+    for path, count in planned.added.items():
+        click.echo(f"  {os.path.relpath(path)}: {count}", err=True)
+    for finding, why in planned.skipped:
+        line = "" if finding.line is None else f":{finding.line}"
+        click.echo(f"note: {finding.path}{line}: {finding.code} not suppressed: {why}", err=True)
+    relint_results = relint() if writes else list(results)
+    after = merge(relint_results)
+    for level, text in after.messages:
+        click.echo(f"{level}: {text}", err=True)
+    if after.errors:
+        return 2
+    if after.failing:
+        left = [f for f in after.findings if any(f in r.failing for r in relint_results)]
+        for finding in left:
+            line = "" if finding.line is None else f":{finding.line}"
+            click.echo(f"  {finding.path}{line}: {finding.code} {finding.name}", err=True)
+        click.echo(f"{_count(len(left), 'finding')} still fail `inertia-lint`", err=True)
+        return 1
+    return 0
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
