@@ -2,7 +2,7 @@
 Suppression comments for findings, as ruff's ``--add-noqa`` writes them: so that a repository
 adopts the linter with its current findings suppressed, and only new ones fail.
 
-Where a comment goes: directly before the smallest element whose lines hold the finding's line,
+Where a comment goes: directly before the innermost element at the finding's line and column,
 in the file the finding is reported in (for an element a xacro macro made, that is the macro
 call: the comment covers that call's instance only; see :mod:`inertia_kit.lint.suppress`),
 indented as the element is and ended with the file's newline. A finding without a line (the
@@ -79,7 +79,11 @@ def _file_edits(
     codes: dict[int, tuple[markup.Element, set[str]]] = {}  # element start -> (element, codes)
     skipped = []
     for finding in findings:
-        element = layout.root if finding.line is None else layout.innermost(finding.line)
+        element = (
+            layout.root
+            if finding.line is None
+            else layout.innermost(finding.line, finding.column)
+        )
         if element is None:
             skipped.append((finding, f"no element holds line {finding.line} of {source.path}"))
             continue

@@ -68,8 +68,17 @@ class Layout:
     def root(self) -> Element | None:
         return self.elements[0] if self.elements else None
 
-    def innermost(self, line: int) -> Element | None:
-        """The smallest element whose lines hold ``line`` (the first such in document order)."""
+    def innermost(self, line: int, column: int | None = None) -> Element | None:
+        """
+        The innermost element at ``line`` and ``column`` (1-based, the ``<`` of its start tag or
+        a place inside it); without a column, or with one no element holds, the smallest
+        element whose lines hold ``line`` (the first such in document order).
+        """
+        if column is not None and 1 <= line <= len(self.line_starts):
+            offset = self.line_starts[line - 1] + column - 1
+            holding = [e for e in self.elements if e.start <= offset < e.end]
+            if holding:
+                return max(holding, key=lambda e: e.start)
         holding = [e for e in self.elements if e.first <= line <= e.last]
         return min(holding, key=lambda e: e.last - e.first, default=None)
 
