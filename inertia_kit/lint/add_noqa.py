@@ -80,9 +80,7 @@ def _file_edits(
     skipped = []
     for finding in findings:
         element = (
-            layout.root
-            if finding.line is None
-            else layout.innermost(finding.line, finding.column)
+            layout.root if finding.line is None else layout.innermost(finding.line, finding.column)
         )
         if element is None:
             skipped.append((finding, f"no element holds line {finding.line} of {source.path}"))

@@ -59,7 +59,7 @@ def only_comments_inserted(before: bytes, after: bytes) -> bool:
     """Whether ``after`` is ``before`` with whole comment lines inserted, and nothing else."""
     old = before.decode().splitlines(keepends=True)
     new = after.decode().splitlines(keepends=True)
-    for op, i1, i2, j1, j2 in difflib.SequenceMatcher(None, old, new).get_opcodes():
+    for op, _, _, j1, j2 in difflib.SequenceMatcher(None, old, new).get_opcodes():
         if op == "equal":
             continue
         if op != "insert" or not all(COMMENT.fullmatch(line) for line in new[j1:j2]):
