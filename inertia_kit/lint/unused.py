@@ -14,11 +14,11 @@ for. A comment in a file several robots include is judged over all of them
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
 from types import ModuleType
 from typing import TYPE_CHECKING
 
 from inertia_kit.lint import catalog
+from inertia_kit.lint.comment_use import CommentUse, Uses
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.lint.suppress import covering, directives, suppressed
@@ -29,28 +29,6 @@ if TYPE_CHECKING:
     from inertia_kit.lint.runner import FileResult, Selection
 
 SCOPE = "suppressions"
-
-
-@dataclass
-class CommentUse:
-    """One ``ignore[...]`` comment: its selectors, those judged, those that covered a finding."""
-
-    path: str
-    line: int
-    selectors: tuple[str, ...]
-    lines: tuple[int, int]  # of the element it covers
-    judged: set[str] = field(default_factory=set)
-    used: set[str] = field(default_factory=set)
-    robots: int = 1  # how many linted robots include its file
-
-    @property
-    def unused(self) -> list[str]:
-        """The judged selectors that suppressed nothing, in the order the comment gives them."""
-        return [s for s in self.selectors if s in self.judged and s not in self.used]
-
-
-# (path, line of the comment) -> its use
-Uses = dict[tuple[str, int], CommentUse]
 
 
 def suppression_rules(rules: Iterable[ModuleType]) -> list[ModuleType]:

@@ -22,7 +22,7 @@ Every rule has:
 ``SCOPE: str``
     ``"link"``: ``check`` runs once per link, on its ``LinkAnalysis``; ``"robot"``: once, on
     the ``RobotAnalysis``; ``"suppressions"``: once, after every other rule, on the use of
-    the robot's suppression comments (a list of :class:`inertia_kit.lint.unused.CommentUse`;
+    the robot's suppression comments (a list of :class:`inertia_kit.lint.comment_use.CommentUse`;
     IN090 is the one such rule).
 ``SUMMARY: str``
     One line: what the rule flags (SARIF's short description of the rule).

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING
 
@@ -13,7 +14,7 @@ from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 if TYPE_CHECKING:
-    from inertia_kit.lint.unused import CommentUse
+    from inertia_kit.lint.comment_use import CommentUse
 
 CODE = "IN090"
 NAME = "unused-suppression"
@@ -21,6 +22,7 @@ SEVERITY = Severity.WARNING
 # not a link or the robot: the suppression comments, once every other rule has run (lint.unused)
 SCOPE = "suppressions"
 SUMMARY = "a suppression comment, or a code in it, suppresses no finding"
+_CODE = re.compile(r"IN[0-9]{0,3}", re.IGNORECASE)
 
 
 def check(comments: Sequence[CommentUse], ctx: RuleContext) -> Iterator[Finding]:
@@ -52,8 +54,6 @@ def _fix(path: str, line: int, unused: set[str]) -> tuple[Fix, int] | None:
     The edit that removes the unused selectors from the comment on ``line`` (the whole comment,
     with its line when nothing else stands on it, when none is left), and the comment's column.
     """
-    from inertia_kit.lint import catalog
-
     try:
         source = read_source(path)
     except InputError:
@@ -65,7 +65,7 @@ def _fix(path: str, line: int, unused: set[str]) -> tuple[Fix, int] | None:
     if comment is None or brackets is None:
         return None
     start, end, items = brackets
-    kept = [item for item in items if catalog.normalize_selector(item) not in unused]
+    kept = [item for item in items if _selector(item) not in unused]
     column = comment.start - found.line_starts[line - 1] + 1
     if kept:
         edit = Edit(path, start, end, ", ".join(kept))
@@ -75,6 +75,11 @@ def _fix(path: str, line: int, unused: set[str]) -> tuple[Fix, int] | None:
     return Fix(
         "remove the unused suppression comment", (_removal(path, text, comment),), Safety.SAFE
     ), column
+
+
+def _selector(item: str) -> str:
+    """An entry of the comment as the suppression pass names it: codes in upper case."""
+    return item.upper() if _CODE.fullmatch(item) else item
 
 
 def _removal(path: str, text: str, comment: markup.Comment) -> Edit:
