@@ -266,3 +266,42 @@ def test_an_unused_suppression_is_not_suppressed_but_listed(tmp_path):
         "IN090 not suppressed: an unused suppression: remove it (its fix is safe)" in result.output
     )
     assert "IN090 unused-suppression" in result.output  # still failing, listed
+
+
+NESTED = """\
+<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="body" params="name mass">
+    <link name="${name}">
+      <inertial>
+        <mass value="${mass}"/>
+        <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+      </inertial>
+    </link>
+  </xacro:macro>
+  <xacro:macro name="part" params="name mass">
+    <xacro:body name="${name}" mass="${mass}"/>
+    <joint name="j_${name}" type="revolute">
+      <parent link="world"/><child link="${name}"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="10" velocity="1"/>
+    </joint>
+  </xacro:macro>
+  <link name="world"/>
+  <xacro:part name="a" mass="-1"/>
+  <xacro:part name="b" mass="1"/>
+</robot>
+"""
+
+
+def test_a_finding_reported_in_a_macro_body_is_suppressed_there(tmp_path):
+    # nested macros: the finding is reported at the innermost call, which stands in the body of
+    # `part`; the comment goes there, so it covers that call in every instance of `part`
+    path = tmp_path / "r.urdf.xacro"
+    path.write_text(NESTED)
+    assert lint("--add-noqa", path).exit_code == 0
+    call = '    <xacro:body name="${name}"'
+    assert path.read_text() == NESTED.replace(
+        call, f"    <!-- inertia-lint: ignore[IN002] -->\n{call}"
+    )
+    path.write_text(path.read_text().replace('name="b" mass="1"', 'name="b" mass="-1"'))
+    assert lint(path).exit_code == 0  # the comment in the body covers the new instance too
