@@ -61,7 +61,8 @@ def add_noqa(
         return 2
     total = sum(planned.added.values())
     where = "" if not total else f" in {_count(len(planned.added), 'file')}"
-    click.echo(f"Added {_count(total, 'suppression comment')}{where}.", err=True)
+    extended = "" if not planned.extended else f" ({planned.extended} already there, given codes)"
+    click.echo(f"Added {_count(total, 'suppression comment')}{extended}{where}.", err=True)
     for path, count in planned.added.items():
         click.echo(f"  {os.path.relpath(path)}: {count}", err=True)
     for finding, why in planned.skipped:

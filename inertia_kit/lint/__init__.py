@@ -4,6 +4,8 @@ lint: rules over the analysed robot, and findings out.
 ``runner`` loads each file, analyses it once and runs every enabled rule of the ``catalog``
 (the one registry of ``rules/``, one module per rule; the contract is in
 :mod:`inertia_kit.lint.rules`), with their typed ``options``, the ``config`` (and
-``config_files``) and the ``suppress`` comments; ``merge`` joins the results of several files;
+``config_files``) and the ``suppress`` comments, whose use ``unused`` judges (IN090);
+``add_noqa`` writes a comment for every finding (placed by ``markup``); ``merge`` joins the
+results of several files;
 ``output/`` prints them, one module per format; ``documents`` finds each rule's document.
 """

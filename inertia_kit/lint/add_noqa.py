@@ -30,6 +30,7 @@ class Plan:
 
     texts: dict[str, tuple[SourceText, str]] = field(default_factory=dict)  # path -> (old, new)
     added: dict[str, int] = field(default_factory=dict)  # path -> comments written or extended
+    extended: int = 0  # of those, comments already there that gained codes
     skipped: list[tuple[Finding, str]] = field(default_factory=list)  # (finding, why)
 
 
@@ -62,13 +63,14 @@ def plan(findings: Iterable[Finding], writable: Callable[[str], bool]) -> Plan:
         except InputError as error:
             result.skipped.extend((f, f"cannot edit: {error}") for f in found)
             continue
-        edits, count, skipped = _file_edits(source, found)
+        edits, extended, skipped = _file_edits(source, found)
         result.skipped.extend(skipped)
         if edits:
             text, applied = apply_edits(source.text, edits)
             assert len(applied) == len(edits), "suppression comments overlap"
             result.texts[path] = (source, text)
-            result.added[path] = count
+            result.added[path] = len(edits)
+            result.extended += extended
     return result
 
 
@@ -86,16 +88,21 @@ def _file_edits(
             skipped.append((finding, f"no element holds line {finding.line} of {source.path}"))
             continue
         codes.setdefault(element.start, (element, set()))[1].add(finding.code)
-    edits = [_edit(source, element, sorted(wanted)) for element, wanted in codes.values()]
-    return [edit for edit in edits if edit is not None], sum(e is not None for e in edits), skipped
+    made, extended = [], 0
+    for element, wanted in codes.values():
+        edit = _edit(source, element, sorted(wanted))
+        if edit is not None:
+            made.append(edit)
+            extended += _existing(element) is not None
+    return made, extended, skipped
 
 
 def _edit(source: SourceText, element: markup.Element, codes: list[str]) -> Edit | None:
     """A new comment before ``element``, or the codes added to the ``ignore[...]`` before it."""
     text = source.text
-    existing = [c for c in element.before if c.selectors() is not None]
-    if existing:
-        start, end, items = existing[-1].selectors()  # type: ignore[misc]
+    existing = _existing(element)
+    if existing is not None:
+        start, end, items = existing.selectors()  # type: ignore[misc]
         known = [s for s in (catalog.normalize_selector(i) for i in items) if s is not None]
         new = [code for code in codes if not catalog.selects(known, code, _name(code))]
         if not new:
@@ -108,6 +115,11 @@ def _edit(source: SourceText, element: markup.Element, codes: list[str]) -> Edit
     if indent.strip(" \t"):  # something else stands before it on its line: the comment too
         return Edit(source.path, element.start, element.start, comment)
     return Edit(source.path, line_start, line_start, f"{indent}{comment}{source.newline}")
+
+
+def _existing(element: markup.Element) -> markup.Comment | None:
+    """The ``ignore[...]`` comment nearest before ``element``, if one is there."""
+    return next((c for c in reversed(element.before) if c.selectors() is not None), None)
 
 
 def _name(code: str) -> str:

@@ -136,7 +136,9 @@ def test_codes_are_added_to_a_comment_already_there(tmp_path):
         MACRO_ROBOT.replace('  <xacro:part name="a"', f'  {kept}\n  <xacro:part name="a"')
     )
     # 1: the IN041 there suppresses nothing (IN090), which --add-noqa leaves to its fix
-    assert lint("--add-noqa", path).exit_code == 1
+    result = lint("--add-noqa", path)
+    assert result.exit_code == 1
+    assert "Added 1 suppression comment (1 already there, given codes) in 1 file." in result.output
     text = path.read_text()
     assert "<!-- inertia-lint: ignore[IN041, IN002] reason: a floating base -->" in text
     assert text.count("inertia-lint") == 1
