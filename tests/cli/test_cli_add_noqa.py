@@ -307,3 +307,13 @@ def test_a_finding_reported_in_a_macro_body_is_suppressed_there(tmp_path):
     )
     path.write_text(path.read_text().replace('name="b" mass="1"', 'name="b" mass="-1"'))
     assert lint(path).exit_code == 0  # the comment in the body covers the new instance too
+
+
+def test_the_configuration_is_honoured(examples):
+    arm = examples / "simple_arm"
+    (arm / "pyproject.toml").write_text('[tool.inertia-kit]\nignore = ["IN062"]\n')
+    assert lint("--add-noqa", arm).exit_code == 0
+    text = (arm / "urdf" / "simple_arm.urdf.xacro").read_text()
+    # IN062 ignored: what it explained (IN020, IN023) is reported, and suppressed, instead
+    assert re.findall(r"ignore\[([^\]]*)\]", text) == ["IN041"] + ["IN020, IN021, IN023"] * 2
+    assert lint(arm).exit_code == 0
