@@ -32,7 +32,8 @@ def check(comments: Sequence[CommentUse], ctx: RuleContext) -> Iterator[Finding]
             continue
         listed = ", ".join(f"`{s}`" for s in unused)
         every = set(unused) == set(use.selectors)
-        what = "the comment suppresses nothing" if every else f"{listed} in it suppresses nothing"
+        verb = "suppresses" if len(unused) == 1 else "suppress"
+        what = "the comment suppresses nothing" if every else f"{listed} in it {verb} nothing"
         over = (
             "" if use.robots == 1 else f" in any of the {use.robots} linted robots that include it"
         )
