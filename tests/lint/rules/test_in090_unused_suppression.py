@@ -198,3 +198,12 @@ def test_a_disabled_file_is_not_judged(tmp_path):
     text = CLEAN.format(comment=COMMENT.format("IN012"))
     path.write_text("<!-- inertia-lint: disable-file -->\n" + text)
     assert lint(path) == (0, [])
+
+
+def test_a_comment_whose_finding_a_per_file_ignore_also_drops_is_used(tmp_path):
+    (tmp_path / "parts.xacro").write_text(FRAGMENT)
+    (tmp_path / "bad.urdf.xacro").write_text(robot(-1))
+    (tmp_path / "pyproject.toml").write_text(
+        '[tool.inertia-kit]\nper-file-ignores = { "*.xacro" = ["IN002"] }\n'
+    )
+    assert lint(tmp_path / "bad.urdf.xacro") == (0, [])
