@@ -57,7 +57,7 @@ def add_noqa(
     try:
         write_all_atomic(writes)
     except InputError as error:
-        click.echo(f"error: {error}; no file was changed", err=True)
+        click.echo(f"error: {error}", err=True)  # it says what was left as it was
         return 2
     total = sum(planned.added.values())
     where = "" if not total else f" in {_count(len(planned.added), 'file')}"
