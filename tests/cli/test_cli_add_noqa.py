@@ -317,3 +317,13 @@ def test_the_configuration_is_honoured(examples):
     # IN062 ignored: what it explained (IN020, IN023) is reported, and suppressed, instead
     assert re.findall(r"ignore\[([^\]]*)\]", text) == ["IN041"] + ["IN020, IN021, IN023"] * 2
     assert lint(arm).exit_code == 0
+
+
+def test_an_unreadable_file_is_reported_and_the_others_adopt(tmp_path):
+    (tmp_path / "r.urdf.xacro").write_text(MACRO_ROBOT)
+    (tmp_path / "broken.urdf").write_text('<robot name="b"><link name="a">\n')
+    result = lint("--add-noqa", tmp_path)
+    assert result.exit_code == 2
+    assert f"error: {tmp_path / 'broken.urdf'}:2" in result.output
+    assert "Added 1 suppression comment in 1 file." in result.output
+    assert "ignore[IN002]" in (tmp_path / "r.urdf.xacro").read_text()
