@@ -8,6 +8,7 @@ told once.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -42,14 +43,19 @@ def merge(results: Sequence[FileResult]) -> Merged:
     for result in results:
         if result.error:
             messages[("error", str(result.error))] = None
-        if result.fragment:
+        if result.fragment and not result.remarks:
             note = f"{result.path}: a xacro fragment (macros and properties only, to be included)"
             messages[("note", f"{note}: skipped")] = None
+        for text in result.remarks:
+            messages[("note", text)] = None
         for text in result.notes:
             messages[("warning", text)] = None
         for finding in result.findings:
             where = (finding.path, finding.line, finding.column, finding.code, finding.message)
-            findings.setdefault(where, finding)
+            first = findings.setdefault(where, finding)
+            if finding.via and first is not finding:  # one finding of several robots: all named
+                via = tuple(dict.fromkeys(first.via + finding.via))
+                findings[where] = dataclasses.replace(first, via=via)
     return Merged(
         list(findings.values()),
         [result.error for result in results if result.error is not None],

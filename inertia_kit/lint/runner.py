@@ -167,6 +167,7 @@ class FileResult:
     notes: list[str] = field(default_factory=list)
     fail_on: Severity = DEFAULT_FAIL_ON
     disabled: bool = False  # by `<!-- inertia-lint: disable-file -->`
+    remarks: list[str] = field(default_factory=list)  # told as notes (a fragment's robots)
 
     @property
     def failing(self) -> list[Finding]:
@@ -287,10 +288,12 @@ def lint_paths(
         except ValueError as error:
             raise ConfigError(f"--engine: {error}") from None
     finder = ConfigFinder(config)
-    plan = [(file, finder.for_file(file)) for file in expand_paths(paths)]
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits)
+    plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
-    for file, found in plan:
+    for target, found in plan:
+        file = target.robot
         try:
             result = lint_file(
                 file,
@@ -307,4 +310,45 @@ def lint_paths(
         # not `or`: Severity.INFO is 0
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
         results.append(result)
-    return results
+    return _through_robots(results, chosen)
+
+
+def _targets(
+    paths: Iterable[str | Path],
+    xacro_args: Mapping[str, str] | None,
+    package_paths: Sequence[str | Path],
+    xacro_limits: Mapping[str, float] | None,
+) -> Any:
+    """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
+    from inertia_kit.lint.fragments import targets
+
+    return targets(
+        paths,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        xacro_limits=XacroLimits.resolve(None, xacro_limits),
+    )
+
+
+def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
+    """
+    The results with the given files robots include linted through them: a robot's findings
+    kept where they land in those files (saying `via` which robot), the given file's own
+    result dropped when it is a fragment or unreadable on its own (its robots read it), and a
+    note for each given file, saying which robots were linted for it or that none includes it.
+    """
+    from inertia_kit.lint.fragments import located, real
+
+    kept = []
+    for result, target in zip(results, chosen.targets, strict=True):
+        if target.changed:
+            result.findings = located(result.findings, target.robot, target.changed)
+        elif real(result.path) in chosen.fragments and (result.fragment or result.error):
+            result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
+        if not target.changed:
+            note = chosen.notes.get(result.path) or (
+                chosen.alone.get(result.path) if result.fragment else None
+            )
+            result.remarks.extend([note] if note else [])
+        kept.append(result)
+    return kept
