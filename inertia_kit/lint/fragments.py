@@ -47,10 +47,11 @@ class Target:
 class Targets:
     """
     What :func:`targets` gives: the ``targets`` in the order given (files linted as
-    themselves, then the robots that include given files), ``fragments`` the given files
+    themselves, then the robots that include given files); ``fragments`` the given files
     robots include (real path → the file as given), for which a result of their own that says
-    "fragment" or "unreadable on its own" is dropped, and ``notes`` one line per given file
-    linted through robots, or that no robot includes.
+    "fragment" or "unreadable on its own" is dropped; ``notes`` a note per given file linted
+    through robots; ``alone`` the note for a given file no robot includes, told if it turns
+    out to be a fragment.
     """
 
     targets: list[Target] = field(default_factory=list)
@@ -58,6 +59,14 @@ class Targets:
     notes: dict[str, str] = field(default_factory=dict)  # file as given -> note
     alone: dict[str, str] = field(default_factory=dict)
     graphs: list[IncludeGraph] = field(default_factory=list)
+
+    def read_by_robots(self, target: Target) -> bool:
+        """Whether ``target`` is a given file that robots include (so they are its check)."""
+        return not target.changed and real(target.robot) in self.fragments
+
+    def through(self, robot: str) -> tuple[str, ...]:
+        """The given files ``robot`` is linted or filled for (empty: as itself)."""
+        return next((t.changed for t in self.targets if t.changed and t.robot == robot), ())
 
 
 def repository_root(file: str | Path) -> tuple[Path, str]:
@@ -84,11 +93,13 @@ def targets(
     package_paths: Sequence[str | Path] = (),
     xacro_limits: XacroLimits | None = None,
     cache_dir: str | Path | None = None,
+    doing: str = "lint",
 ) -> Targets:
     """
     The robots to lint (or fill) for ``paths`` (files and folders, walked as the linter walks
     them): each file as itself, and each robot of the repository that includes a given file
-    (and is not given itself) for the given files it includes.
+    (and is not given itself) for the given files it includes. ``doing`` (``lint``, ``fill``)
+    is the verb of the notes.
     """
     from inertia_kit.lint.runner import expand_paths
 
@@ -110,17 +121,16 @@ def targets(
         includers = graphs[root].includers(file)
         if not includers:
             result.alone[file] = (
-                f"{file}: a xacro fragment no robot in {shown(root)} ({why}) includes; "
-                "nothing to lint"
+                f"a xacro fragment no robot in {shown(root)} ({why}) includes; nothing to {doing}"
             )
             continue
         result.fragments[real(file)] = file
         names = ", ".join(shown(robot) for robot in includers)
-        result.notes[file] = f"{file}: linted as part of the robots that include it: {names}"
+        result.notes[file] = f"{doing}ed through the robots that include it: {names}"
         for robot in includers:
             if robot not in given:
                 through.setdefault(robot, []).append(file)
-    result.targets += [Target(shown(robot), tuple(changed)) for robot, changed in through.items()]
+    result.targets.extend(Target(shown(r), tuple(changed)) for r, changed in through.items())
     result.graphs.extend(graphs.values())
     return result
 
@@ -129,7 +139,7 @@ def shown(path: str | Path) -> str:
     """A path as told: relative to the working folder when below it, else absolute."""
     absolute = os.path.abspath(path)
     relative = os.path.relpath(absolute)
-    return absolute if relative.startswith(os.pardir) else relative
+    return absolute if relative.startswith(os.pardir) or relative == os.curdir else relative
 
 
 def located(findings: Iterable[Finding], robot: str, changed: Sequence[str]) -> list[Finding]:

@@ -337,18 +337,18 @@ def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
     result dropped when it is a fragment or unreadable on its own (its robots read it), and a
     note for each given file, saying which robots were linted for it or that none includes it.
     """
-    from inertia_kit.lint.fragments import located, real
+    from inertia_kit.lint.fragments import located
 
     kept = []
     for result, target in zip(results, chosen.targets, strict=True):
         if target.changed:
             result.findings = located(result.findings, target.robot, target.changed)
-        elif real(result.path) in chosen.fragments and (result.fragment or result.error):
+        elif chosen.read_by_robots(target) and (result.fragment or result.error):
             result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
         if not target.changed:
             note = chosen.notes.get(result.path) or (
                 chosen.alone.get(result.path) if result.fragment else None
             )
-            result.remarks.extend([note] if note else [])
+            result.remarks.extend([f"{result.path}: {note}"] if note else [])
         kept.append(result)
     return kept
