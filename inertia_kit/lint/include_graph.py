@@ -129,10 +129,10 @@ def _scan(
         # refused on its own (a fragment that needs its robot's properties, a broken file):
         # no robot; scanned again when it changes
         return Entry("error", ((path, own),))
-    reads = _stamped(expanded.files)
+    reads = _stamped((path, *expanded.files))  # the input first, each file once
     if reads is None:
         return None
-    return Entry("fragment" if expanded.fragment else "robot", ((path, own), *reads))
+    return Entry("fragment" if expanded.fragment else "robot", reads)
 
 
 def _stamped(files: Iterable[str]) -> tuple[tuple[str, Stamp], ...] | None:

@@ -53,8 +53,10 @@ def merge(results: Sequence[FileResult]) -> Merged:
         for finding in result.findings:
             where = (finding.path, finding.line, finding.column, finding.code, finding.message)
             first = findings.setdefault(where, finding)
-            if finding.via and first is not finding:  # one finding of several robots: all named
-                via = tuple(dict.fromkeys(first.via + finding.via))
+            if first is not finding and first.via != finding.via:
+                # several robots found it: all named; its own file, linted as itself: none
+                both = first.via and finding.via
+                via = tuple(dict.fromkeys(first.via + finding.via)) if both else ()
                 findings[where] = dataclasses.replace(first, via=via)
     return Merged(
         list(findings.values()),
