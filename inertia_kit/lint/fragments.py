@@ -2,8 +2,9 @@
 Changed fragments, as a hook hands them over: which robots to lint (or fill) for the files
 given, and which of their findings to report.
 
-A file given is linted as itself. When robots of its repository include it, directly or through
-other includes (:mod:`.include_graph`), those robots are linted too, and only their findings
+A file given is linted as itself. When it is xacro (by name or content) and robots of its
+repository include it, directly or through other includes (:mod:`.include_graph`), those
+robots are linted too, and only their findings
 located in the given files are reported, each saying which robot produced it (``via``). A
 robot that is itself given is linted as itself only: its findings already hold everything it
 takes from the fragment. :func:`targets` is the one mapping ``inertia-lint`` and
@@ -108,7 +109,7 @@ def targets(
     graphs: dict[Path, IncludeGraph] = {}
     through: dict[str, list[str]] = {}  # robot (real path) -> given files it is linted for
     result = Targets([Target(file) for file in files])
-    for file in files:
+    for file in filter(_xacro, files):
         root, why = repository_root(file)
         if root not in graphs:
             graphs[root] = include_graph(
@@ -133,6 +134,20 @@ def targets(
     result.targets.extend(Target(shown(r), tuple(changed)) for r, changed in through.items())
     result.graphs.extend(graphs.values())
     return result
+
+
+def _xacro(file: str) -> bool:
+    """Whether ``file`` may be included by a robot: xacro by name or by content. A plain URDF
+    is included by none in practice, and is linted as itself without scanning the repository."""
+    from inertia_kit.description.xacro_expand import is_xacro
+
+    if file.lower().endswith(".xacro"):
+        return True
+    try:
+        with open(file, "rb") as stream:
+            return is_xacro(stream.read())
+    except OSError:
+        return False
 
 
 def shown(path: str | Path) -> str:

@@ -9,7 +9,9 @@ so it includes nothing and is not expanded. Every other file is expanded with xa
 linter would expand it (the same ``--xacro-arg`` values and package paths; ``$(find pkg)``
 resolved by the package resolver), and the files the expansion read (the xacro sandbox records
 each one) are its includes, direct and indirect. A file whose expansion makes links is a robot;
-a fragment, or a file xacro refuses on its own, includes nobody's robot.
+a fragment includes nobody's robot. A file xacro refuses counts as a robot that reads the file
+the error names (a fragment the change broke) and, if it was a robot before, what it read
+then: linted for those files, it reports the error.
 
 The first pass picks no robots by name: includes are often computed
 (``$(find ${pkg})/urdf/${name}.xacro``), so a file's text cannot say what it includes; the
@@ -92,7 +94,11 @@ def include_graph(
         if entry is None:
             continue  # vanished or unreadable between the walk and the scan
         entries[key] = entry
-        if entry.kind == "robot":
+        if entry.kind == "error" and key in cached and cached[key].kind == "robot":
+            # a robot the change broke still reads what it read: linted for those files, it
+            # tells the error (the stale stamps have it scanned again next time)
+            entry = Entry("error", tuple(dict([*entry.reads, *cached[key].reads[1:]]).items()))
+        if entry.kind == "robot" or (entry.kind == "error" and len(entry.reads) > 1):
             graph.robots[key] = tuple(read for read, _ in entry.reads)
     storable = _storable(entries)
     if storable != cached:
@@ -125,10 +131,12 @@ def _scan(
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
     try:
         expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
-    except InputError:
-        # refused on its own (a fragment that needs its robot's properties, a broken file):
-        # no robot; scanned again when it changes
-        return Entry("error", ((path, own),))
+    except InputError as error:
+        # refused: a fragment that needs its robot's properties (the error is in the file
+        # itself: it includes nobody's robot), or a robot an included file breaks, which it
+        # then reads (linted for that file, it reports the error); scanned again when it changes
+        at_fault = () if error.path is None else _stamped((error.path,)) or ()
+        return Entry("error", tuple(dict([(path, own), *at_fault]).items()))
     reads = _stamped((path, *expanded.files))  # the input first, each file once
     if reads is None:
         return None

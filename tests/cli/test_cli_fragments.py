@@ -14,6 +14,7 @@ import os
 
 import pytest
 from click.testing import CliRunner
+from kit.urdf import link_lines, robot_lines
 from kit.xacro_projects import (
     LEAF,
     LEAF_MASS_LINE,
@@ -302,3 +303,31 @@ def test_fill_on_a_fragment_no_robot_includes(repo):
         f"note: arm_description/urdf/leaf.xacro: a xacro fragment no robot in {repo} "
         "(the git top level) includes; nothing to fill\n"
     )
+
+
+def test_a_fragment_that_breaks_its_robot_fails_with_the_error(repo, monkeypatch):
+    """The edit makes the fragment malformed: the robot that includes it cannot be expanded,
+    and the hook says so (exit 2) rather than finding nothing to lint."""
+    package = project(
+        repo, {"urdf/leaf.xacro": LEAF, "urdf/arm.urdf.xacro": robot("leaf.xacro", "a=1")}
+    )
+    age(repo)
+    assert lint("arm_description/urdf/leaf.xacro")[0] == 0  # the cache knows the robot
+    (package / "urdf" / "leaf.xacro").write_text(LEAF.replace("</xacro:macro>", ""))
+    for cache in ("warm", "off"):  # the robot's reads known from before the break, or not
+        if cache == "off":
+            monkeypatch.setenv("INERTIA_KIT_NO_CACHE", "1")
+        code, out, err = lint("arm_description/urdf/leaf.xacro")
+        assert (code, out) == (2, ""), err
+        assert "error: arm_description/urdf/leaf.xacro:" in err
+
+
+def test_a_plain_urdf_is_linted_without_scanning_the_repository(repo, monkeypatch):
+    project(repo, {"urdf/leaf.xacro": LEAF, "urdf/plain.urdf": robot_lines(link_lines("p", 1, 1))})
+
+    def no_graph(*args, **kwargs):
+        raise AssertionError("scanned the repository for a plain URDF")
+
+    monkeypatch.setattr("inertia_kit.lint.fragments.include_graph", no_graph)
+    code, _, err = lint("arm_description/urdf/plain.urdf")
+    assert (code, err) == (0, "No findings in 1 file.\n")
