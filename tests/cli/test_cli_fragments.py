@@ -331,3 +331,32 @@ def test_a_plain_urdf_is_linted_without_scanning_the_repository(repo, monkeypatc
     monkeypatch.setattr("inertia_kit.lint.fragments.include_graph", no_graph)
     code, _, err = lint("arm_description/urdf/plain.urdf")
     assert (code, err) == (0, "No findings in 1 file.\n")
+
+
+def test_fill_on_a_fragment_tells_the_refusals_of_its_links_only(repo):
+    """Links without geometry: the one the fragment's macro makes is refused for the fragment;
+    those written in the robot are the robot's business."""
+    bare = (
+        '<?xml version="1.0"?>\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:macro name="bare" params="name">\n    <link name="${name}"/>\n'
+        "  </xacro:macro>\n</robot>\n"
+    )
+    arm = robot("bare.xacro", "from_macro=1", "literal=1")
+    arm = arm.replace(
+        '<xacro:arm_link name="from_macro" mass="1"/>', '<xacro:bare name="from_macro"/>'
+    )
+    arm = arm.replace('<xacro:arm_link name="literal" mass="1"/>', '<link name="literal"/>')
+    project(repo, {"urdf/bare.xacro": bare, "urdf/arm.urdf.xacro": arm})
+    code, out, err = run(fill_main, "arm_description/urdf/bare.xacro")
+    assert (code, out) == (1, "")
+    refusals = [line for line in err.splitlines() if "not filled" in line]
+    assert refusals == [
+        "arm_description/urdf/arm.urdf.xacro: link `from_macro` not filled: it has no <visual> "
+        "or <collision> geometry to compute from: write its <inertial> by hand, or give it "
+        "geometry"
+    ]
+    # the robot itself: its base, the macro's link and its own
+    code, _, err = run(fill_main, "arm_description/urdf/arm.urdf.xacro")
+    assert code == 1
+    refused = [line.split("`")[1] for line in err.splitlines() if "not filled" in line]
+    assert refused == ["base", "from_macro", "literal"]
