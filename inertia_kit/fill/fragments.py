@@ -49,7 +49,6 @@ def fill_targets(
         xacro_args=xacro_args,
         package_paths=package_paths,
         xacro_limits=limits,
-        doing="fill",
     )
 
 
@@ -74,9 +73,7 @@ def cut(
             package_paths=package_paths,
             xacro_limits=xacro_limits,
         )
-    note = chosen.notes.get(target.robot)
-    if note is None and plan.fragment:
-        note = chosen.alone.get(target.robot)
+    note = chosen.note(target.robot, plan.fragment, "fill")
     if note is None:
         return plan
     kept = () if plan.fragment else plan.notes  # "a fragment without links" says less

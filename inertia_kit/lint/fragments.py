@@ -50,16 +50,31 @@ class Targets:
     What :func:`targets` gives: the ``targets`` in the order given (files linted as
     themselves, then the robots that include given files); ``fragments`` the given files
     robots include (real path → the file as given), for which a result of their own that says
-    "fragment" or "unreadable on its own" is dropped; ``notes`` a note per given file linted
-    through robots; ``alone`` the note for a given file no robot includes, told if it turns
-    out to be a fragment.
+    "fragment" or "unreadable on its own" is dropped; ``includers`` the robots (as told) that
+    include each given xacro file, ``repositories`` where they were looked for and why there.
     """
 
     targets: list[Target] = field(default_factory=list)
     fragments: dict[str, str] = field(default_factory=dict)
-    notes: dict[str, str] = field(default_factory=dict)  # file as given -> note
-    alone: dict[str, str] = field(default_factory=dict)
+    includers: dict[str, list[str]] = field(default_factory=dict)  # file as given -> robots
+    repositories: dict[str, tuple[Path, str]] = field(default_factory=dict)
     graphs: list[IncludeGraph] = field(default_factory=list)
+
+    def note(self, file: str, fragment: bool, doing: str = "lint") -> str | None:
+        """
+        What to tell of a given ``file`` (``fragment``: it makes no robot by itself): the robots
+        ``doing`` (``lint``, ``fill``) it, or, for a fragment, that none includes it.
+        """
+        robots = self.includers.get(file)
+        if robots:
+            also = "" if fragment else "also "
+            return f"{also}{doing}ed through the robots that include it: {', '.join(robots)}"
+        if fragment and file in self.repositories:
+            root, why = self.repositories[file]
+            return (
+                f"a xacro fragment no robot in {shown(root)} ({why}) includes; nothing to {doing}"
+            )
+        return None
 
     def read_by_robots(self, target: Target) -> bool:
         """Whether ``target`` is a given file that robots include (so they are its check)."""
@@ -94,13 +109,11 @@ def targets(
     package_paths: Sequence[str | Path] = (),
     xacro_limits: XacroLimits | None = None,
     cache_dir: str | Path | None = None,
-    doing: str = "lint",
 ) -> Targets:
     """
     The robots to lint (or fill) for ``paths`` (files and folders, walked as the linter walks
     them): each file as itself, and each robot of the repository that includes a given file
-    (and is not given itself) for the given files it includes. ``doing`` (``lint``, ``fill``)
-    is the verb of the notes.
+    (and is not given itself) for the given files it includes.
     """
     from inertia_kit.lint.runner import expand_paths
 
@@ -119,15 +132,12 @@ def targets(
                 xacro_limits=xacro_limits,
                 cache_dir=cache_dir,
             )
+        result.repositories[file] = (root, why)
         includers = graphs[root].includers(file)
         if not includers:
-            result.alone[file] = (
-                f"a xacro fragment no robot in {shown(root)} ({why}) includes; nothing to {doing}"
-            )
             continue
         result.fragments[real(file)] = file
-        names = ", ".join(shown(robot) for robot in includers)
-        result.notes[file] = f"{doing}ed through the robots that include it: {names}"
+        result.includers[file] = [shown(robot) for robot in includers]
         for robot in includers:
             if robot not in given:
                 through.setdefault(robot, []).append(file)

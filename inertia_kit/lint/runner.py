@@ -346,9 +346,7 @@ def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
         elif chosen.read_by_robots(target) and (result.fragment or result.error):
             result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
         if not target.changed:
-            note = chosen.notes.get(result.path) or (
-                chosen.alone.get(result.path) if result.fragment else None
-            )
+            note = chosen.note(result.path, result.fragment)
             result.remarks.extend([f"{result.path}: {note}"] if note else [])
         kept.append(result)
     return kept
