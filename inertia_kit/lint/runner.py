@@ -261,6 +261,11 @@ def lint_paths(
     the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
     environment's.
 
+    A given xacro file that robots of its repository include is also linted through them (each
+    robot with its own configuration), keeping their findings located in the given files
+    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, or unreadable on its
+    own, gives no result of its own but a note.
+
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
