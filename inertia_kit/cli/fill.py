@@ -141,6 +141,7 @@ def fill(
     """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
+    from inertia_kit.fill.fragments import cut, fill_targets
     from inertia_kit.fill.plan import plan_fill
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
     from inertia_kit.lint.config_files import ConfigFinder
@@ -173,21 +174,23 @@ def fill(
         "xacro_args": arguments,
         "total_mass": total_mass,
     }
-    for path in paths:
+    chosen = fill_targets(paths, output, arguments, package_paths, limits)
+    for target in chosen.targets:
+        path = target.robot
         with processing(path):
             try:
                 found = finder.for_file(path)
                 per_file = per_link(found.links, masses)
                 bounds = XacroLimits.resolve(found.xacro, limits)
-                plans.append(
-                    plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file)
-                )
+                plan = plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file)
+                plans.append(cut(plan, target, chosen, arguments, package_paths, bounds))
             except ConfigError as error:
                 click.echo(f"error: {error}", err=True)
                 return 2
             except InputError as error:
-                click.echo(f"error: {error}", err=True)
-                failed = True
+                if not chosen.read_by_robots(target):  # else: filled through its robots
+                    click.echo(f"error: {error}", err=True)
+                    failed = True
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, path)}", err=True)
                 failed = True
@@ -201,7 +204,7 @@ def fill(
     for plan in plans:
         with processing(plan.path):
             try:
-                outcome = _finish(plan, write, show_diff)
+                outcome = _finish(plan, write, show_diff, chosen.through(plan.path))
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, plan.path)}", err=True)
                 outcome = (False, False, True)
@@ -215,7 +218,9 @@ def fill(
     return 1 if changed or refused else 0
 
 
-def _finish(plan: Any, write: bool, show_diff: bool) -> tuple[bool, bool, bool]:
+def _finish(
+    plan: Any, write: bool, show_diff: bool, through: tuple[str, ...] = ()
+) -> tuple[bool, bool, bool]:
     """Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed."""
     from inertia_kit.errors import InputError
     from inertia_kit.fill.output import write_output
@@ -244,7 +249,7 @@ def _finish(plan: Any, write: bool, show_diff: bool) -> tuple[bool, bool, bool]:
             failed = True
         else:
             changed = bool(filled)
-            click.echo(_fill_line(plan, write), err=True)
+            click.echo(_fill_line(plan, write, through), err=True)
             for name, real in followed:
                 click.echo(
                     f"note: {name} is a symbolic link: the file it points to, {real}, "
@@ -258,12 +263,17 @@ def _finish(plan: Any, write: bool, show_diff: bool) -> tuple[bool, bool, bool]:
     return changed, bool(plan.refused), failed
 
 
-def _fill_line(plan: Any, write: bool) -> str:
-    """``Filled 2 links in robot.urdf: arm 1.2 kg, ...`` (``of IN into OUT`` for ``-o``)."""
+def _fill_line(plan: Any, write: bool, through: tuple[str, ...] = ()) -> str:
+    """
+    ``Filled 2 links in robot.urdf: arm 1.2 kg, ...`` (``of IN into OUT`` for ``-o``; ``in
+    wheels.xacro via robot.xacro`` for a robot filled for files it includes).
+    """
     filled = plan.changed_links
     where = (
         f"in {plan.path}" if plan.input_path is None else f"of {plan.input_path} into {plan.path}"
     )
+    if through:
+        where = f"in {', '.join(through)} via {plan.path}"
     if not filled:
         return f"Wrote {plan.path}: nothing to fill in {plan.input_path}"
     verb = "Filled" if write else "Would fill"

@@ -83,9 +83,12 @@ class Finding:
     # that produced it
     macro_path: str | None = field(default=None, compare=False)
     macro_line: int | None = field(default=None, compare=False)
+    # the robots that produced it, when it is reported for a given file they include (a xacro
+    # fragment handed over by a hook): the robot files, as told
+    via: tuple[str, ...] = field(default=(), compare=False)
 
     def to_json(self) -> dict[str, Any]:
-        return {
+        data = {
             "code": self.code,
             "name": self.name,
             "severity": str(self.severity),
@@ -102,6 +105,9 @@ class Finding:
             if self.macro_path is None
             else {"file": self.macro_path, "line": self.macro_line},
         }
+        if self.via:  # only then: a finding of a file linted as itself has none
+            data["via"] = list(self.via)
+        return data
 
 
 def severity_of(verdict: Verdict) -> Severity | None:

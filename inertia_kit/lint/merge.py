@@ -8,6 +8,7 @@ told once.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -42,14 +43,21 @@ def merge(results: Sequence[FileResult]) -> Merged:
     for result in results:
         if result.error:
             messages[("error", str(result.error))] = None
-        if result.fragment:
+        if result.fragment and not result.remarks:
             note = f"{result.path}: a xacro fragment (macros and properties only, to be included)"
             messages[("note", f"{note}: skipped")] = None
+        for text in result.remarks:
+            messages[("note", text)] = None
         for text in result.notes:
             messages[("warning", text)] = None
         for finding in result.findings:
             where = (finding.path, finding.line, finding.column, finding.code, finding.message)
-            findings.setdefault(where, finding)
+            first = findings.setdefault(where, finding)
+            if first is not finding and first.via != finding.via:
+                # several robots found it: all named; its own file, linted as itself: none
+                both = first.via and finding.via
+                via = tuple(dict.fromkeys(first.via + finding.via)) if both else ()
+                findings[where] = dataclasses.replace(first, via=via)
     return Merged(
         list(findings.values()),
         [result.error for result in results if result.error is not None],

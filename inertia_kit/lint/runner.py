@@ -179,6 +179,7 @@ class FileResult:
     # the suppression comments' use (lint.unused), to judge a fragment over all its robots
     uses: Any = None
     selection: Selection | None = None
+    remarks: list[str] = field(default_factory=list)  # told as notes (a fragment's robots)
 
     @property
     def failing(self) -> list[Finding]:
@@ -278,6 +279,11 @@ def lint_paths(
     the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
     environment's.
 
+    A given xacro file that robots of its repository include is also linted through them (each
+    robot with its own configuration), keeping their findings located in the given files
+    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, or unreadable on its
+    own, gives no result of its own but a note.
+
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
@@ -306,10 +312,12 @@ def lint_paths(
         except ValueError as error:
             raise ConfigError(f"--engine: {error}") from None
     finder = ConfigFinder(config)
-    plan = [(file, finder.for_file(file)) for file in expand_paths(paths)]
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits)
+    plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
-    for file, found in plan:
+    for target, found in plan:
+        file = target.robot
         try:
             result = lint_file(
                 file,
@@ -327,4 +335,43 @@ def lint_paths(
         result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
         results.append(result)
     unused.judge_shared(results)
-    return results
+    return _through_robots(results, chosen)
+
+
+def _targets(
+    paths: Iterable[str | Path],
+    xacro_args: Mapping[str, str] | None,
+    package_paths: Sequence[str | Path],
+    xacro_limits: Mapping[str, float] | None,
+) -> Any:
+    """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
+    from inertia_kit.lint.fragments import targets
+
+    return targets(
+        paths,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        xacro_limits=XacroLimits.resolve(None, xacro_limits),
+    )
+
+
+def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
+    """
+    The results with the given files robots include linted through them: a robot's findings
+    kept where they land in those files (saying `via` which robot), the given file's own
+    result dropped when it is a fragment or unreadable on its own (its robots read it), and a
+    note for each given file, saying which robots were linted for it or that none includes it.
+    """
+    from inertia_kit.lint.fragments import located
+
+    kept = []
+    for result, target in zip(results, chosen.targets, strict=True):
+        if target.changed:
+            result.findings = located(result.findings, target.robot, target.changed)
+        elif chosen.read_by_robots(target) and (result.fragment or result.error):
+            result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
+        if not target.changed:
+            note = chosen.note(result.path, result.fragment)
+            result.remarks.extend([f"{result.path}: {note}"] if note else [])
+        kept.append(result)
+    return kept

@@ -154,8 +154,9 @@ def test_folders_fragments_and_hidden_folders(here):
     assert run("--output-format", "concise", "robots", "robots/b.urdf") == (
         1,
         "robots/a/robot.urdf.xacro:2:29: IN098 l0: 20 kg\nrobots/b.urdf:2:29: IN097 l0: 0 kg\n",
-        "note: robots/a/macros.xacro: a xacro fragment (macros and properties only, to be "
-        "included): skipped\n"
+        # robots/.git makes robots/ the repository the fragment's robots are looked for in
+        "note: robots/a/macros.xacro: a xacro fragment no robot in robots (the git top level) "
+        "includes; nothing to lint\n"
         "Found 1 error, 1 warning in 2 files.\n",
     )
 
@@ -287,7 +288,7 @@ def test_suppression_notes_reach_stderr_once(here):
         "",
         "warning: p.xacro:3: inertia-lint comment ignored: `IN5` is no rule code, code prefix "
         "or rule name\n"
-        "note: p.xacro: a xacro fragment (macros and properties only, to be included): skipped\n"
+        "note: p.xacro: linted through the robots that include it: a.xacro, b.xacro\n"
         "No findings in 2 files.\n",
     )
 

@@ -12,6 +12,7 @@ git state.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import shutil
@@ -143,8 +144,9 @@ def hook_repo(tmp_path_factory):
 
 
 def _try_repo(
-    hook_repo, project: Path, hook_id: str = "inertia-lint"
+    hook_repo, project: Path, hook_id: str = "inertia-lint", files: tuple[str, ...] = ()
 ) -> subprocess.CompletedProcess:
+    """The hook on ``files`` (as a commit of them hands them over), else on every file."""
     snapshot, commit, env = hook_repo
     return subprocess.run(
         [
@@ -156,7 +158,7 @@ def _try_repo(
             hook_id,
             "--ref",
             commit,
-            "--all-files",
+            *(("--files", *files) if files else ("--all-files",)),
             "--color",
             "never",
         ],
@@ -265,3 +267,81 @@ def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
     assert done.returncode == 0, done.stderr
     assert done.stderr.strip() == str(unpacked / "inertia_kit" / "rule_docs")
     assert done.stdout == (snapshot / "rules" / "IN002-non-positive-mass.md").read_text()
+
+
+# --- a fragment edit: the robots that include it are linted (filled) --------------------------
+
+WHEELS = "my_robot_description/urdf/wheels.xacro"
+ROBOT = "my_robot_description/urdf/robot.xacro"
+
+
+def _wheeled(path: Path, edit) -> Path:
+    """A repository holding the seed wheeled robot, with ``edit`` applied to the text of the
+    `wheel` macro (the one the robot calls) in wheels.xacro."""
+    source = ROOT / "examples" / "my_robot_description"
+    files = {
+        f"my_robot_description/{p.relative_to(source)}": p.read_text()
+        for p in source.rglob("*")
+        if p.is_file()
+    }
+    text = files[WHEELS]
+    start = text.index('<xacro:macro name="wheel"')
+    end = text.index("</xacro:macro>", start)
+    files[WHEELS] = text[:start] + edit(text[start:end]) + text[end:]
+    return _project(path, {"pyproject.toml": CONFIG, **files})
+
+
+@pytest.mark.slow
+def test_try_repo_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
+    """`mass="-5"` in wheels.xacro, committed alone: the hook gets the fragment, lints the
+    robot that includes it, and reports the finding where the edit is."""
+    project = _wheeled(
+        tmp_path / "wheels",
+        lambda macro: macro.replace('<mass value="${wheel_mass}" />', '<mass value="-5" />'),
+    )
+    line = 1 + (project / WHEELS).read_text().split('<mass value="-5"')[0].count("\n")
+    done = _try_repo(hook_repo, project, files=(WHEELS,))
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert re.search(r"inertia-lint\.+Failed", output), output
+    for wheel in ("left", "right"):
+        assert (
+            f"{WHEELS}:{line}: IN002 [error] link `{wheel}_wheel_link`: mass = -5 kg is not "
+            "positive"
+        ) in output
+    assert f"(via {ROBOT})" in output
+    assert f"note: {WHEELS}: linted through the robots that include it: {ROBOT}" in output
+    assert "Found 2 errors in 1 file." in output
+
+
+@pytest.mark.slow
+def test_try_repo_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
+    """The wheel macro lost its <inertial>: the fill hook on wheels.xacro writes it there (and
+    nowhere else), fails so the change is reviewed, and passes on the next run."""
+
+    def drop_inertial(macro: str) -> str:
+        start = macro.index("<inertial>")
+        return macro[:start] + macro[macro.index("</inertial>") + len("</inertial>") :]
+
+    project = _wheeled(tmp_path / "fill-wheels", drop_inertial)
+    others = {p: p.read_bytes() for p in project.rglob("*.xacro") if p.name != "wheels.xacro"}
+    done = _try_repo(hook_repo, project, "inertia-fill", files=(WHEELS,))
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert "- files were modified by this hook" in output
+    # a solid cylinder, r = 0.05 m, l = 0.02 m (macros.xacro), at 1000 kg/m³
+    mass = f"{math.pi * 0.05**2 * 0.02 * 1000:.6g}"
+    assert (
+        f"Filled 2 links in {WHEELS} via {ROBOT}: left_wheel_link {mass} kg, "
+        f"right_wheel_link {mass} kg"
+    ) in output
+    filled = (project / WHEELS).read_text()
+    start = filled.index('<xacro:macro name="wheel"')
+    assert f'<mass value="{mass}"/>' in filled[start : filled.index("</xacro:macro>", start)]
+    assert {p: p.read_bytes() for p in others} == others
+
+    done = _try_repo(hook_repo, project, "inertia-fill", files=(WHEELS,))
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output
+    assert re.search(r"inertia-fill\.+Passed", output), output
+    assert (project / WHEELS).read_text() == filled

@@ -46,3 +46,16 @@ def test_unreadable_files_fragments_and_disabled_files_are_not_checked():
         ),
     ]
     assert (merged.failing, merged.checked) == (False, 1)  # an info is below fail-on warning
+
+
+def test_a_finding_several_robots_report_names_them_all_once():
+    import dataclasses
+
+    shared = finding("wheels.xacro", 9)
+    one = dataclasses.replace(shared, via=("a.xacro",))
+    two = dataclasses.replace(shared, via=("b.xacro",))
+    merged = merge([FileResult("a.xacro", [one]), FileResult("b.xacro", [two, one])])
+    assert [f.via for f in merged.findings] == [("a.xacro", "b.xacro")]
+    # the file linted as itself too: its own finding, told without `via`
+    merged = merge([FileResult("a.xacro", [one]), FileResult("wheels.xacro", [shared])])
+    assert [f.via for f in merged.findings] == [()]

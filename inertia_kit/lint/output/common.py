@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.findings import Finding, Severity
 
 COLOURS = {Severity.ERROR: "red", Severity.WARNING: "yellow", Severity.INFO: "blue"}
 
@@ -26,6 +26,13 @@ def plain(text: str, **_: Any) -> str:
 def location(path: str, line: int | None, column: int | None) -> str:
     """``path:line:col``, with what is known."""
     return ":".join(str(part) for part in (path, line, column) if part is not None)
+
+
+def message(finding: Finding) -> str:
+    """The finding's message, with the robots that produced it for a file they include."""
+    if not finding.via:
+        return finding.message
+    return f"{finding.message} (via {', '.join(finding.via)})"
 
 
 def dumps(value: Any) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from inertia_kit.lint.findings import Finding
-from inertia_kit.lint.output.common import COLOURS, Style, location
+from inertia_kit.lint.output.common import COLOURS, Style, location, message
 
 
 def render(findings: Sequence[Finding], style: Style) -> str:
@@ -15,4 +15,4 @@ def render(findings: Sequence[Finding], style: Style) -> str:
 def _line(finding: Finding, style: Style) -> str:
     where = style(location(finding.path, finding.line, finding.column), bold=True)
     code = style(finding.code, fg=COLOURS[finding.severity], bold=True)
-    return f"{where}: {code} {finding.message}"
+    return f"{where}: {code} {message(finding)}"

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding
-from inertia_kit.lint.output.common import COLOURS, Style, location
+from inertia_kit.lint.output.common import COLOURS, Style, location, message
 
 _TAG = re.compile(r"<[^\s/>]*")
 
@@ -67,7 +67,7 @@ def _block(finding: Finding, style: Style, sources: _Sources) -> str:
     header = (
         f"{style(location(finding.path, finding.line, finding.column), bold=True)}: "
         f"{style(finding.code, fg=colour, bold=True)} "
-        f"{style(f'[{finding.severity}]', fg=colour)} {finding.message}"
+        f"{style(f'[{finding.severity}]', fg=colour)} {message(finding)}"
     )
     lines = [header]
     snippets = [(finding.path, finding.line, finding.column)]

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import location
+from inertia_kit.lint.output.common import location, message
 
 _LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
@@ -32,7 +32,7 @@ def _command(finding: Finding) -> str:
             properties.append(("col", str(finding.column)))
     head = ",".join(f"{key}={_escape_property(value)}" for key, value in properties)
     where = location(finding.path, finding.line, finding.column)
-    message = f"{where}: {finding.code} {finding.message}"
+    text = f"{where}: {finding.code} {message(finding)}"
     if finding.help:
-        message += f"\nhelp: {finding.help}"
-    return f"::{_LEVELS[finding.severity]} {head}::{_escape_data(message)}"
+        text += f"\nhelp: {finding.help}"
+    return f"::{_LEVELS[finding.severity]} {head}::{_escape_data(text)}"

@@ -14,7 +14,7 @@ from urllib.parse import quote
 from inertia_kit.errors import InputError
 from inertia_kit.lint import catalog, documents
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import dumps, finite
+from inertia_kit.lint.output.common import dumps, finite, message
 from inertia_kit.version import __version__
 
 SCHEMA = (
@@ -70,7 +70,7 @@ def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[
             "ruleId": finding.code,
             "ruleIndex": index[finding.code],
             "level": _LEVELS[finding.severity],
-            "message": {"text": finding.message},
+            "message": {"text": message(finding)},
             "locations": [_physical(finding.path, finding.line, finding.column)],
         }
         if finding.macro_path is not None:
@@ -85,6 +85,7 @@ def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[
                 ("joint", finding.joint),
                 ("expected", finite(finding.expected)),
                 ("help", finding.help),
+                ("via", list(finding.via) or None),
             )
             if value is not None
         }

@@ -189,7 +189,13 @@ def test_a_comment_in_a_fragment_is_judged_over_every_robot_that_includes_it(tmp
     _, findings = lint(tmp_path)
     (finding,) = unused(findings)
     assert "in any of the 2 linted robots that include it" in finding["message"]
-    # the fragment alone is no robot: its comments are not judged
+    # the fragment given alone is linted through the robots that include it: judged over both
+    _, findings = lint(tmp_path / "parts.xacro")
+    (finding,) = unused(findings)
+    assert (finding["file"], finding["line"]) == (str(tmp_path / "parts.xacro"), 4)
+    # a fragment no robot includes is no robot: its comments are not judged
+    (tmp_path / "bad.urdf.xacro").unlink()
+    (tmp_path / "good.urdf.xacro").unlink()
     assert lint(tmp_path / "parts.xacro") == (0, [])
 
 

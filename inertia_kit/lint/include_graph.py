@@ -1,0 +1,171 @@
+"""
+Which robots of a repository read which files: the include graph that lets a hook lint the
+robots that include a changed xacro fragment.
+
+A repository's robot files are found by the folder walk ``inertia-lint`` does (``*.urdf``,
+``*.xacro``, hidden folders skipped). Each is classed by a cheap first pass on its text: a file
+that is no xacro at work, or names neither ``include`` nor ``load_yaml``, reads no other file,
+so it includes nothing and is not expanded. Every other file is expanded with xacro as the
+linter would expand it (the same ``--xacro-arg`` values and package paths; ``$(find pkg)``
+resolved by the package resolver), and the files the expansion read (the xacro sandbox records
+each one) are its includes, direct and indirect. A file whose expansion makes links is a robot;
+a fragment includes nobody's robot. A file xacro refuses counts as a robot that reads the file
+the error names (a fragment the change broke) and, if it was a robot before, what it read
+then: linted for those files, it reports the error.
+
+The first pass picks no robots by name: includes are often computed
+(``$(find ${pkg})/urdf/${name}.xacro``), so a file's text cannot say what it includes; the
+on-disk cache (:mod:`.include_cache`) keeps a warm run to one ``stat`` per file read.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import time
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from inertia_kit.lint.include_cache import Entry, Stamp, load_entries, save_entries, stamp
+
+if TYPE_CHECKING:
+    from inertia_kit.description.xacro_limits import XacroLimits
+
+# what a file that reads another file must name (xacro:include, xacro.load_yaml)
+_READS_OTHERS = re.compile(rb"include|load_yaml")
+
+
+@dataclass
+class IncludeGraph:
+    """
+    The robots of one repository (``root``) and the files each read, by real path.
+    ``scanned`` and ``reused`` count the files expanded in this run and taken from the cache.
+    """
+
+    root: Path
+    robots: dict[str, tuple[str, ...]] = field(default_factory=dict)
+    scanned: int = 0
+    reused: int = 0
+
+    def includers(self, file: str | Path) -> list[str]:
+        """The robots (real paths, sorted) that read ``file``, ``file`` itself left out."""
+        key = real(file)
+        return sorted(robot for robot, read in self.robots.items() if robot != key and key in read)
+
+
+def real(path: str | Path) -> str:
+    """The path a file is known by in the graph: absolute, symbolic links resolved."""
+    return os.path.realpath(os.path.abspath(path))
+
+
+def include_graph(
+    root: str | Path,
+    *,
+    xacro_args: Mapping[str, str] | None = None,
+    package_paths: Sequence[str | Path] = (),
+    xacro_limits: XacroLimits | None = None,
+    cache_dir: str | Path | None = None,
+) -> IncludeGraph:
+    """
+    The include graph of the repository at ``root``, from the cache where the files are as
+    they were (each robot file's size and mtime, and those of every file it read), re-scanned
+    where they are not; the cache is then brought up to date.
+    """
+    from inertia_kit.lint.runner import expand_paths
+
+    root = Path(real(root))
+    options = {
+        "args": dict(sorted((xacro_args or {}).items())),
+        "package_paths": [real(p) for p in package_paths],
+    }
+    cached = load_entries(root, options, cache_dir)
+    graph = IncludeGraph(root)
+    entries: dict[str, Entry] = {}
+    for file in expand_paths([root]):
+        key = real(file)
+        entry = cached.get(key)
+        if entry is not None and entry.current():
+            graph.reused += 1
+        else:
+            entry = _scan(key, xacro_args, package_paths, xacro_limits)
+            graph.scanned += 1
+        if entry is None:
+            continue  # vanished or unreadable between the walk and the scan
+        entries[key] = entry
+        if entry.kind == "error" and key in cached and cached[key].kind == "robot":
+            # a robot the change broke still reads what it read: linted for those files, it
+            # tells the error (the stale stamps have it scanned again next time)
+            entry = Entry("error", tuple(dict([*entry.reads, *cached[key].reads[1:]]).items()))
+        if entry.kind == "robot" or (entry.kind == "error" and len(entry.reads) > 1):
+            graph.robots[key] = tuple(read for read, _ in entry.reads)
+    storable = _storable(entries)
+    if storable != cached:
+        save_entries(root, options, storable, cache_dir)
+    return graph
+
+
+def _scan(
+    path: str,
+    xacro_args: Mapping[str, str] | None,
+    package_paths: Sequence[str | Path],
+    xacro_limits: XacroLimits | None,
+) -> Entry | None:
+    """What ``path`` is and reads, by its text and (for xacro that includes) its expansion."""
+    from inertia_kit.description.loader import needs_expansion
+    from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.xacro_expand import expand
+    from inertia_kit.errors import InputError
+
+    own = stamp(path)
+    if own is None:
+        return None
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read()
+    except OSError:
+        return None
+    if not (needs_expansion(data) and _READS_OTHERS.search(data)):
+        return Entry("plain", ((path, own),))
+    resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
+    try:
+        expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
+    except InputError as error:
+        # refused: a fragment that needs its robot's properties (the error is in the file
+        # itself: it includes nobody's robot), or a robot an included file breaks, which it
+        # then reads (linted for that file, it reports the error); scanned again when it changes
+        at_fault = () if error.path is None else _stamped((error.path,)) or ()
+        return Entry("error", tuple(dict([(path, own), *at_fault]).items()))
+    reads = _stamped((path, *expanded.files))  # the input first, each file once
+    if reads is None:
+        return None
+    return Entry("fragment" if expanded.fragment else "robot", reads)
+
+
+def _stamped(files: Iterable[str]) -> tuple[tuple[str, Stamp], ...] | None:
+    """Each file read, by real path, with its stamp; ``None`` if one is gone already."""
+    reads: dict[str, Stamp] = {}
+    for name in files:
+        key = real(name)
+        found = stamp(key)
+        if found is None:
+            return None
+        reads.setdefault(key, found)
+    return tuple(reads.items())
+
+
+def _storable(entries: Mapping[str, Entry]) -> dict[str, Entry]:
+    """
+    The entries worth keeping: not those with a file changed in the last two seconds, as a
+    second change within the file system's timestamp tick would leave its stamp as it is
+    (the mesh cache's rule, :data:`~inertia_kit.physics.mesh_cache.RACY_SECONDS`).
+    """
+    from inertia_kit.physics.mesh_cache import RACY_SECONDS
+
+    settled = time.time_ns() - RACY_SECONDS * 1e9
+    return {
+        key: entry
+        for key, entry in entries.items()
+        if all(found.mtime_ns < settled for _, found in entry.reads)
+    }
