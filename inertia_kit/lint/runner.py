@@ -24,6 +24,7 @@ from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError, InternalError
+from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -181,11 +182,15 @@ def lint_file(
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
     xacro_limits: XacroLimits | None = None,
+    mass_choice: MassChoice | None = None,
+    fixes: str = "all",
 ) -> FileResult:
     """
     Lint one file; an unreadable one gives a result with ``error`` set, not an exception.
     Suppression comments (in the file and every xacro file it includes) and the selection's
-    per-file ignores are applied.
+    per-file ignores are applied. The findings that remain carry their fixes
+    (:mod:`~inertia_kit.lint.fixing`; ``fixes``: ``all``, ``safe`` only, or ``none``), the
+    values from the geometry with ``mass_choice`` (default: 1000 kg/m³, declared masses kept).
     """
     from inertia_kit.description.loader import load
     from inertia_kit.lint.suppress import directives, suppressed
@@ -205,12 +210,36 @@ def lint_file(
         for found in map(directives, robot.files or (str(path),))
         for line, text in found.problems
     ]
+    analysis = analyse(robot) if load_mesh is None else analyse(robot, load_mesh)
     findings = [
         finding if finding.path else dataclasses.replace(finding, path=str(path))
-        for finding in lint_robot(robot, selection, load_mesh)
+        for finding in run_rules(analysis, selection)
     ]
     kept = [f for f in findings if not selection.ignored(f, path) and not suppressed(f)]
+    if fixes != "none" and any(f.wants is not None for f in kept):
+        kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
     return FileResult(str(path), kept, notes=notes)
+
+
+def _with_fixes(
+    path: str | Path,
+    analysis: RobotAnalysis,
+    findings: list[Finding],
+    choice: MassChoice,
+    safe_only: bool,
+) -> list[Finding]:
+    """The findings with their fixes, planned on the text of ``path`` as it is now."""
+    from inertia_kit.description.edits import read_source
+    from inertia_kit.fixes.files import Files
+    from inertia_kit.lint.fixing import attach, plan_fixes
+
+    files = Files.for_input(path)
+    try:
+        files.add(read_source(path))
+    except InputError:
+        return findings  # not editable as text (an odd encoding): findings without fixes
+    planned = plan_fixes(analysis, findings, choice, files, safe_only=safe_only)
+    return attach(findings, planned, files)
 
 
 def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -13,6 +13,9 @@ CODE = "IN002"
 NAME = "non-positive-mass"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the <inertial> with its geometry's"
+)
 SUMMARY = "`<mass value>` is zero or negative"
 
 
