@@ -24,7 +24,7 @@ from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError, InternalError
-from inertia_kit.fixes.masses import MassChoice
+from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -53,6 +53,14 @@ class Selection:
     per_file_ignores: tuple[PerFileIgnore, ...] = ()
     # engines whose rules (IN07x, modules with an ENGINE) run: they never run by ``select``
     engines: tuple[str, ...] = ()
+    # rules whose fixes are offered (configuration's ``fixable``/``unfixable``)
+    fixable: tuple[str, ...] = DEFAULT_SELECT
+    unfixable: tuple[str, ...] = ()
+
+    def offers_fix(self, finding: Finding) -> bool:
+        return catalog.selects(self.fixable, finding.code, finding.name) and not catalog.selects(
+            self.unfixable, finding.code, finding.name
+        )
 
     @staticmethod
     def matches(rule: ModuleType, patterns: Iterable[str]) -> bool:
@@ -105,6 +113,8 @@ def selection_for(
         config.severities,
         config.per_file_ignores,
         config.engines if engines is None else tuple(engines),
+        DEFAULT_SELECT if config.fixable is None else config.fixable,
+        config.unfixable,
     )
 
 
@@ -168,6 +178,9 @@ class FileResult:
     notes: list[str] = field(default_factory=list)
     fail_on: Severity = DEFAULT_FAIL_ON
     disabled: bool = False  # by `<!-- inertia-lint: disable-file -->`
+    fixed: int = 0  # findings whose fix ``--fix`` applied
+    diff: str = ""  # ``--diff``: the unified diff of the fixes
+    unsafe_fixes: bool = False  # whether unsafe fixes are applicable here
 
     @property
     def failing(self) -> list[Finding]:
@@ -215,7 +228,11 @@ def lint_file(
         finding if finding.path else dataclasses.replace(finding, path=str(path))
         for finding in run_rules(analysis, selection)
     ]
-    kept = [f for f in findings if not selection.ignored(f, path) and not suppressed(f)]
+    kept = [
+        f if f.wants is None or selection.offers_fix(f) else dataclasses.replace(f, wants=None)
+        for f in findings
+        if not selection.ignored(f, path) and not suppressed(f)
+    ]
     if fixes != "none" and any(f.wants is not None for f in kept):
         kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
     return FileResult(str(path), kept, notes=notes)
@@ -281,6 +298,9 @@ def lint_paths(
     engines: Sequence[str] | None = None,
     xacro_limits: Mapping[str, float] | None = None,
     on_error: Callable[[Path, Exception], FileResult] | None = None,
+    fix: bool | None = None,
+    unsafe_fixes: bool | None = None,
+    diff: bool = False,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -294,6 +314,10 @@ def lint_paths(
     ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
     (a bug: the command line reports it for that file and lints the others); without it, the
     exception propagates.
+
+    ``fix`` (``--fix``; ``None``: the configured ``fix``) applies the fixes
+    (:mod:`~inertia_kit.lint.applying`), safe ones, and unsafe ones with ``unsafe_fixes``
+    (``None``: the configured ``unsafe-fixes``); ``diff`` computes them without writing.
     """
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.config_files import ConfigFinder
@@ -320,15 +344,36 @@ def lint_paths(
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
     for file, found in plan:
-        try:
-            result = lint_file(
+        unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
+        fixing = diff or bool(found.fix if fix is None else fix)
+        choice = MassChoice.checked(
+            DEFAULT_DENSITY,
+            {n: v.mass for n, v in found.links.items() if v.mass is not None},
+            {n: v.density for n, v in found.links.items() if v.density is not None},
+        )
+
+        def once(file=file, found=found, choice=choice, unsafe=unsafe, fixing=fixing):
+            return lint_file(
                 file,
                 selection_for(found, select, ignore, engines),
                 xacro_args=xacro_args,
                 package_paths=package_paths,
                 load_mesh=load_mesh,
                 xacro_limits=limits[found.path],
+                mass_choice=choice,
+                fixes="safe" if fixing and not unsafe else "all",
             )
+
+        try:
+            if fixing:
+                from inertia_kit.lint.applying import fix_file
+
+                outcome = fix_file(once, unsafe, write=not diff)
+                result = outcome.result
+                result.fixed, result.diff = outcome.fixed, outcome.diff
+            else:
+                result = once()
+            result.unsafe_fixes = unsafe
         except Exception as error:
             if on_error is None:
                 raise

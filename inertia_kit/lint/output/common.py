@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.findings import Finding, Severity
 
 COLOURS = {Severity.ERROR: "red", Severity.WARNING: "yellow", Severity.INFO: "blue"}
 
@@ -41,3 +41,10 @@ def finite(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return [finite(item) for item in value]
     return value
+
+
+def fix_mark(finding: Finding, unsafe_fixes: bool) -> str:
+    """``"[*] "`` for a finding whose fix ``--fix`` applies (ruff's mark), else nothing."""
+    from inertia_kit.lint.applying import applicable
+
+    return "[*] " if applicable(finding, unsafe_fixes) else ""
