@@ -271,3 +271,31 @@ def _edit_place(edit: Edit, files: Files) -> EditPlace | None:
 
     start, end = line_column(edit.start), line_column(edit.end)
     return EditPlace(*start, *end, byte(edit.start), byte(edit.end))
+
+
+def fixing_rules() -> list:
+    """The rules that offer fixes or withhold them (``FIX``, ``SPOILS_GEOMETRY``); no engine's."""
+    return [
+        rule
+        for rule in catalog.RULES
+        if catalog.engine(rule) is None
+        and (hasattr(rule, "FIX") or getattr(rule, "SPOILS_GEOMETRY", False))
+    ]
+
+
+def robot_fixes(
+    analysis: RobotAnalysis,
+    choice: MassChoice,
+    files: Files,
+    *,
+    repairs: Collection[Repairs] | None = None,
+    asked: Collection[str] = (),
+    recompute: bool = False,
+) -> RobotFixes:
+    """Run :func:`fixing_rules` (default options) on ``analysis`` and plan their fixes."""
+    from inertia_kit.lint.runner import Selection, run_rules
+
+    findings = run_rules(analysis, Selection(), fixing_rules())
+    return plan_fixes(
+        analysis, findings, choice, files, repairs=repairs, asked=asked, recompute=recompute
+    )
