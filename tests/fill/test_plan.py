@@ -324,7 +324,8 @@ def test_diff_and_check_write_nothing(tmp_path: Path):
     path.write_text(ARM_FILLED)
     for flag in ("--diff", "--check"):
         result = CliRunner().invoke(fill_command, [flag, str(path)])
-        assert (result.exit_code, result.stdout, result.stderr) == (0, "", "inertia-fill: 1 file checked, nothing to change\n")
+        nothing = "inertia-fill: 1 file checked, nothing to change\n"
+        assert (result.exit_code, result.stdout, result.stderr) == (0, "", nothing)
 
 
 def test_read_only_file_is_an_error_and_untouched(tmp_path: Path):
