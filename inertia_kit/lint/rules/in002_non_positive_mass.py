@@ -39,4 +39,6 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         expected=expected,
         help="give the link's real mass in kg (weigh it, or run `inertia-fill --fix invalid`); "
         "a massless frame belongs on a link with no <inertial> at all",
+        # a moving link without a usable mass needs one (`inertia-fill` fills it by default)
+        repairs=Repairs.MISSING if link.moves else None,
     )

@@ -171,6 +171,10 @@ def _location(invalid: model.Invalid) -> tuple:
     return (site.path, site.line, site.column)
 
 
+def _moving(robot: RobotAnalysis) -> set[str]:
+    return {link.name for link in robot.links if link.moves}
+
+
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     places = _places(robot.robot)
     # one finding per location: attributes of one element (or of one xacro macro call) together
@@ -193,6 +197,9 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         first = places.get(id(invalids[0]), Place(""))
         # a fix from the geometry replaces the <inertial>: only a bad value in it is fixed
         fixable = first.element.startswith(("<inertial", "<mass", "<inertia "))
+        # a moving link whose mass is not a number has none: it needs one (`--fix missing`)
+        moving = first.link is not None and first.link in _moving(robot)
+        repairs = Repairs.MISSING if moving and first.element == "<mass value>" else None
         if not pybullet:
             # every value reads as a number, one no robot has and no arithmetic keeps
             yield ctx.finding(
@@ -205,6 +212,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 link=first.link,
                 joint=first.joint,
                 fixable=fixable,
+                repairs=repairs,
                 help="write the value in SI units (kg, m, kg·m²), and a value meant to be zero "
                 "as 0; in xacro, check the expression or property that produced it",
             )
@@ -221,6 +229,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             link=first.link,
             joint=first.joint,
             fixable=fixable,
+            repairs=repairs,
             help="write a plain decimal number (`0.5`, `1e-3`: a dot for the decimal point, "
             "spaces between the three values of a vector, no units); in xacro, check the "
             "expression or property that produced it",
