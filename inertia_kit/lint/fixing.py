@@ -214,17 +214,17 @@ def _advice(link: LinkAnalysis, analysis: RobotAnalysis) -> str:
     """What to do with values that found no place: right for every link a shared macro makes."""
     from inertia_kit.fixes.files import key
 
-    inertial = link.link.inertial
-    if inertial is not None and inertial.source.calls:
-        here = key(inertial.source)
-        sharers = [
-            other.name
-            for other in analysis.links
-            if other.link.inertial is not None and key(other.link.inertial.source) == here
-        ]
+    def written(other: LinkAnalysis):
+        inertial = other.link.inertial
+        return other.link.source if inertial is None else inertial.source
+
+    where = written(link)
+    if where.calls:
+        what = "<link>" if link.link.inertial is None else "<inertial>"
+        sharers = [other.name for other in analysis.links if key(written(other)) == key(where)]
         if len(sharers) > 1:
             return (
-                f"that <inertial> is written once for {len(sharers)} links, so pasting one "
+                f"that {what} is written once for {len(sharers)} links, so pasting one "
                 "link's values there would be wrong for the others: make the macro take the "
                 "values as parameters and pass each link's at its call (this link's below)"
             )
