@@ -35,7 +35,7 @@ def copy_mrm(tmp_path: Path, name: str = "mrm") -> Path:
     return Path(shutil.copytree(EXAMPLES / "mrm_description", tmp_path / name))
 
 
-# --- safe fixes: the mrm arm's tensors about the joint ------------------------------------------
+# --- safe fixes: the mrm arm's tensors about the joint --------------------------------------------
 
 CALL = re.compile(
     r'origin_xyz="0 0 (?P<z>[0-9.]+)"\s+mass="(?P<mass>[0-9.]+)"\s+'
@@ -97,7 +97,7 @@ def test_diff_prints_the_fixes_and_writes_nothing(tmp_path: Path):
     assert lint("--diff", str(folder / "urdf" / "mrm.xacro"))[:2] == (0, "")
 
 
-# --- unsafe fixes: a moving link without mass ---------------------------------------------------
+# --- unsafe fixes: a moving link without mass -----------------------------------------------------
 
 ARM = moving(collision(box(0.2, 0.1, 0.05)))
 
@@ -213,7 +213,7 @@ def test_wheels_of_different_sizes_are_not_fixed_in_the_shared_body(tmp_path: Pa
         assert "would be wrong for the others" in finding["unfixable"]
 
 
-# --- JSON and SARIF ---------------------------------------------------------------------------
+# --- JSON and SARIF -------------------------------------------------------------------------------
 
 
 def test_json_fix_edits_have_lines_columns_and_byte_ranges(tmp_path: Path):
