@@ -67,6 +67,6 @@ def merge(results: Sequence[FileResult]) -> Merged:
             1
             for result in results
             for finding in result.findings
-            if result.path and hidden(finding, result.unsafe_fixes)
+            if hidden(finding, result.unsafe_fixes)
         ),
     )
