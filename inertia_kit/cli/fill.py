@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import textwrap
+from pathlib import Path
 from typing import Any
 
 import click
@@ -42,6 +43,14 @@ from inertia_kit.version import __version__
     help="A link's mass, kg; its tensor is scaled to it (repeatable).",
 )
 @click.option(
+    "--link",
+    "link_options",
+    multiple=True,
+    metavar="NAME",
+    help="Fix this link from its geometry whatever --fix says, e.g. a helper link welded to a "
+    "body with mass, which no mode fills (repeatable).",
+)
+@click.option(
     "--total-mass",
     type=SCALE,
     default=None,
@@ -63,8 +72,10 @@ from inertia_kit.version import __version__
     type=click.Choice(["missing", "invalid", "all"]),
     default="missing",
     show_default=True,
-    help="missing: links that need an <inertial> and have none; invalid: also replace "
-    "impossible ones (a valid declared mass is kept); all: every link with geometry.",
+    help="missing: links that need a mass (moving links, bodies that would be massless); "
+    "invalid: also impossible <inertial>s and recognised slips (a valid declared mass is "
+    "kept); all: also recompute every link that has an <inertial> and geometry. Frames and "
+    "helper links welded to a body with mass are only filled when named (--link, --mass).",
 )
 @click.option("--diff", "show_diff", is_flag=True, help="Print a unified diff; write nothing.")
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 if a file would change.")
@@ -90,7 +101,11 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
     and line endings are kept.
 
     \b
-    Exit codes: 0 nothing to do; 1 a file was (or would be) changed, or a link was refused;
+    PATHS are files or folders (their *.urdf and *.xacro files, as inertia-lint walks them).
+
+    \b
+    Exit codes: 0 nothing to do; 1 a file was (or would be) changed, or a link asked for
+    (by --fix or by name) was not fixed (listed with the reason);
     2 unreadable input or bad usage. With -o: 1 when links were (or would be) filled into OUT
     or refused, 0 when none needed filling (OUT is written all the same).
     \b
@@ -128,6 +143,7 @@ def fill(
     density: float | None = None,
     material: str | None = None,
     mass_options: tuple[str, ...] = (),
+    link_options: tuple[str, ...] = (),
     total_mass: float | None = None,
     config_path: str | None = None,
     fix: str = "missing",
@@ -148,9 +164,9 @@ def fill(
 
     try:
         if not paths:
-            raise UsageError("give URDF files to fill")
-        if output is not None and len(paths) != 1:
-            raise UsageError(f"-o takes exactly one PATH, got {len(paths)}")
+            raise UsageError("give URDF files or folders to fill")
+        if output is not None and (len(paths) != 1 or Path(paths[0]).is_dir()):
+            raise UsageError(f"-o takes exactly one file PATH, got {', '.join(paths)}")
         arguments = parse_xacro_args(xacro_args)
         limits = parse_xacro_limits(xacro_limits)
         try:
@@ -182,7 +198,14 @@ def fill(
                 found = finder.for_file(path)
                 per_file = per_link(found.links, masses)
                 bounds = XacroLimits.resolve(found.xacro, limits)
-                plan = plan_fill(path, output=output, xacro_limits=bounds, **options, **per_file)
+                plan = plan_fill(
+                    path,
+                    output=output,
+                    xacro_limits=bounds,
+                    links=link_options,
+                    **options,
+                    **per_file,
+                )
                 plans.append(cut(plan, target, chosen, arguments, package_paths, bounds))
             except ConfigError as error:
                 click.echo(f"error: {error}", err=True)
@@ -194,9 +217,11 @@ def fill(
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, path)}", err=True)
                 failed = True
-    unknown = unknown_links(masses, plans)
+    unknown = unknown_links([*masses, *link_options], plans)
     if unknown:
-        click.echo(f"error: --mass names no link in the files: {', '.join(unknown)}", err=True)
+        click.echo(
+            f"error: --mass/--link name no link in the files: {', '.join(unknown)}", err=True
+        )
         return 2
 
     write = not (show_diff or check)
@@ -212,6 +237,12 @@ def fill(
             changed or outcome[0],
             refused or outcome[1],
             failed or outcome[2],
+        )
+    if not changed and not refused:
+        checked = len(plans)
+        click.echo(
+            f"inertia-fill: {checked} file{'s' if checked != 1 else ''} checked, nothing to change",
+            err=True,
         )
     if failed:
         return 2

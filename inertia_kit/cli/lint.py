@@ -83,6 +83,27 @@ def _colour() -> bool | None:
     help="Exit 0 even with findings (unreadable input or bad configuration still exit 2).",
 )
 @click.option(
+    "--fix/--no-fix",
+    "fix",
+    default=None,
+    help="Apply the safe fixes (a recognised slip undone), lint again until none applies, and "
+    "report what remains [default: fix in the configuration, else no].",
+)
+@click.option(
+    "--unsafe-fixes/--no-unsafe-fixes",
+    "unsafe_fixes",
+    default=None,
+    help="Also the unsafe ones (values from the geometry at an assumed uniform density): "
+    "applied with --fix or --diff, else shown as available [default: unsafe-fixes in the "
+    "configuration, else no].",
+)
+@click.option(
+    "--diff",
+    "show_diff",
+    is_flag=True,
+    help="Print the fixes as a unified diff and write nothing; exit 1 when there is a diff.",
+)
+@click.option(
     "--statistics", is_flag=True, help="Print how often each rule fired instead of the findings."
 )
 @click.option(
@@ -114,13 +135,14 @@ def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
     *.urdf and *.xacro files; xacro fragments that only define macros are skipped).
 
     \b
-    Exit codes: 0 no findings at or above --fail-on; 1 findings; 2 unreadable input,
-    bad configuration or usage.
+    Exit codes: 0 no findings at or above --fail-on (after --fix: none remaining); 1
+    findings (--diff: a diff); 2 unreadable input, bad configuration or usage.
     \b
     Examples:
       inertia-lint urdf/
       inertia-lint --select IN01,IN020 --output-format concise robot.urdf.xacro
       inertia-lint --engine mujoco,gazebo robot.urdf
+      inertia-lint --fix --unsafe-fixes urdf/
       inertia-lint --explain IN002
     """
     ctx.exit(lint(paths, **options))
@@ -142,6 +164,9 @@ def lint(
     xacro_limits: tuple[str, ...] = (),
     explain: str | None = None,
     add_noqa: bool = False,
+    fix: bool | None = None,
+    unsafe_fixes: bool | None = None,
+    show_diff: bool = False,
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
     if explain is not None:
@@ -158,12 +183,14 @@ def lint(
         return 2
 
     from inertia_kit.errors import ConfigError, InternalError
+    from inertia_kit.lint.applying import applicable
     from inertia_kit.lint.findings import Severity
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
     from inertia_kit.lint.output.summary import summary
-    from inertia_kit.lint.runner import FileResult, lint_paths
+    from inertia_kit.lint.paths import lint_paths
+    from inertia_kit.lint.runner import FileResult
 
     def crashed(file: Path, error: Exception) -> FileResult:
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
@@ -181,6 +208,9 @@ def lint(
             package_paths=package_paths,
             xacro_limits=parse_xacro_limits(xacro_limits),
             on_error=crashed,
+            fix=fix,
+            unsafe_fixes=unsafe_fixes,
+            diff=show_diff,
         )
 
     try:
@@ -201,13 +231,34 @@ def lint(
         click.echo(
             f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}", err=True
         )
-    if statistics:
+    unsafe = any(result.unsafe_fixes for result in results)
+    if show_diff:
+        # as ruff: the diff on stdout, instead of the findings
+        click.echo(run.diff, nl=False)
+    elif statistics:
         output = rule_statistics(run.findings, as_json=output_format == "json")
+        click.echo(output, nl=False, color=_colour())
     else:
-        output = render(run.findings, output_format, errors=run.errors, style=click.style)
-    click.echo(output, nl=False, color=_colour())
+        output = render(
+            run.findings, output_format, errors=run.errors, style=click.style, unsafe_fixes=unsafe
+        )
+        click.echo(output, nl=False, color=_colour())
     crashes = sum(isinstance(error, InternalError) for error in run.errors)
-    click.echo(summary(run.findings, run.checked, len(run.errors) - crashes, crashes), err=True)
+    fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
+    click.echo(
+        summary(
+            run.findings,
+            run.checked,
+            len(run.errors) - crashes,
+            crashes,
+            fixed=run.fixed,
+            fixable=fixable,
+            hidden=0 if show_diff else run.hidden,
+        ),
+        err=True,
+    )
     if run.errors:
         return 2
+    if show_diff:
+        return 1 if run.diff else 0
     return 1 if run.failing and not exit_zero else 0

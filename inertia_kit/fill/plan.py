@@ -3,10 +3,11 @@
 on the original bytes (every byte outside the edited spans stays as it was), then write them
 atomically.
 
-A plan is made in three steps: :mod:`~inertia_kit.fill.policy` chooses the links and their
-values, :mod:`~inertia_kit.fixes.sites` finds where each link's values are written (in xacro,
-perhaps a macro body or a macro call) and the edits there, and :class:`FillPlan` holds the
-result: the edits, the refusals with their reasons, the diff. For ``-o OUT``,
+A plan is the fixes of the rules (:mod:`~inertia_kit.lint.fixing`, the path ``inertia-lint
+--fix`` takes) that :mod:`~inertia_kit.fill.policy` selects by what they repair, with fill's
+mass inputs: the values, the edits where :mod:`~inertia_kit.fixes.sites` places them (in xacro,
+perhaps a macro body or a macro call), and the links refused with their reasons.
+:class:`FillPlan` holds the result: the edits, the refusals, the diff. For ``-o OUT``,
 :mod:`~inertia_kit.fill.output` says what is filled and writes it.
 """
 
@@ -21,7 +22,8 @@ from typing import TYPE_CHECKING
 from inertia_kit.description.edits import Edit
 from inertia_kit.errors import InputError
 from inertia_kit.fill.output import output_source
-from inertia_kit.fill.policy import MassChoice, check_fix, choose
+from inertia_kit.fill.policy import REPAIRS, check_fix
+from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
@@ -160,6 +162,7 @@ def plan_fill(
     total_mass: float | None = None,
     output: str | Path | None = None,
     xacro_limits: XacroLimits | None = None,
+    links: Sequence[str] = (),
 ) -> FillPlan:
     """
     Plan the ``<inertial>`` edits for one file (nothing is written).
@@ -184,6 +187,8 @@ def plan_fill(
       ``path`` is ``output``, its ``input_path`` is ``path``.
     xacro_limits : XacroLimits, optional
       The limits of a xacro expansion (:func:`~inertia_kit.description.loader.load`).
+    links : sequence of str
+      Links to fix from the geometry in any mode (``--link``; ``--mass`` names them too).
 
     Raises
     ------
@@ -201,12 +206,14 @@ def plan_fill(
     path = Path(path)
     if output is not None:
         source, robot = output_source(path, Path(output), package_paths, xacro_args, xacro_limits)
-        return plan_robot(str(output), source, robot, choice, fix=fix, input_path=str(path))
+        return plan_robot(
+            str(output), source, robot, choice, fix=fix, input_path=str(path), asked=links
+        )
     source = read_source(path)
     robot = load(
         path, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
     )
-    return plan_robot(str(path), source, robot, choice, fix=fix)
+    return plan_robot(str(path), source, robot, choice, fix=fix, asked=links)
 
 
 def plan_robot(
@@ -217,10 +224,12 @@ def plan_robot(
     *,
     fix: str,
     input_path: str | None = None,
+    asked: Sequence[str] = (),
 ) -> FillPlan:
     """The fill plan of ``robot``, whose elements are written literally in ``source``."""
     from inertia_kit.analysis.links import analyse
-    from inertia_kit.fixes.sites import Files, place
+    from inertia_kit.fixes.sites import Files
+    from inertia_kit.lint.fixing import robot_fixes
 
     names = frozenset(link.name for link in robot.links)
     if robot.fragment:
@@ -232,28 +241,25 @@ def plan_robot(
             input_path=input_path,
         )
     analysis = analyse(robot)
-    choices = choose(analysis, choice, fix)
-    refused = [Refusal(name, reason) for name, reason in choices.refused]
     files = Files.for_input(source.path)
     files.add(source)
-    placements = place(choices.targets, analysis.links, files)
+    fixes = robot_fixes(
+        analysis,
+        choice,
+        files,
+        repairs=REPAIRS[fix],
+        asked=(*asked, *choice.masses),
+        recompute=fix == "all",
+    )
     fills: list[LinkFill] = []
-    for target in choices.targets:
-        placement = placements[target.name]
-        if placement.problem is not None:
-            refused.append(
-                Refusal(
-                    target.name,
-                    f"{placement.problem}; paste the block below there, or make the macro "
-                    "take the values as parameters",
-                    _paste_block(target.properties),
-                )
-            )
+    refused: list[Refusal] = []
+    for name, found in fixes.links.items():
+        if found.reason is not None or found.target is None:
+            refused.append(Refusal(name, found.reason or "no values", found.block))
             continue
-        replaced = target.link.link.inertial is not None
-        fills.append(
-            LinkFill(target.name, target.properties, target.basis, replaced, placement.edits)
-        )
+        replaced = found.target.link.link.inertial is not None
+        target = found.target
+        fills.append(LinkFill(name, target.properties, target.basis, replaced, found.edits))
     main = str(Path(source.path).resolve())
     others = tuple(s for p, s in files.sources.items() if p != main)
     return FillPlan(
@@ -261,17 +267,11 @@ def plan_robot(
         source,
         tuple(fills),
         tuple(refused),
-        tuple(choices.notes),
+        tuple(fixes.notes),
         links=names,
         input_path=input_path,
         others=others,
     )
-
-
-def _paste_block(properties: MassProperties) -> str:
-    from inertia_kit.description.inertial_xml import inertial_block
-
-    return inertial_block(properties, indent="  ", level=0)
 
 
 def apply(plan: FillPlan) -> bool:

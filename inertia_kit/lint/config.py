@@ -18,6 +18,10 @@ and the key (the command exits 2).
     fail-on = "warning"               # error | warning | info
     engines = ["mujoco"]              # verdict rules (IN07x) of: mujoco gazebo drake pybullet
                                       # kdl, or "all"; none by default
+    fix = false                       # inertia-lint applies safe fixes (as --fix)
+    unsafe-fixes = false              # ... and unsafe ones (as --unsafe-fixes)
+    fixable = ["IN0"]                 # rules whose fixes may be applied (default: all)
+    unfixable = ["IN021"]             # rules whose fixes are never applied
     [tool.inertia-kit.per-file-ignores]
     "urdf/legacy/*.xacro" = ["IN02"]  # globs relative to this file's folder; no "/": any folder
     [tool.inertia-kit.rules.IN012]    # a code or a rule name
@@ -58,6 +62,10 @@ KEYS = (
     "rules",
     "links",
     "xacro",
+    "fix",
+    "unsafe-fixes",
+    "fixable",
+    "unfixable",
 )
 LINK_KEYS = ("density", "mass")
 
@@ -114,6 +122,10 @@ class Config:
     links: dict[str, LinkSettings] = field(default_factory=dict)
     engines: tuple[str, ...] = ()  # engines whose verdict rules run (IN07x)
     xacro: dict[str, float] = field(default_factory=dict)  # xacro limits set here: name -> value
+    fix: bool | None = None  # apply safe fixes (``--fix``)
+    unsafe_fixes: bool | None = None  # also unsafe ones (``--unsafe-fixes``)
+    fixable: tuple[str, ...] | None = None  # rules whose fixes may be applied (None: all)
+    unfixable: tuple[str, ...] = ()  # rules whose fixes are never applied
 
 
 # --- validation -------------------------------------------------------------------------------
@@ -158,6 +170,10 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
         links=_links(where, table.get("links", {})),
         engines=where.engines(table.get("engines", []), "engines"),
         xacro=_xacro_limits(where, table.get("xacro", {})),
+        fix=where.flag(table.get("fix"), "fix"),
+        unsafe_fixes=where.flag(table.get("unsafe-fixes"), "unsafe-fixes"),
+        fixable=where.selectors(table["fixable"], "fixable", known) if "fixable" in table else None,
+        unfixable=where.selectors(table.get("unfixable", []), "unfixable", known),
     )
 
 
@@ -278,6 +294,11 @@ class _Where:
             return parse_engines(value)
         except ValueError as error:
             self.fail(key, str(error))
+
+    def flag(self, value: Any, key: str) -> bool | None:
+        if value is not None and not isinstance(value, bool):
+            self.fail(key, f"expected true or false, got {_shown(value)}")
+        return value
 
     def severity(self, value: Any, key: str) -> Severity:
         try:

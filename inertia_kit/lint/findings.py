@@ -39,21 +39,75 @@ class Safety(enum.Enum):
         return self.value
 
 
+class Repairs(enum.Enum):
+    """
+    What a rule's fix repairs, which ``inertia-fill --fix MODE`` selects by: ``missing`` (a
+    link that needs a mass), ``impossible`` (values no rigid body has), ``slip`` (a recognised
+    slip, undone), ``doubtful`` (values that may be wrong; only ``--fix all`` takes these).
+    """
+
+    MISSING = "missing"
+    IMPOSSIBLE = "impossible"
+    SLIP = "slip"
+    DOUBTFUL = "doubtful"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass(frozen=True)
+class FixRule:
+    """
+    A rule's fix (its module's ``FIX``): ``how`` the values are found (``geometry``: the
+    geometry's at uniform density, a declared finite positive mass kept; ``slip``: the
+    declared values with the slip undone; ``com``: the geometry's centre of mass), its
+    ``safety``, what it ``repairs``, and its ``title``.
+    """
+
+    how: str
+    safety: Safety
+    repairs: Repairs
+    title: str
+
+
+@dataclass(frozen=True)
+class EditPlace:
+    """Where an edit stands in its file: 1-based lines and columns, and byte offsets."""
+
+    start_line: int
+    start_column: int
+    end_line: int
+    end_column: int
+    start_byte: int
+    end_byte: int
+
+
 @dataclass(frozen=True)
 class Fix:
     title: str
     edits: tuple[Edit, ...]
     safety: Safety = Safety.UNSAFE
+    places: tuple[EditPlace | None, ...] = ()  # one per edit, when known
 
     def to_json(self) -> dict[str, Any]:
+        places = self.places or (None,) * len(self.edits)
         return {
             "title": self.title,
             "safety": str(self.safety),
-            "edits": [
-                {"path": e.path, "start": e.start, "end": e.end, "content": e.content}
-                for e in self.edits
-            ],
+            "applicability": str(self.safety),
+            "edits": [_edit_json(e, p) for e, p in zip(self.edits, places, strict=True)],
         }
+
+
+def _edit_json(edit: Edit, place: EditPlace | None) -> dict[str, Any]:
+    found = {"file": edit.path, "path": edit.path, "start": edit.start, "end": edit.end}
+    if place is not None:
+        found |= {
+            "location": {"row": place.start_line, "column": place.start_column},
+            "end_location": {"row": place.end_line, "column": place.end_column},
+            "byte_range": [place.start_byte, place.end_byte],
+        }
+    return found | {"content": edit.content}
 
 
 @dataclass(frozen=True, order=True)
@@ -86,6 +140,10 @@ class Finding:
     # the robots that produced it, when it is reported for a given file they include (a xacro
     # fragment handed over by a hook): the robot files, as told
     via: tuple[str, ...] = field(default=(), compare=False)
+    # the fix the rule offers (its values are found and placed for the whole robot at once,
+    # :mod:`inertia_kit.lint.fixing`, which sets ``fix``, or ``unfixable`` with the reason)
+    wants: FixRule | None = field(default=None, compare=False)
+    unfixable: str | None = field(default=None, compare=False)
 
     def to_json(self) -> dict[str, Any]:
         data = {
@@ -101,6 +159,7 @@ class Finding:
             "expected": self.expected,
             "help": self.help,
             "fix": None if self.fix is None else self.fix.to_json(),
+            "unfixable": self.unfixable,
             "macro": None
             if self.macro_path is None
             else {"file": self.macro_path, "line": self.macro_line},

@@ -115,7 +115,7 @@ def targets(
     them): each file as itself, and each robot of the repository that includes a given file
     (and is not given itself) for the given files it includes.
     """
-    from inertia_kit.lint.runner import expand_paths
+    from inertia_kit.lint.discovery import expand_paths
 
     files = [str(file) for file in expand_paths(paths)]
     given = {real(file) for file in files}

@@ -73,7 +73,7 @@ def include_graph(
     they were (each robot file's size and mtime, and those of every file it read), re-scanned
     where they are not; the cache is then brought up to date.
     """
-    from inertia_kit.lint.runner import expand_paths
+    from inertia_kit.lint.discovery import expand_paths
 
     root = Path(real(root))
     options = {

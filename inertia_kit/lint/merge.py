@@ -34,10 +34,15 @@ class Merged:
     messages: list[tuple[str, str]]
     failing: bool
     checked: int
+    fixed: int = 0  # findings whose fix was applied (``--fix``)
+    diff: str = ""  # ``--diff``: the fixes' unified diff, each file once
+    hidden: int = 0  # fixes that ``--unsafe-fixes`` would enable
 
 
 def merge(results: Sequence[FileResult]) -> Merged:
     """The per-file ``results`` of one run as one."""
+    from inertia_kit.lint.applying import hidden
+
     messages: dict[tuple[str, str], None] = {}
     findings: dict[tuple, Finding] = {}
     for result in results:
@@ -64,4 +69,12 @@ def merge(results: Sequence[FileResult]) -> Merged:
         list(messages),
         any(result.failing for result in results),
         sum(1 for r in results if r.error is None and not r.fragment and not r.disabled),
+        sum(result.fixed for result in results),
+        "".join(dict.fromkeys(result.diff for result in results if result.diff)),
+        sum(
+            1
+            for result in results
+            for finding in result.findings
+            if hidden(finding, result.unsafe_fixes)
+        ),
     )

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -24,6 +24,7 @@ from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError, InternalError
+from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -33,8 +34,6 @@ if TYPE_CHECKING:
 
 DEFAULT_SELECT = ("IN0",)
 DEFAULT_FAIL_ON = Severity.WARNING
-# folders expansion never enters: hidden ones (.git, .venv) and Python caches
-_SKIPPED_FOLDERS = ("__pycache__",)
 
 
 @dataclass(frozen=True)
@@ -52,6 +51,14 @@ class Selection:
     per_file_ignores: tuple[PerFileIgnore, ...] = ()
     # engines whose rules (IN07x, modules with an ENGINE) run: they never run by ``select``
     engines: tuple[str, ...] = ()
+    # rules whose fixes are offered (configuration's ``fixable``/``unfixable``)
+    fixable: tuple[str, ...] = DEFAULT_SELECT
+    unfixable: tuple[str, ...] = ()
+
+    def offers_fix(self, finding: Finding) -> bool:
+        return catalog.selects(self.fixable, finding.code, finding.name) and not catalog.selects(
+            self.unfixable, finding.code, finding.name
+        )
 
     @staticmethod
     def matches(rule: ModuleType, patterns: Iterable[str]) -> bool:
@@ -104,6 +111,8 @@ def selection_for(
         config.severities,
         config.per_file_ignores,
         config.engines if engines is None else tuple(engines),
+        DEFAULT_SELECT if config.fixable is None else config.fixable,
+        config.unfixable,
     )
 
 
@@ -180,6 +189,9 @@ class FileResult:
     uses: Any = None
     selection: Selection | None = None
     remarks: list[str] = field(default_factory=list)  # told as notes (a fragment's robots)
+    fixed: int = 0  # findings whose fix ``--fix`` applied
+    diff: str = ""  # ``--diff``: the unified diff of the fixes
+    unsafe_fixes: bool = False  # whether unsafe fixes are applicable here
 
     @property
     def failing(self) -> list[Finding]:
@@ -194,11 +206,15 @@ def lint_file(
     package_paths: Sequence[str | Path] = (),
     load_mesh: MeshLoader | None = None,
     xacro_limits: XacroLimits | None = None,
+    mass_choice: MassChoice | None = None,
+    fixes: str = "all",
 ) -> FileResult:
     """
     Lint one file; an unreadable one gives a result with ``error`` set, not an exception.
     Suppression comments (in the file and every xacro file it includes) and the selection's
-    per-file ignores are applied.
+    per-file ignores are applied. The findings that remain carry their fixes
+    (:mod:`~inertia_kit.lint.fixing`; ``fixes``: ``all``, ``safe`` only, or ``none``), the
+    values from the geometry with ``mass_choice`` (default: 1000 kg/m³, declared masses kept).
     """
     from inertia_kit.description.loader import load
     from inertia_kit.lint import unused
@@ -220,158 +236,41 @@ def lint_file(
         for line, text in found.problems
     ]
     replaced: list[Finding] = []  # a comment that covers one of these is not unused
-    found = lint_robot(robot, selection, load_mesh, replaced)
+    analysis = analyse(robot) if load_mesh is None else analyse(robot, load_mesh)
+    found = run_rules(analysis, selection, superseded=replaced)
     findings, replaced = (
         [f if f.path else dataclasses.replace(f, path=str(path)) for f in each]
         for each in (found, replaced)
     )
-    kept = [f for f in findings if not selection.ignored(f, path) and not suppressed(f)]
+    kept = [
+        f if f.wants is None or selection.offers_fix(f) else dataclasses.replace(f, wants=None)
+        for f in findings
+        if not selection.ignored(f, path) and not suppressed(f)
+    ]
     ran = selection.enabled(catalog.RULES)
     uses = unused.track(robot.files or (str(path),), findings + replaced, ran)
     kept += unused.report(uses, selection, path)
+    if fixes != "none" and any(f.wants is not None for f in kept):
+        kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
     return FileResult(str(path), kept, notes=notes, uses=uses, selection=selection)
 
 
-def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:
-    """
-    Files as given; folders searched for ``*.urdf``, ``*.xacro`` (``*.urdf.xacro`` too), in
-    sorted order, hidden folders (``.git``) not entered. Each file once.
-    """
-    seen: set[str] = set()
-    for entry in paths:
-        path = Path(entry)
-        found = _robot_files(path) if path.is_dir() else [path]
-        for file in found:
-            key = os.path.normcase(os.path.abspath(file))
-            if key not in seen:
-                seen.add(key)
-                yield file
+def _with_fixes(
+    path: str | Path,
+    analysis: RobotAnalysis,
+    findings: list[Finding],
+    choice: MassChoice,
+    safe_only: bool,
+) -> list[Finding]:
+    """The findings with their fixes, planned on the text of ``path`` as it is now."""
+    from inertia_kit.description.edits import read_source
+    from inertia_kit.fixes.files import Files
+    from inertia_kit.lint.fixing import attach, plan_fixes
 
-
-def _robot_files(folder: Path) -> list[Path]:
-    files = []
-    for top, folders, names in os.walk(folder):
-        folders[:] = sorted(
-            f for f in folders if not f.startswith(".") and f not in _SKIPPED_FOLDERS
-        )
-        files.extend(Path(top, name) for name in names if name.endswith((".urdf", ".xacro")))
-    return sorted(f for f in files if f.is_file())
-
-
-def lint_paths(
-    paths: Iterable[str | Path],
-    *,
-    config: str | Path | None = None,
-    select: Sequence[str] = (),
-    ignore: Sequence[str] = (),
-    fail_on: Severity | None = None,
-    xacro_args: dict[str, str] | None = None,
-    package_paths: Sequence[str | Path] = (),
-    load_mesh: MeshLoader | None = None,
-    engines: Sequence[str] | None = None,
-    xacro_limits: Mapping[str, float] | None = None,
-    on_error: Callable[[Path, Exception], FileResult] | None = None,
-) -> list[FileResult]:
-    """
-    Lint files and folders as the command line does: each file with its configuration (the
-    nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one,
-    ``engines`` (names, comma-separated or ``all``; ``None``: the configured ones) instead of
-    the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
-    environment's.
-
-    A given xacro file that robots of its repository include is also linted through them (each
-    robot with its own configuration), keeping their findings located in the given files
-    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, or unreadable on its
-    own, gives no result of its own but a note.
-
-    Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
-    configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
-    ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
-    (a bug: the command line reports it for that file and lints the others); without it, the
-    exception propagates.
-    """
-    from inertia_kit.errors import ConfigError
-    from inertia_kit.lint import unused
-    from inertia_kit.lint.config_files import ConfigFinder
-
-    known = catalog.names()
-
-    def checked(option: str, values: Sequence[str]) -> tuple[str, ...]:
-        selectors = tuple(catalog.normalize_selector(value, known) for value in values)
-        for value, selector in zip(values, selectors, strict=True):
-            if selector is None:
-                raise ConfigError(f"{option}: {catalog.selector_error(value, known)}")
-        return selectors  # type: ignore[return-value]
-
-    select, ignore = checked("--select", select), checked("--ignore", ignore)
-    if engines is not None:
-        from inertia_kit.engines.vocabulary import parse_engines
-
-        try:
-            engines = parse_engines(engines)
-        except ValueError as error:
-            raise ConfigError(f"--engine: {error}") from None
-    finder = ConfigFinder(config)
-    chosen = _targets(paths, xacro_args, package_paths, xacro_limits)
-    plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
-    limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
-    results = []
-    for target, found in plan:
-        file = target.robot
-        try:
-            result = lint_file(
-                file,
-                selection_for(found, select, ignore, engines),
-                xacro_args=xacro_args,
-                package_paths=package_paths,
-                load_mesh=load_mesh,
-                xacro_limits=limits[found.path],
-            )
-        except Exception as error:
-            if on_error is None:
-                raise
-            result = on_error(file, error)
-        # not `or`: Severity.INFO is 0
-        result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
-        results.append(result)
-    unused.judge_shared(results)
-    return _through_robots(results, chosen)
-
-
-def _targets(
-    paths: Iterable[str | Path],
-    xacro_args: Mapping[str, str] | None,
-    package_paths: Sequence[str | Path],
-    xacro_limits: Mapping[str, float] | None,
-) -> Any:
-    """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
-    from inertia_kit.lint.fragments import targets
-
-    return targets(
-        paths,
-        xacro_args=xacro_args,
-        package_paths=package_paths,
-        xacro_limits=XacroLimits.resolve(None, xacro_limits),
-    )
-
-
-def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
-    """
-    The results with the given files robots include linted through them: a robot's findings
-    kept where they land in those files (saying `via` which robot), the given file's own
-    result dropped when it is a fragment or unreadable on its own (its robots read it), and a
-    note for each given file, saying which robots were linted for it or that none includes it.
-    """
-    from inertia_kit.lint.fragments import located
-
-    kept = []
-    for result, target in zip(results, chosen.targets, strict=True):
-        if target.changed:
-            result.findings = located(result.findings, target.robot, target.changed)
-        elif chosen.read_by_robots(target) and (result.fragment or result.error):
-            result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
-        if not target.changed:
-            note = chosen.note(result.path, result.fragment)
-            result.remarks.extend([f"{result.path}: {note}"] if note else [])
-        kept.append(result)
-    return kept
+    files = Files.for_input(path)
+    try:
+        files.add(read_source(path))
+    except InputError:
+        return findings  # not editable as text (an odd encoding): findings without fixes
+    planned = plan_fixes(analysis, findings, choice, files, safe_only=safe_only)
+    return attach(findings, planned, files)

@@ -144,7 +144,7 @@ def test_codes_are_added_to_a_comment_already_there(tmp_path):
     assert text.count("inertia-lint") == 1
     # IN041 suppresses nothing there: the run after adoption says so (and nothing else fails)
     result = lint("--output-format", "concise", path)
-    assert ": IN090 `ignore[IN041, IN002]`: `IN041` in it suppresses nothing" in result.output
+    assert ": IN090 [*] `ignore[IN041, IN002]`: `IN041` in it suppresses nothing" in result.output
     assert ": IN002 " not in result.output
 
 

@@ -27,7 +27,7 @@ ROBOT = moving('<collision><geometry><box size="0.1 0.1 0.4"/></geometry></colli
         (("--material", "unobtainium"), "unknown 'unobtainium'"),
         (("--mass", "upper"), "LINK=KG"),
         (("--mass", "upper=-1"), "LINK=KG"),
-        (("--mass", "nosuch=1"), "names no link"),
+        (("--mass", "nosuch=1"), "name no link"),
         (("--density", "0"), "positive"),
     ],
 )
@@ -57,7 +57,7 @@ def test_console_script_umbrella():
 @pytest.mark.parametrize(
     "args, message",
     [
-        (("-o", "{out}", "{path}", "{path}"), "-o takes exactly one PATH, got 2"),
+        (("-o", "{out}", "{path}", "{path}"), "-o takes exactly one file PATH"),
         (("-o", "{path}", "{path}"), "names the input file itself"),
         (("-o", "{tmp}/nowhere/out.urdf", "{path}"), "no folder"),
         (("--xacro-arg", "nope", "-o", "{out}", "{path}"), "NAME:=VALUE"),

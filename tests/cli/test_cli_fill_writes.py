@@ -240,7 +240,8 @@ def test_a_killed_run_leaves_a_temporary_file_the_next_run_removes(tmp_path: Pat
     assert not live.exists()
     assert after.stderr.splitlines() == [
         f"note: removed {live}, a temporary file left by an inertia-fill that was killed while "
-        "writing"
+        "writing",
+        "inertia-fill: 1 file checked, nothing to change",
     ]
     assert young.exists() and theirs.exists()
     assert real.read_bytes() == filled(tmp_path)

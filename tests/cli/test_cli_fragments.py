@@ -302,6 +302,7 @@ def test_fill_on_a_fragment_no_robot_includes(repo):
     assert err == (
         f"note: arm_description/urdf/leaf.xacro: a xacro fragment no robot in {repo} "
         "(the git top level) includes; nothing to fill\n"
+        "inertia-fill: 1 file checked, nothing to change\n"
     )
 
 

@@ -48,7 +48,7 @@ def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
 ):
     from inertia_kit.lint import runner
 
-    monkeypatch.setattr(runner, "lint_robot", failing_for("bad.urdf", runner.lint_robot))
+    monkeypatch.setattr(runner, "analyse", failing_for("bad.urdf", runner.analyse))
     bad, good = two_files
     result = CliRunner().invoke(
         lint_main, ["--select", "IN002", "--output-format", output_format, str(bad), str(good)]
@@ -79,7 +79,7 @@ def test_an_internal_error_outside_a_file_is_exit_2_too(two_files, monkeypatch):
 def test_traceback_on_request(two_files, monkeypatch):
     from inertia_kit.lint import runner
 
-    monkeypatch.setattr(runner, "lint_robot", boom)
+    monkeypatch.setattr(runner, "analyse", boom)
     monkeypatch.setenv("INERTIA_KIT_TRACEBACK", "1")
     result = CliRunner().invoke(lint_main, [str(two_files[0])])
     assert result.exit_code == 2

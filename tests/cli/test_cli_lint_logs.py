@@ -9,6 +9,7 @@ tests/physics/test_mesh_logs.py.
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -46,7 +47,11 @@ def test_textured_dae_gives_no_library_log_on_stderr(tmp_path: Path, case: str):
     done = lint_command(path, pythonpath)
 
     assert done.returncode == 1, done.stderr
-    assert done.stderr.splitlines() == ["Found 1 error in 1 file."]  # no trimesh, no traceback
+    # no trimesh, no traceback: the summary, and the IN001 fix from the mesh it offers
+    assert done.stderr.splitlines() == [
+        "Found 1 error in 1 file.",
+        "1 hidden fix can be enabled with the --unsafe-fixes option.",
+    ]
     # the mass is computed from the triangles all the same
     assert "IN001" in done.stdout and "holds 0.006 m³: 6 kg" in done.stdout
 
@@ -85,4 +90,6 @@ def test_real_textured_robots_give_no_library_log(tmp_path: Path):
         [console_script("inertia-lint"), *map(str, files)], capture_output=True, text=True, env=env
     )
     assert done.returncode == 1
-    assert [line for line in done.stderr.splitlines() if not line.startswith("Found ")] == []
+    # the summary: counts, and the fixes offered
+    summary = re.compile(r"Found |\[\*\] \d+ fixable with|\d+ hidden fix(es)? can be enabled")
+    assert [line for line in done.stderr.splitlines() if not summary.match(line)] == []

@@ -143,12 +143,9 @@ FRAMES = """<robot name="r">
   </link>
 </robot>
 """.format(j1=joint("base", "tool_frame", "fixed"), j2=joint("base", "badge", "fixed"))
+# --fix all recomputes the links that have an <inertial>; the badge, a helper welded to a body
+# with mass, is never given mass unless asked by name (issue 12: franka's *_sc capsules)
 FRAMES_ALL = FRAMES.replace(
-    '<link name="badge">\n',
-    '<link name="badge">\n'
-    + filled_inertial(solid_box((0.05, 0.02, 0.01), density=1000), indent="    ")
-    + "\n",
-).replace(
     FRAMES[FRAMES.index("<inertial>") : FRAMES.index("</inertial>") + 11],
     # the declared 2 kg is kept, its tensor recomputed for the 0.2 m cube
     filled_inertial(solid_box((0.2, 0.2, 0.2), mass=2.0), indent="    ", first=False),
@@ -327,7 +324,8 @@ def test_diff_and_check_write_nothing(tmp_path: Path):
     path.write_text(ARM_FILLED)
     for flag in ("--diff", "--check"):
         result = CliRunner().invoke(fill_command, [flag, str(path)])
-        assert (result.exit_code, result.stdout, result.stderr) == (0, "", "")
+        nothing = "inertia-fill: 1 file checked, nothing to change\n"
+        assert (result.exit_code, result.stdout, result.stderr) == (0, "", nothing)
 
 
 def test_read_only_file_is_an_error_and_untouched(tmp_path: Path):

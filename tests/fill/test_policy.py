@@ -189,7 +189,7 @@ def test_millimetre_mesh_is_refused(tmp_path: Path):
     path.write_text(text)
     result = CliRunner().invoke(fill_command, [str(path)])
     assert result.exit_code == 1
-    assert "link `shell` not filled: a mesh looks authored in other units (IN031)" in result.stderr
+    assert "link `shell` not filled: its geometry cannot be trusted (IN031)" in result.stderr
     assert 'set scale="0.001 0.001 0.001" if that is its unit' in result.stderr
     expected = text.replace(
         '<link name="rod">\n',
@@ -309,7 +309,8 @@ def test_a_massless_base_without_geometry_is_refused_with_the_way_out(tmp_path: 
     path.write_text(text)
     result = CliRunner().invoke(fill_command, [str(path)])
     assert result.exit_code == 1
-    assert f"{path}: link `base` not filled: the robot's base has no mass (IN001)" in result.stderr
+    why = "the robot's base has no <visual> or <collision> geometry"
+    assert f"{path}: link `base` not filled: {why}" in result.stderr
     assert "hang the robot from a `world` link by a fixed joint" in result.stderr
     assert path.read_text() == text
     welded = text.replace('"base"', '"world"')

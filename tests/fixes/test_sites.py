@@ -350,7 +350,8 @@ def test_seed_wheeled_robot_fill_all(tmp_path: Path):
     assert result.exit_code == 1, result.stderr
     after = snapshot(folder)
     changed = {name for name in after if after[name] != before[name]}
-    assert changed == {"urdf/base.xacro", "urdf/wheels.xacro", "urdf/sensors.xacro"}
+    # the lidar, a visual-only part welded to the base, is a helper link: not given mass
+    assert changed == {"urdf/base.xacro", "urdf/wheels.xacro"}
     wheels = after["urdf/wheels.xacro"].decode()
     # the wheel is a cylinder r = 0.05, h = 0.02 turned onto y; the declared 0.3 kg is kept
     _, side, _, axial = solid_cylinder(0.05, 0.02, mass=0.3)
@@ -359,14 +360,17 @@ def test_seed_wheeled_robot_fill_all(tmp_path: Path):
         in wheels
     )
     assert wheels.count("<inertial>") == 2  # mul_wheel untouched, wheel filled once
-    lidar = solid_cylinder(0.03, 0.02, density=1000)
-    assert (
-        filled_inertial(lidar, com=(0, 0, 0.01), indent="      ")
-        in after["urdf/sensors.xacro"].decode()
-    )
     assert "base_footprint" not in result.stderr
     assert CliRunner().invoke(fill_command, ["--fix", "all", str(path)]).exit_code == 0
     assert snapshot(folder) == after
+    # asked by name, it is filled where its macro writes it
+    named = CliRunner().invoke(fill_command, ["--fix", "all", "--link", "lidar_link", str(path)])
+    assert named.exit_code == 1, named.stderr
+    lidar = solid_cylinder(0.03, 0.02, density=1000)
+    assert (
+        filled_inertial(lidar, com=(0, 0, 0.01), indent="      ")
+        in (folder / "urdf" / "sensors.xacro").read_text()
+    )
 
 
 def test_seed_mrm_arm_fill_all_edits_the_call_parameters(tmp_path: Path):
@@ -422,7 +426,7 @@ def test_several_files_are_checked_before_any_is_written(tmp_path: Path):
     """A plan editing two files: the second changed meanwhile, so neither is written."""
     folder = copy_example("my_robot_description", tmp_path)
     path = folder / "urdf" / "robot.xacro"
-    plan = plan_fill(path, fix="all")
+    plan = plan_fill(path, fix="all", links=["lidar_link"])
     assert len(plan.changes()) == 3
     sensors = folder / "urdf" / "sensors.xacro"
     sensors.write_text(sensors.read_text() + "<!-- edited meanwhile -->\n")
@@ -454,7 +458,8 @@ def test_every_example_after_fix_invalid(robot: str, tmp_path: Path):
     assert "not filled" not in first.stderr, first.stderr
     after = snapshot(folder)
     second = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
-    assert (second.exit_code, second.stderr) == (0, ""), second.stderr
+    nothing = "inertia-fill: 1 file checked, nothing to change\n"
+    assert (second.exit_code, second.stderr) == (0, nothing), second.stderr
     assert snapshot(folder) == after
     assert_filled_links_pass(path)
 

@@ -75,7 +75,7 @@ def test_every_key_of_pyproject(tmp_path):
             "[tool.inertia-kit]\nselct = []\n",
             "`tool.inertia-kit.selct`: unknown key (did you mean `select`?); known here: "
             "`select`, `extend-select`, `ignore`, `per-file-ignores`, `fail-on`, `engines`, "
-            "`rules`, `links`, `xacro`",
+            "`rules`, `links`, `xacro`, `fix`, `unsafe-fixes`, `fixable`, `unfixable`",
         ),
         (
             "[tool.inertia-kit.rules.IN098]\nlimt = 1\n",

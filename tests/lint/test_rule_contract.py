@@ -22,11 +22,11 @@ import pytest
 from inertia_kit.engines.vocabulary import ENGINES
 from inertia_kit.lint import catalog, rules
 from inertia_kit.lint.documents import rule_documents
-from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.findings import FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 
 REQUIRED = ("CODE", "NAME", "SEVERITY", "SCOPE", "SUMMARY", "check")
-OPTIONAL = ("OPTIONS", "ENGINE", "SUPERSEDES")
+OPTIONAL = ("OPTIONS", "ENGINE", "SUPERSEDES", "FIX", "TEXT_FIX", "SPOILS_GEOMETRY")
 CONTRACT = (*REQUIRED, *OPTIONAL)
 CONSTANT = re.compile(r"[A-Z][A-Z0-9_]*")
 
@@ -120,7 +120,31 @@ def violations(rule: ModuleType) -> list[str]:
         superseded = rule.SUPERSEDES
         if not isinstance(superseded, tuple) or not superseded or not set(superseded) <= known:
             problems.append(f"SUPERSEDES: {superseded!r} is no tuple of other rules' codes")
+    if hasattr(rule, "FIX"):
+        problems += _fix(rule.FIX)
+    if hasattr(rule, "TEXT_FIX") and not isinstance(rule.TEXT_FIX, Safety):
+        problems.append("TEXT_FIX: not a Safety")
+    if hasattr(rule, "TEXT_FIX") and hasattr(rule, "FIX"):
+        problems.append("TEXT_FIX and FIX: a rule's findings offer one kind of fix")
+    if hasattr(rule, "SPOILS_GEOMETRY") and rule.SPOILS_GEOMETRY is not True:
+        problems.append("SPOILS_GEOMETRY: not True")
     return problems + _unread_constants(rule)
+
+
+def _fix(fix: Any) -> list[str]:
+    if not isinstance(fix, FixRule):
+        return ["FIX: no FixRule"]
+    problems = []
+    if fix.how not in ("geometry", "slip", "com"):
+        problems.append(f"FIX: how {fix.how!r} is none of geometry, slip, com")
+    if fix.safety not in (Safety.SAFE, Safety.UNSAFE) or not isinstance(fix.repairs, Repairs):
+        problems.append("FIX: safety must be safe or unsafe, repairs a Repairs")
+    if (fix.how == "slip") != (fix.safety is Safety.SAFE):
+        # only undoing a recognised slip is provably right; values from geometry are a judgment
+        problems.append("FIX: a slip's fix is safe, every other one unsafe")
+    if not isinstance(fix.title, str) or not fix.title or "\n" in fix.title:
+        problems.append("FIX: no one-line title")
+    return problems
 
 
 @pytest.mark.parametrize("rule", catalog.RULES, ids=[rule.CODE for rule in catalog.RULES])
@@ -139,6 +163,18 @@ def test_the_document_lists_every_option(rule):
         assert section.startswith("None"), f"{rule.CODE} has no options: its document says None"
 
 
+@pytest.mark.parametrize("rule", catalog.RULES, ids=[rule.CODE for rule in catalog.RULES])
+def test_the_document_says_the_fix_and_its_safety(rule):
+    """A `Fix:` line under "## What it does": safe, unsafe, or none, as the rule's FIX."""
+    text = rule_documents()[rule.CODE].read_text(encoding="utf-8")
+    lines = [line for line in text.splitlines() if line.startswith("Fix: ")]
+    assert len(lines) == 1, f"{rule.CODE}: no single `Fix:` line"
+    fix = getattr(rule, "FIX", None)
+    safety = getattr(rule, "TEXT_FIX", None) if fix is None else fix.safety
+    word = "none" if safety is None else str(safety)
+    assert lines[0].startswith(f"Fix: {word}"), f"{rule.CODE}: {lines[0]!r}, its FIX is {word}"
+
+
 def test_the_contract_is_documented_where_rules_are_written():
     for name in CONTRACT:
         assert f"``{name}" in rules.__doc__, f"{name} is not in the rule contract's docstring"
@@ -148,7 +184,7 @@ def test_the_contract_is_documented_where_rules_are_written():
 
 GOOD = '''
     """IN098 stub-rule: a rule that keeps the contract."""
-    from inertia_kit.lint.findings import Severity
+    from inertia_kit.lint.findings import FixRule, Repairs, Safety, Severity
     from inertia_kit.lint.options import Option
 
     CODE = "IN098"
@@ -160,6 +196,7 @@ GOOD = '''
     OPTIONS = (Option("factor", float, LIMIT, "a factor"),)
     ENGINE = "mujoco"
     SUPERSEDES = ("IN020",)
+    FIX = FixRule("geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "recompute")
 
 
     def check(link, ctx):
@@ -185,6 +222,8 @@ def test_the_checker_passes_a_good_rule(tmp_path):
     ("old", "new", "problem"),
     [
         ('SUPERSEDES = ("IN020",)', 'SUPERSEDE = ("IN020",)', "SUPERSEDE: no contract attribute"),
+        ("Safety.UNSAFE", "Safety.SAFE", "FIX: a slip's fix is safe, every other one unsafe"),
+        ('FIX = FixRule("geometry"', 'FIX = ("geometry"', "FIX: no FixRule"),
         ('ENGINE = "mujoco"', 'ENGINE = "bullet"', "ENGINE: 'bullet' is none of"),
         (
             'OPTIONS = (Option("factor", float, LIMIT, "a factor"),)',

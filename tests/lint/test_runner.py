@@ -15,7 +15,8 @@ from inertia_kit.errors import ConfigError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.config import Config
 from inertia_kit.lint.findings import Severity
-from inertia_kit.lint.runner import Selection, lint_paths, selection_for
+from inertia_kit.lint.paths import lint_paths
+from inertia_kit.lint.runner import Selection, selection_for
 
 pytestmark = pytest.mark.usefixtures("stub_rules")
 

@@ -32,10 +32,12 @@ def render(
     *,
     errors: Sequence[InputError] = (),
     style: Style | None = None,
+    unsafe_fixes: bool = False,
 ) -> str:
     """
     The findings in one format, ending in a newline (empty for no findings, except ``json``
-    and ``sarif``, which always give a document). ``errors`` (unreadable files) go into SARIF's
+    and ``sarif``, which always give a document); ``[*]`` marks a finding whose fix ``--fix``
+    applies (``unsafe_fixes``: unsafe ones too). ``errors`` (unreadable files) go into SARIF's
     invocation; the other formats leave them to the caller's error stream.
     """
     # each format is imported when chosen: a lint run pays for its own format only
@@ -43,11 +45,11 @@ def render(
     if output_format == "full":
         from inertia_kit.lint.output import full
 
-        return full.render(findings, style)
+        return full.render(findings, style, unsafe_fixes)
     if output_format == "concise":
         from inertia_kit.lint.output import concise
 
-        return concise.render(findings, style)
+        return concise.render(findings, style, unsafe_fixes)
     if output_format == "json":
         from inertia_kit.lint.output import json as json_array
 

@@ -48,3 +48,10 @@ def finite(value: Any) -> Any:
     if isinstance(value, (list, tuple)):
         return [finite(item) for item in value]
     return value
+
+
+def fix_mark(finding: Finding, unsafe_fixes: bool) -> str:
+    """``"[*] "`` for a finding whose fix ``--fix`` applies (ruff's mark), else nothing."""
+    from inertia_kit.lint.applying import applicable
+
+    return "[*] " if applicable(finding, unsafe_fixes) else ""

@@ -5,14 +5,14 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from inertia_kit.lint.findings import Finding
-from inertia_kit.lint.output.common import COLOURS, Style, location, message
+from inertia_kit.lint.output.common import COLOURS, Style, fix_mark, location, message
 
 
-def render(findings: Sequence[Finding], style: Style) -> str:
-    return "".join(_line(finding, style) + "\n" for finding in findings)
+def render(findings: Sequence[Finding], style: Style, unsafe_fixes: bool = False) -> str:
+    return "".join(_line(finding, style, unsafe_fixes) + "\n" for finding in findings)
 
 
-def _line(finding: Finding, style: Style) -> str:
+def _line(finding: Finding, style: Style, unsafe_fixes: bool) -> str:
     where = style(location(finding.path, finding.line, finding.column), bold=True)
     code = style(finding.code, fg=COLOURS[finding.severity], bold=True)
-    return f"{where}: {code} {message(finding)}"
+    return f"{where}: {code} {fix_mark(finding, unsafe_fixes)}{message(finding)}"

@@ -9,15 +9,16 @@ import re
 from collections.abc import Sequence
 
 from inertia_kit.errors import InputError
+from inertia_kit.lint.applying import applicable
 from inertia_kit.lint.findings import Finding
-from inertia_kit.lint.output.common import COLOURS, Style, location, message
+from inertia_kit.lint.output.common import COLOURS, Style, fix_mark, location, message
 
 _TAG = re.compile(r"<[^\s/>]*")
 
 
-def render(findings: Sequence[Finding], style: Style) -> str:
+def render(findings: Sequence[Finding], style: Style, unsafe_fixes: bool = False) -> str:
     sources = _Sources()
-    blocks = [_block(finding, style, sources) for finding in findings]
+    blocks = [_block(finding, style, sources, unsafe_fixes) for finding in findings]
     return "".join(block + "\n\n" for block in blocks)
 
 
@@ -62,11 +63,11 @@ def _caret(text: str, column: int | None) -> tuple[str, int, int]:
     return shown, len(text[: column - 1].expandtabs(4)), len(tag.group()) if tag else 1
 
 
-def _block(finding: Finding, style: Style, sources: _Sources) -> str:
+def _block(finding: Finding, style: Style, sources: _Sources, unsafe_fixes: bool) -> str:
     colour = COLOURS[finding.severity]
     header = (
         f"{style(location(finding.path, finding.line, finding.column), bold=True)}: "
-        f"{style(finding.code, fg=colour, bold=True)} "
+        f"{style(finding.code, fg=colour, bold=True)} {fix_mark(finding, unsafe_fixes)}"
         f"{style(f'[{finding.severity}]', fg=colour)} {message(finding)}"
     )
     lines = [header]
@@ -93,6 +94,12 @@ def _block(finding: Finding, style: Style, sources: _Sources) -> str:
                 + " " * offset
                 + style("^" * length, fg=colour, bold=True)
             )
+    if finding.fix is not None and applicable(finding, unsafe_fixes):
+        lines.append(
+            f"{gutter} {style('=', bold=True)} {style('fix', bold=True)}: {finding.fix.title}"
+        )
+    elif finding.unfixable is not None:
+        lines.append(f"{gutter} {style('=', bold=True)} no fix: {finding.unfixable}")
     if finding.help:
         lines.append(f"{gutter} {style('=', bold=True)} {style('help', bold=True)}: {finding.help}")
     return "\n".join(line.rstrip() for line in lines)

@@ -134,12 +134,20 @@ def _fix(finding: Finding) -> dict[str, Any]:
     fix = finding.fix
     assert fix is not None
     by_path: dict[str, list[dict[str, Any]]] = {}
-    for edit in fix.edits:
-        by_path.setdefault(edit.path, []).append(
-            {
-                "deletedRegion": {"charOffset": edit.start, "charLength": edit.end - edit.start},
-                "insertedContent": {"text": edit.content},
+    places = fix.places or (None,) * len(fix.edits)
+    for edit, place in zip(fix.edits, places, strict=True):
+        # lines and columns for viewers that read only those (GitHub), offsets for exactness
+        region: dict[str, Any] = {}
+        if place is not None:
+            region = {
+                "startLine": place.start_line,
+                "startColumn": place.start_column,
+                "endLine": place.end_line,
+                "endColumn": place.end_column,
             }
+        region |= {"charOffset": edit.start, "charLength": edit.end - edit.start}
+        by_path.setdefault(edit.path, []).append(
+            {"deletedRegion": region, "insertedContent": {"text": edit.content}}
         )
     return {
         "description": {"text": fix.title},

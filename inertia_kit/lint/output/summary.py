@@ -24,11 +24,20 @@ def _count(n: int, word: str, plural: str | None = None) -> str:
 
 
 def summary(
-    findings: Sequence[Finding], checked: int, unreadable: int = 0, internal: int = 0
+    findings: Sequence[Finding],
+    checked: int,
+    unreadable: int = 0,
+    internal: int = 0,
+    *,
+    fixed: int = 0,
+    fixable: int = 0,
+    hidden: int = 0,
 ) -> str:
     """
     ``Found 3 errors, 1 warning in 2 files.`` or ``No findings in 4 files.``, and the files that
-    could not be read or met an internal error (a bug).
+    could not be read or met an internal error (a bug). With fixes: ``Fixed 2 findings; 1 error
+    remains in 1 file.``, and a line counting the fixes ``--fix`` (``fixable``) or
+    ``--unsafe-fixes`` (``hidden``) would apply.
     """
     if findings:
         by_severity = Counter(f.severity for f in findings)
@@ -40,10 +49,29 @@ def summary(
         ]
         files = len({f.path for f in findings})
         text = f"Found {', '.join(parts)} in {_count(files, 'file')}"
+        if fixed:
+            verb = "remains" if len(findings) == 1 else "remain"
+            text = f"Fixed {_count(fixed, 'finding')}; {', '.join(parts)} {verb} in "
+            text += _count(files, "file")
     else:
         text = f"No findings in {_count(checked, 'file')}"
+        if fixed:
+            text = (
+                f"Fixed {_count(fixed, 'finding')}; no findings remain in {_count(checked, 'file')}"
+            )
     if unreadable:
         text += f"; {_count(unreadable, 'file')} could not be read"
     if internal:
         text += f"; an internal error in {_count(internal, 'file')}"
-    return text + "."
+    text += "."
+    offers = []
+    if fixable:
+        offers.append(f"[*] {fixable} fixable with the --fix option")
+    if hidden:
+        offers.append(
+            f"{_count(hidden, 'hidden fix', 'hidden fixes')} can be enabled with the "
+            "--unsafe-fixes option"
+        )
+    if offers:
+        text += "\n" + (f"{offers[0]} ({offers[1]})" if len(offers) == 2 else offers[0]) + "."
+    return text

@@ -44,6 +44,22 @@ A rule may have:
     Codes of other rules whose findings on the same link a finding of this rule replaces: an
     explanation (IN063, a unit slip) replaces the symptoms it explains (IN020, far from the
     geometry). Applied only when both rules run.
+``FIX: FixRule``
+    The rule's fix (:class:`~inertia_kit.lint.findings.FixRule`): how the values are found,
+    its safety and what it repairs. Every finding the rule makes for a link offers it (a
+    finding may say what it repairs instead, ``ctx.finding(..., repairs=...)``, or that it
+    has no fix, ``fixable=False``); the values are found and placed for the whole robot at
+    once (:mod:`inertia_kit.lint.fixing`). ``safe``: provably right (a recognised slip
+    undone, the declared values kept); ``unsafe``: a judgment (values from the geometry at an
+    assumed uniform density). The document says so on a ``Fix:`` line.
+``TEXT_FIX: Safety``
+    For a rule whose findings carry a ready text fix of their own, not values for a link
+    (IN090 removes a comment): that fix's safety, which its findings' ``Fix`` use. The
+    document says so on a ``Fix:`` line.
+``SPOILS_GEOMETRY: bool``
+    A finding of this rule on a link means its geometry cannot give values: fixes from the
+    geometry are withheld for that link, with the finding's message as the reason (IN031, a
+    mesh in other units).
 
 Any other public upper-case name is the rule's own constant and its code must read it, so that
 a misspelt or retired contract attribute (``SUPERSEDE``, ``DEFAULTS``) fails the contract test
@@ -52,6 +68,7 @@ instead of being ignored.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import ModuleType
@@ -60,7 +77,7 @@ from typing import Any
 from inertia_kit.analysis.forensics.links import Explanation
 from inertia_kit.description.model import Source
 from inertia_kit.engines.vocabulary import Event
-from inertia_kit.lint.findings import Finding, Fix, Severity, severity_of
+from inertia_kit.lint.findings import Finding, Fix, Repairs, Severity, severity_of
 
 
 @dataclass
@@ -86,6 +103,8 @@ class RuleContext:
         help: str | None = None,
         fix: Fix | None = None,
         severity: Severity | None = None,
+        repairs: Repairs | None = None,
+        fixable: bool = True,
     ) -> Finding:
         """
         A finding of this rule at ``source``. For an element a xacro macro produced, the
@@ -93,7 +112,8 @@ class RuleContext:
         element's place in the macro body is kept as ``macro_path``/``macro_line``.
 
         ``severity`` lets a rule escalate (e.g. warning → error for an impossible value); a
-        configured severity always wins.
+        configured severity always wins. A finding for a link offers the rule's ``FIX``
+        (``repairs`` overrides what it repairs; ``fixable=False``: no fix for this one).
         """
         # Severity.INFO is 0: pick the first that is set, not the first that is truthy
         level = next(s for s in (self.severity, severity, self.rule.SEVERITY) if s is not None)
@@ -105,6 +125,9 @@ class RuleContext:
                 macro_path, macro_line = source.path, source.line
             else:
                 path, line, column = source.path, source.line, source.column
+        wants = getattr(self.rule, "FIX", None) if fixable and link is not None else None
+        if wants is not None and repairs is not None:
+            wants = dataclasses.replace(wants, repairs=repairs)
         return Finding(
             path,
             line,
@@ -120,6 +143,7 @@ class RuleContext:
             fix=fix,
             macro_path=macro_path,
             macro_line=macro_line,
+            wants=wants,
         )
 
     def engine_finding(self, event: Event, help: str) -> Finding:

@@ -8,7 +8,7 @@ from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description.model import WORLD
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
@@ -17,6 +17,9 @@ CODE = "IN001"
 NAME = "missing-inertial"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.MISSING, "give the link the mass properties of its geometry"
+)
 SUMMARY = (
     "a link that moves (child of a non-fixed joint) or has collision geometry, or the root above "
     "moving links, has no mass in its fixed-joint group"

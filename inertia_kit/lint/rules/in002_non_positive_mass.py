@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -13,6 +13,9 @@ CODE = "IN002"
 NAME = "non-positive-mass"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the <inertial> with its geometry's"
+)
 SUMMARY = "`<mass value>` is zero or negative"
 
 
@@ -36,4 +39,6 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         expected=expected,
         help="give the link's real mass in kg (weigh it, or run `inertia-fill --fix invalid`); "
         "a massless frame belongs on a link with no <inertial> at all",
+        # a moving link without a usable mass needs one (`inertia-fill` fills it by default)
+        repairs=Repairs.MISSING if link.moves else None,
     )

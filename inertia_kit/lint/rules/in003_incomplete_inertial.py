@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.expected import geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.tensor_names import DIAGONAL, TENSOR
@@ -15,6 +15,9 @@ CODE = "IN003"
 NAME = "incomplete-inertial"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the <inertial> with its geometry's"
+)
 SUMMARY = "`<inertial>` without `<mass>` or `<inertia>`, or an `<inertia>` attribute missing"
 
 DENSITY = 1000.0  # kg/m³ for the expected values when the mass is missing too

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.description import model
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.numbers import unusable
@@ -18,6 +18,9 @@ CODE = "IN004"
 NAME = "invalid-number"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the <inertial> with its geometry's"
+)
 SUMMARY = (
     "a numeric attribute is not a number mass properties can be computed from (`abc`, `nan`, "
     "`inf`, `1,5`, `2kg`, `1e308`, `1e-320`)"
@@ -168,6 +171,10 @@ def _location(invalid: model.Invalid) -> tuple:
     return (site.path, site.line, site.column)
 
 
+def _moving(robot: RobotAnalysis) -> set[str]:
+    return {link.name for link in robot.links if link.moves}
+
+
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     places = _places(robot.robot)
     # one finding per location: attributes of one element (or of one xacro macro call) together
@@ -188,6 +195,11 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             if _extreme(invalid.text, scale) is None:
                 pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
         first = places.get(id(invalids[0]), Place(""))
+        # a fix from the geometry replaces the <inertial>: only a bad value in it is fixed
+        fixable = first.element.startswith(("<inertial", "<mass", "<inertia "))
+        # a moving link whose mass is not a number has none: it needs one (`--fix missing`)
+        moving = first.link is not None and first.link in _moving(robot)
+        repairs = Repairs.MISSING if moving and first.element == "<mass value>" else None
         if not pybullet:
             # every value reads as a number, one no robot has and no arithmetic keeps
             yield ctx.finding(
@@ -199,6 +211,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 invalids[0].source,
                 link=first.link,
                 joint=first.joint,
+                fixable=fixable,
+                repairs=repairs,
                 help="write the value in SI units (kg, m, kg·m²), and a value meant to be zero "
                 "as 0; in xacro, check the expression or property that produced it",
             )
@@ -214,6 +228,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             invalids[0].source,
             link=first.link,
             joint=first.joint,
+            fixable=fixable,
+            repairs=repairs,
             help="write a plain decimal number (`0.5`, `1e-3`: a dot for the decimal point, "
             "spaces between the three values of a vector, no units); in xacro, check the "
             "expression or property that produced it",

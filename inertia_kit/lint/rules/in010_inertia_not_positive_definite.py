@@ -11,7 +11,7 @@ from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import moments_text, positive_definite, zero_tolerance
 from inertia_kit.engines.lumping import lumped, positive_mass
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 
@@ -19,6 +19,9 @@ CODE = "IN010"
 NAME = "inertia-not-positive-definite"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
+)
 SUMMARY = "a principal moment of the declared inertia tensor is zero or negative"
 HELP = (
     "write the tensor about the centre of mass with every principal moment > 0 (from CAD, or "

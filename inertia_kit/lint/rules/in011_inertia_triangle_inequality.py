@@ -13,7 +13,7 @@ from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.analysis.tensors import ZERO_ATOL, moments_text, positive_definite, zero_tolerance
 from inertia_kit.description import model
 from inertia_kit.engines.lumping import lumped, positive_mass
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
@@ -22,6 +22,9 @@ CODE = "IN011"
 NAME = "inertia-triangle-inequality"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
+)
 SUMMARY = "the principal moments break the triangle inequality A + B ≥ C"
 OPTIONS = (
     # 0.01: the worst violation that rounding a body on the bound (a disk, a plate) to 3

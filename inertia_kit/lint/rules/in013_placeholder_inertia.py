@@ -11,7 +11,7 @@ from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.engines.lumping import lumped, positive_mass
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt, tensor_text
@@ -20,6 +20,12 @@ CODE = "IN013"
 NAME = "placeholder-inertia"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+FIX = FixRule(
+    "geometry",
+    Safety.UNSAFE,
+    Repairs.DOUBTFUL,
+    "replace the placeholder with its geometry's tensor",
+)
 SUMMARY = (
     "a made-up tensor: the same six values on links of clearly different geometry, or an "
     "isotropic tensor on clearly anisotropic geometry"

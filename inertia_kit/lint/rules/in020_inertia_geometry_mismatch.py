@@ -11,7 +11,7 @@ from inertia_kit.analysis.forensics.links import diagnose_basis
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.analysis.tensors import TensorComparison, axis_name, compare_tensors
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
@@ -21,6 +21,9 @@ CODE = "IN020"
 NAME = "inertia-geometry-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
+)
 SUMMARY = (
     "the declared tensor differs from the geometry's (declared mass, uniform density) by more "
     "than a factor about some axis"
@@ -154,4 +157,6 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         help="write the tensor of the link's real mass distribution about its centre of mass, "
         "in the axes of <inertial><origin rpy>; the expected values assume uniform density",
         severity=severity,
+        # only an error is certainly impossible; a warning may be a real part (`--fix all`)
+        repairs=None if severity is Severity.ERROR else Repairs.DOUBTFUL,
     )

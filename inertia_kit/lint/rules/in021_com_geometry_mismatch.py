@@ -9,7 +9,7 @@ import numpy as np
 from inertia_kit.analysis.declared import declared_com
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
@@ -18,6 +18,7 @@ CODE = "IN021"
 NAME = "com-geometry-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule("com", Safety.UNSAFE, Repairs.DOUBTFUL, "move the centre of mass to its geometry's")
 SUMMARY = "the centre of mass lies outside the link's geometry, or far from its centroid"
 OPTIONS = (
     Option("max_offset", float, 0.6, "warn beyond this fraction of the way from centroid to edge"),

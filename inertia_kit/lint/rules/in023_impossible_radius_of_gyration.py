@@ -9,7 +9,7 @@ import numpy as np
 from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.analysis.tensors import axis_name
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
@@ -18,6 +18,9 @@ CODE = "IN023"
 NAME = "impossible-radius-of-gyration"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+FIX = FixRule(
+    "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
+)
 SUMMARY = "a moment exceeds the most any distribution of the mass inside the link's geometry has"
 OPTIONS = (
     Option("rtol", float, BOUND_RTOL, "relative excess over the bound allowed for rounding"),
@@ -79,4 +82,6 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         else "check the tensor against the part (recompute it about the centre of mass), or "
         "make the collision geometry as large as the part if the tensor is right",
         severity=None if doubt is None else Severity.WARNING,
+        # a warning may be a real part: only `inertia-fill --fix all` replaces it
+        repairs=None if doubt is None else Repairs.DOUBTFUL,
     )

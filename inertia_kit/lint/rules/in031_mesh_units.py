@@ -23,6 +23,8 @@ CODE = "IN031"
 NAME = "mesh-units"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+# a mesh in other units gives wrong values: no fix from this geometry until it is scaled
+SPOILS_GEOMETRY = True
 SUMMARY = "a mesh's size says it was authored in mm, cm or inches: suggests the exact `scale`"
 OPTIONS = (
     Option("min_size", float, 0.001, "the smallest size a robot part can have, m"),

@@ -7,13 +7,16 @@ from collections.abc import Iterator
 from inertia_kit.analysis.forensics.links import explain
 from inertia_kit.analysis.forensics.other_point import AboutPoint
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN060"
 NAME = "inertia-about-other-point"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule(
+    "slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the tensor about the centre of mass"
+)
 SUMMARY = (
     "the declared tensor is the geometry's about another point (the link origin, a joint, a mesh "
     "origin) instead of the centre of mass"

@@ -7,13 +7,14 @@ from collections.abc import Iterator
 from inertia_kit.analysis.forensics.flipped_signs import FlippedSigns
 from inertia_kit.analysis.forensics.links import explain
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN061"
 NAME = "product-signs-flipped"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the product signs flipped back")
 SUMMARY = "the products of inertia are written with the opposite sign convention (ixy = +∫xy dm)"
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)

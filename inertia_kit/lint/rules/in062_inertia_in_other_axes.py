@@ -7,13 +7,16 @@ from collections.abc import Iterator
 from inertia_kit.analysis.forensics.links import explain
 from inertia_kit.analysis.forensics.other_axes import OtherAxes
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN062"
 NAME = "inertia-in-other-axes"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule(
+    "slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the tensor turned into the link's axes"
+)
 SUMMARY = (
     "the declared tensor is the geometry's written in the axes of another frame (a shape's own "
     "axes, swapped axes, principal axes)"

@@ -7,13 +7,14 @@ from collections.abc import Iterator
 from inertia_kit.analysis.forensics.links import explain
 from inertia_kit.analysis.forensics.unit_slip import UnitSlip
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN063"
 NAME = "inertia-unit-slip"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the values in SI units")
 SUMMARY = (
     "the declared tensor is the geometry's in another unit (g·m², kg·mm², kg·cm², lb·in², …) or "
     "the mass is in grams"

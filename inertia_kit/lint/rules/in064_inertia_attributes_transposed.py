@@ -7,13 +7,14 @@ from collections.abc import Iterator
 from inertia_kit.analysis.forensics.links import explain
 from inertia_kit.analysis.forensics.transposed import Transposed
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 CODE = "IN064"
 NAME = "inertia-attributes-transposed"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the values in their places")
 SUMMARY = "the six inertia values are the geometry's transcribed into the wrong attributes"
 # the explanation replaces the symptoms it explains on the same link: far from the geometry
 # (IN020), beyond its hard bound (IN023)

@@ -22,6 +22,8 @@ SEVERITY = Severity.WARNING
 # not a link or the robot: the suppression comments, once every other rule has run (lint.unused)
 SCOPE = "suppressions"
 SUMMARY = "a suppression comment, or a code in it, suppresses no finding"
+# removing a comment that suppresses nothing changes no value and no other finding
+TEXT_FIX = Safety.SAFE
 _CODE = re.compile(r"IN[0-9]{0,3}", re.IGNORECASE)
 
 
@@ -71,10 +73,10 @@ def _fix(path: str, line: int, unused: set[str]) -> tuple[Fix, int] | None:
     if kept:
         edit = Edit(path, start, end, ", ".join(kept))
         return Fix(
-            f"remove {', '.join(sorted(unused))} from the comment", (edit,), Safety.SAFE
+            f"remove {', '.join(sorted(unused))} from the comment", (edit,), TEXT_FIX
         ), column
     return Fix(
-        "remove the unused suppression comment", (_removal(path, text, comment),), Safety.SAFE
+        "remove the unused suppression comment", (_removal(path, text, comment),), TEXT_FIX
     ), column
 
 

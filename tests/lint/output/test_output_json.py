@@ -19,6 +19,7 @@ def _json_finding(code, name, severity, message, file, line, column, link, **ext
         "expected": extra.get("expected"),
         "help": extra.get("help"),
         "fix": None,
+        "unfixable": None,
         "macro": extra.get("macro"),
     }
 

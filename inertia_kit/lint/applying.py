@@ -1,0 +1,148 @@
+"""
+``inertia-lint --fix``: apply the fixes findings carry, as ruff does.
+
+One pass takes the applicable fixes (safe ones; unsafe ones too with ``--unsafe-fixes``) in the
+order of their findings, skips a fix whose edits overlap an edit already taken (identical edits,
+such as one macro body shared by two links, are taken once), writes every changed file
+atomically (:func:`~inertia_kit.description.edits.write_all_atomic`: byte-identical outside the
+edited spans, symbolic links followed), and lints again. Passes repeat until no fix applies or
+nothing changes, at most :data:`MAX_PASSES` times; a file that did not settle gets a note.
+``--diff`` makes one pass and prints the unified diff instead of writing.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from inertia_kit.errors import InputError
+from inertia_kit.lint.findings import Finding, Safety
+
+if TYPE_CHECKING:
+    from inertia_kit.description.edits import Edit, SourceText
+    from inertia_kit.lint.runner import FileResult
+
+MAX_PASSES = 10
+
+
+def applicable(finding: Finding, unsafe: bool) -> bool:
+    """Whether ``--fix`` applies the finding's fix (unsafe ones only with ``--unsafe-fixes``)."""
+    fix = finding.fix
+    if fix is None or not fix.edits:
+        return False
+    return fix.safety is Safety.SAFE or (unsafe and fix.safety is Safety.UNSAFE)
+
+
+def hidden(finding: Finding, unsafe: bool) -> bool:
+    """An unsafe fix that ``--unsafe-fixes`` would enable (ruff's "hidden fixes")."""
+    wants = finding.wants
+    if unsafe or finding.unfixable is not None or applicable(finding, unsafe):
+        return False
+    fix_safety = finding.fix.safety if finding.fix is not None else None
+    return Safety.UNSAFE in (fix_safety, None if wants is None else wants.safety)
+
+
+@dataclass(frozen=True)
+class Pass:
+    """One pass: the findings whose fix was taken, and ``(file as read, new text)``."""
+
+    fixed: tuple[Finding, ...]
+    changes: tuple[tuple[SourceText, str], ...]
+
+    def diff(self) -> str:
+        parts = []
+        for source, text in self.changes:
+            name = source.path
+            shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
+            parts.append(
+                "".join(
+                    difflib.unified_diff(
+                        source.text.splitlines(keepends=True),
+                        text.splitlines(keepends=True),
+                        *shown,
+                    )
+                )
+            )
+        return "".join(parts)
+
+
+def one_pass(findings: Sequence[Finding], unsafe: bool) -> Pass:
+    """The applicable, non-overlapping fixes of ``findings`` applied to their files' text."""
+    from inertia_kit.description.edits import apply_edits, read_source
+
+    taken: dict[str, list[Edit]] = {}  # resolved path -> edits
+    fixed = []
+    for finding in findings:
+        if not applicable(finding, unsafe):
+            continue
+        assert finding.fix is not None
+        new = [e for e in finding.fix.edits if e not in taken.get(_resolved(e.path), [])]
+        if any(_overlaps(e, other) for e in new for other in taken.get(_resolved(e.path), [])):
+            continue  # the next pass, after a new lint, may take it
+        for edit in new:
+            taken.setdefault(_resolved(edit.path), []).append(edit)
+        fixed.append(finding)
+    changes = []
+    for edits in taken.values():
+        source = read_source(edits[0].path)
+        text, _ = apply_edits(source.text, edits)
+        if source.encode(text) != source.original:
+            changes.append((source, text))
+    return Pass(tuple(fixed), tuple(changes))
+
+
+def _resolved(path: str) -> str:
+    return str(Path(path).resolve())
+
+
+def _overlaps(a: Edit, b: Edit) -> bool:
+    """Two edits touching the same text (two insertions at one point count)."""
+    return a.start == b.start or (a.start < b.end and b.start < a.end)
+
+
+@dataclass
+class Outcome:
+    """What fixing one file did: the last lint, findings fixed, passes, whether it settled."""
+
+    result: FileResult
+    fixed: int = 0
+    passes: int = 0
+    settled: bool = True
+    diff: str = ""
+
+
+def fix_file(lint: Callable[[], FileResult], unsafe: bool, *, write: bool) -> Outcome:
+    """
+    Lint, apply, lint again until nothing applies (``write``); or, without ``write``, one pass
+    whose diff is returned. ``InputError`` from a write is kept in the result (as a file that
+    could not be read).
+    """
+    from inertia_kit.description.edits import write_all_atomic
+
+    fixed = 0
+    for number in range(1, MAX_PASSES + 1):
+        result = lint()
+        if result.error is not None or result.disabled or result.fragment:
+            return Outcome(result, fixed, number - 1)
+        step = one_pass(result.findings, unsafe)
+        if not step.changes:
+            return Outcome(result, fixed, number - 1)
+        if not write:
+            return Outcome(result, 0, 1, diff=step.diff())
+        try:
+            write_all_atomic([(s.path, s.encode(text), s.original) for s, text in step.changes])
+        except InputError as error:
+            result.error = error
+            return Outcome(result, fixed, number)
+        fixed += len(step.fixed)
+    result = lint()
+    settled = one_pass(result.findings, unsafe).changes == ()
+    if not settled:
+        result.notes.append(
+            f"{result.path}: the fixes did not settle after {MAX_PASSES} passes; "
+            "run inertia-lint --fix again and report the file if it still changes"
+        )
+    return Outcome(result, fixed, MAX_PASSES, settled)

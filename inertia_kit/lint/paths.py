@@ -1,0 +1,173 @@
+"""
+Linting files and folders as the command line does: each file with its configuration, fixes
+applied (``--fix``) or shown (``--diff``), and a given xacro fragment linted through the robots
+that include it (:mod:`.fragments`), suppression comments in shared files judged over all of
+them (:mod:`.unused`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from inertia_kit.analysis.geometry import MeshLoader
+from inertia_kit.description.xacro_limits import XacroLimits
+from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
+from inertia_kit.lint import catalog
+from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.runner import DEFAULT_FAIL_ON, FileResult, lint_file, selection_for
+
+
+def lint_paths(
+    paths: Iterable[str | Path],
+    *,
+    config: str | Path | None = None,
+    select: Sequence[str] = (),
+    ignore: Sequence[str] = (),
+    fail_on: Severity | None = None,
+    xacro_args: dict[str, str] | None = None,
+    package_paths: Sequence[str | Path] = (),
+    load_mesh: MeshLoader | None = None,
+    engines: Sequence[str] | None = None,
+    xacro_limits: Mapping[str, float] | None = None,
+    on_error: Callable[[Path, Exception], FileResult] | None = None,
+    fix: bool | None = None,
+    unsafe_fixes: bool | None = None,
+    diff: bool = False,
+) -> list[FileResult]:
+    """
+    Lint files and folders as the command line does: each file with its configuration (the
+    nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one,
+    ``engines`` (names, comma-separated or ``all``; ``None``: the configured ones) instead of
+    the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
+    environment's.
+
+    A given xacro file that robots of its repository include is also linted through them (each
+    robot with its own configuration), keeping their findings located in the given files
+    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, or unreadable on its
+    own, gives no result of its own but a note.
+
+    Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
+    configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
+    ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
+    (a bug: the command line reports it for that file and lints the others); without it, the
+    exception propagates.
+
+    ``fix`` (``--fix``; ``None``: the configured ``fix``) applies the fixes
+    (:mod:`~inertia_kit.lint.applying`), safe ones, and unsafe ones with ``unsafe_fixes``
+    (``None``: the configured ``unsafe-fixes``); ``diff`` computes them without writing.
+    """
+    from inertia_kit.errors import ConfigError
+    from inertia_kit.lint import unused
+    from inertia_kit.lint.config_files import ConfigFinder
+
+    known = catalog.names()
+
+    def checked(option: str, values: Sequence[str]) -> tuple[str, ...]:
+        selectors = tuple(catalog.normalize_selector(value, known) for value in values)
+        for value, selector in zip(values, selectors, strict=True):
+            if selector is None:
+                raise ConfigError(f"{option}: {catalog.selector_error(value, known)}")
+        return selectors  # type: ignore[return-value]
+
+    select, ignore = checked("--select", select), checked("--ignore", ignore)
+    if engines is not None:
+        from inertia_kit.engines.vocabulary import parse_engines
+
+        try:
+            engines = parse_engines(engines)
+        except ValueError as error:
+            raise ConfigError(f"--engine: {error}") from None
+    finder = ConfigFinder(config)
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits)
+    plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
+    limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
+    results = []
+    for target, found in plan:
+        file = target.robot
+        unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
+        fixing = diff or bool(found.fix if fix is None else fix)
+        choice = MassChoice.checked(
+            DEFAULT_DENSITY,
+            {n: v.mass for n, v in found.links.items() if v.mass is not None},
+            {n: v.density for n, v in found.links.items() if v.density is not None},
+        )
+
+        def once(
+            file=file, target=target, found=found, choice=choice, unsafe=unsafe, fixing=fixing
+        ):
+            result = lint_file(
+                file,
+                selection_for(found, select, ignore, engines),
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                load_mesh=load_mesh,
+                xacro_limits=limits[found.path],
+                mass_choice=choice,
+                fixes="safe" if fixing and not unsafe else "all",
+            )
+            if target.changed:  # a given fragment: only what lands in it is fixed and told
+                from inertia_kit.lint.fragments import located
+
+                result.findings = located(result.findings, target.robot, target.changed)
+            return result
+
+        try:
+            if fixing:
+                from inertia_kit.lint.applying import fix_file
+
+                outcome = fix_file(once, unsafe, write=not diff)
+                result = outcome.result
+                result.fixed, result.diff = outcome.fixed, outcome.diff
+            else:
+                result = once()
+            result.unsafe_fixes = unsafe
+        except Exception as error:
+            if on_error is None:
+                raise
+            result = on_error(file, error)
+        # not `or`: Severity.INFO is 0
+        result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
+        results.append(result)
+    unused.judge_shared(results)
+    return _through_robots(results, chosen)
+
+
+def _targets(
+    paths: Iterable[str | Path],
+    xacro_args: Mapping[str, str] | None,
+    package_paths: Sequence[str | Path],
+    xacro_limits: Mapping[str, float] | None,
+) -> Any:
+    """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
+    from inertia_kit.lint.fragments import targets
+
+    return targets(
+        paths,
+        xacro_args=xacro_args,
+        package_paths=package_paths,
+        xacro_limits=XacroLimits.resolve(None, xacro_limits),
+    )
+
+
+def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
+    """
+    The results with the given files robots include linted through them: a robot's findings
+    kept where they land in those files (saying `via` which robot), the given file's own
+    result dropped when it is a fragment or unreadable on its own (its robots read it), and a
+    note for each given file, saying which robots were linted for it or that none includes it.
+    """
+    from inertia_kit.lint.fragments import located
+
+    kept = []
+    for result, target in zip(results, chosen.targets, strict=True):
+        if target.changed:
+            result.findings = located(result.findings, target.robot, target.changed)
+        elif chosen.read_by_robots(target) and (result.fragment or result.error):
+            result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
+        if not target.changed:
+            note = chosen.note(result.path, result.fragment)
+            result.remarks.extend([f"{result.path}: {note}"] if note else [])
+        kept.append(result)
+    return kept
