@@ -180,8 +180,22 @@ def hinges(bodies: Iterable[Body]) -> list[Hinge]:
             found.append(Hinge(body.name, smallest, depth, order))
             u = p @ h
             # the motions nothing resists are left free: the pseudo-inverse drops them
-            p = p - u @ np.linalg.pinv(d, rcond=SINGULAR, hermitian=True) @ u.T
+            p = p - u @ _pseudo_inverse(d) @ u.T
         articulated[body.name] = p
         composite[body.name] = k
     found.sort(key=lambda hinge: (-hinge.depth, hinge.order))
     return found
+
+
+def _pseudo_inverse(d: NDArray[np.float64]) -> NDArray[np.float64]:
+    """
+    ``d``'s pseudo-inverse; NaN where it has none: values past double precision (a 1e292 kg
+    body: the decomposition does not converge) give no number, as they give none in an engine,
+    and the hinges above then compare as nothing resisting them.
+    """
+    if np.isfinite(d).all():
+        try:
+            return np.linalg.pinv(d, rcond=SINGULAR, hermitian=True)
+        except np.linalg.LinAlgError:
+            pass
+    return np.full(d.shape[::-1], np.nan)

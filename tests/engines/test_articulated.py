@@ -101,3 +101,22 @@ def test_order_is_deepest_first_then_depth_first():
         ]
     )
     assert [h.body for h in found] == ["b2", "a1", "b1"]
+
+
+def test_a_body_past_double_precision_gives_no_hinge_value_and_no_exception():
+    """Found by hypothesis: a 3.4e292 kg base made the floating joint's articulated inertia NaN,
+    and the pseudo-inverse raised LinAlgError (an internal error in `--engine all`)."""
+    import warnings
+
+    unusable = np.full((6, 6), np.nan)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        found = hinges(
+            [
+                body("base", None, "floating", inertia=unusable),
+                body("arm", "base", inertia=rod()),
+                body("tip", "arm", inertia=unusable),
+            ]
+        )
+    # the floating base has no hinge; NaN from the tip reaches the arm: nothing resists either
+    assert [(hinge.body, hinge.smallest) for hinge in found] == [("tip", 0.0), ("arm", 0.0)]
