@@ -237,19 +237,14 @@ def plan_robot(
     files = Files.for_input(source.path)
     files.add(source)
     placements = place(choices.targets, analysis.links, files)
+    notes = list(choices.notes)
     fills: list[LinkFill] = []
     for target in choices.targets:
         placement = placements[target.name]
         if placement.problem is not None:
-            refused.append(
-                Refusal(
-                    target.name,
-                    f"{placement.problem}; paste the block below there, or make the macro "
-                    "take the values as parameters",
-                    _paste_block(target.properties),
-                )
-            )
+            refused.append(Refusal(target.name, placement.problem, _paste_block(target.properties)))
             continue
+        notes.extend(placement.notes)
         replaced = target.link.link.inertial is not None
         fills.append(
             LinkFill(target.name, target.properties, target.basis, replaced, placement.edits)
@@ -261,7 +256,7 @@ def plan_robot(
         source,
         tuple(fills),
         tuple(refused),
-        tuple(choices.notes),
+        tuple(notes),
         links=names,
         input_path=input_path,
         others=others,

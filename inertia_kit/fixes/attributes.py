@@ -1,0 +1,371 @@
+"""
+Way 1 of :mod:`.sites`: the values that change, each where its text is written, and nothing
+else.
+
+A value's text may be written in the ``<inertial>`` itself (``ixx="0.01"``), passed through a
+macro's parameter (``ixx="${ixx}"`` in the body, ``ixx="0.01"`` at the call, perhaps through
+several calls), or read from a property defined in the macro (``ixx="${inertia_ixx}"``). The
+*slots* of a value are these places, innermost first; each is written once for the links it
+makes (its users). A new value is written at the outermost slot whose users all get that same
+text, where the text is a number (or absent with a default), so expressions elsewhere stay. Only
+when no such slot exists is an expression replaced by the number, and the link is reported as
+no longer parametric.
+
+The axes of the ``<inertial>``: a link made of one shape whose ``<origin rpy>`` turns it (the
+seed arm's cylinder along x) may keep a tensor written in the shape's own axes, as its author
+meant; then the ``<inertial>`` takes the shape's ``<origin>``, copied as the shape writes it
+(``xyz="${link_length/2} 0 0" rpy="0 ${pi/2} 0"``) where it is read in the same scope. When
+the ``<inertial>`` comes from a macro without an ``<origin>`` and its links need different
+ones, the macro gains optional parameters ``origin_xyz:='0 0 0' origin_rpy:='0 0 0'``, and
+only the calls that need another origin pass one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from inertia_kit.fixes.files import Files, key, location
+from inertia_kit.fixes.values import ZERO, differing, new_texts, same_vector, vector
+from inertia_kit.fixes.writer import Writer
+from inertia_kit.fixes.xacro_macros import (
+    child,
+    enclosing_macro,
+    parameter_names,
+    parameter_reference,
+    property_definition,
+    used_elsewhere,
+    uses,
+)
+
+if TYPE_CHECKING:
+    from lxml import etree
+
+    from inertia_kit.description.edits import Edit
+    from inertia_kit.description.model import Source
+    from inertia_kit.fixes.sites import Target
+
+_ELEMENT = {"xyz": ("origin", "xyz"), "rpy": ("origin", "rpy"), "mass": ("mass", "value")}
+DEFAULT_ORIGIN = "0 0 0"
+
+
+@dataclass(frozen=True)
+class Decision:
+    """What a target's ``<inertial>`` will say: in the axes ``rpy``, each value's ``texts``;
+    the names that change; for ``xyz``/``rpy``, the shape ``<origin>`` saying the same."""
+
+    rpy: tuple[float, float, float]
+    texts: dict[str, str]
+    changed: tuple[str, ...]
+    copied: dict[str, Source] = field(default_factory=dict)
+
+
+def decide(target: Target) -> Decision | None:
+    """The axes that change the fewest values: the ``<inertial>``'s own, else (a link of one
+    turned shape) the shape's; ``None`` for a link without an ``<inertial>``."""
+    inertial = target.link.link.inertial
+    if inertial is None:
+        return None
+    current = vector(inertial.origin.rpy) or ZERO
+    candidates: list[tuple[tuple[float, float, float], Source | None]] = [(current, None)]
+    solids = target.link.geometry.solids
+    if len(solids) == 1:
+        origin = solids[0].shape.origin
+        turned = vector(origin.rpy)
+        if turned is not None and any(turned) and turned != current:
+            candidates.append((turned, origin.source))
+    best: Decision | None = None
+    for rpy, shape in candidates:
+        texts = new_texts(target.properties, rpy)
+        changed = tuple(differing(inertial, texts))
+        copied = {}
+        if shape is not None:
+            copied["rpy"] = shape
+            if same_vector(texts["xyz"], solids[0].shape.origin.xyz):
+                copied["xyz"] = shape
+        if best is None or len(changed) < len(best.changed):
+            best = Decision(rpy, texts, changed, copied)
+    return best
+
+
+@dataclass(frozen=True)
+class Slot:
+    """Where a value's text is written: ``attribute`` of ``element`` (``holder`` when the
+    element is absent), for the links ``users``."""
+
+    element: etree._Element | None
+    attribute: str
+    users: tuple[str, ...]
+    call: bool = False  # a macro call's argument
+    has_default: bool = False  # ... that the macro gives a default
+
+    @property
+    def text(self) -> str | None:
+        return None if self.element is None else self.element.get(self.attribute)
+
+
+def _users_agree(
+    users: tuple[str, ...], name: str, decisions: Mapping[str, Decision | None]
+) -> bool:
+    texts = set()
+    for user in users:
+        decision = decisions.get(user)
+        if decision is None:
+            return False
+        texts.add(decision.texts[name])
+    return len(texts) == 1
+
+
+def chain(name: str, body: etree._Element, target: Target, users, files: Files) -> list[Slot]:
+    """The slots of value ``name``, innermost (the ``<inertial>`` body) first."""
+    inertial = target.link.link.inertial
+    assert inertial is not None
+    tag, attribute = _ELEMENT.get(name, ("inertia", name))
+    element = child(body, tag)
+    slots = [Slot(element, attribute, tuple(users.body[key(inertial.source)]))]
+    calls = inertial.source.calls
+    index, macro, here = len(calls) - 1, enclosing_macro(body), slots[0]
+    while here.text is not None and index >= 0 and macro is not None:
+        parameter = parameter_reference(here.text)
+        names = parameter_names(macro)
+        if parameter is None or parameter not in names:
+            break
+        level = body if not here.call else here.element
+        mapped = _mapped(level, parameter, nested=not here.call)
+        if used_elsewhere(macro, parameter, mapped):
+            break  # changing the argument would change more than this value
+        call = files.element(calls[index])
+        if call is None:
+            break
+        made = tuple(users.chain.get(key(calls[index]), ()))
+        here = Slot(call, parameter, made, call=True, has_default=names[parameter])
+        slots.append(here)
+        index, macro = index - 1, enclosing_macro(call)
+    return slots
+
+
+def _mapped(level: etree._Element, parameter: str, *, nested: bool):
+    """The attributes at this level that are exactly ``${parameter}``: a body's values (in its
+    children) or a call's arguments."""
+    elements = list(level) if nested else [level]
+    return [
+        (element, name)
+        for element in elements
+        if isinstance(element.tag, str)
+        for name, value in element.attrib.items()
+        if parameter_reference(value) == parameter
+    ]
+
+
+def _expression(text: str) -> bool:
+    return "${" in text or "$(" in text
+
+
+def _same_scope(a: etree._Element, b: etree._Element, files: Files) -> bool:
+    """Whether an expression read at ``b`` means the same at ``a``: one file, one macro."""
+    where_a, where_b = files.where(a), files.where(b)
+    if where_a is None or where_b is None:
+        return False
+    return key(where_a)[0] == key(where_b)[0] and enclosing_macro(a) is enclosing_macro(b)
+
+
+def _text_at(
+    slot_element: etree._Element,
+    name: str,
+    decision: Decision,
+    users: tuple[str, ...],
+    decisions: Mapping[str, Decision | None],
+    files: Files,
+) -> tuple[str, str | None]:
+    """The text to write for ``name`` at a slot: the shape's ``<origin>`` text when every user
+    copies the same one and it reads the same here, else the number; and the expression lost
+    (``None``: none)."""
+    number = decision.texts[name]
+    shape = decision.copied.get(name)
+    if shape is None:
+        return number, None
+    copies = [decisions.get(user) for user in users]
+    same = {key(d.copied[name]) if d and name in d.copied else None for d in copies}
+    shape_element = files.element(shape)
+    text = None if shape_element is None else shape_element.get(name)
+    if text is None or len(same) != 1:
+        return number, None
+    if _same_scope(slot_element, shape_element, files):
+        return text, None
+    return number, text if _expression(text) else None
+
+
+def write_values(
+    target: Target, decisions: Mapping[str, Decision | None], users, files: Files
+) -> tuple[tuple[Edit, ...], tuple[str, ...]] | str:
+    """The edits writing ``target``'s changed values where they are written, and the notes on
+    expressions replaced by numbers; or why they cannot be written so."""
+    decision = decisions[target.name]
+    inertial = target.link.link.inertial
+    assert decision is not None and inertial is not None
+    body = files.element(inertial.source)
+    if body is None:
+        return f"its <inertial> was not found at {location(inertial.source)}"
+    if child(body, "mass") is None or child(body, "inertia") is None:
+        return "its <inertial> has no <mass> or <inertia> to edit"
+    writer = Writer(files)
+    absent = []
+    for name in decision.changed:
+        slots = chain(name, body, target, users, files)
+        if slots[0].text is None and name in ("xyz", "rpy"):
+            absent.append(name)
+            continue
+        problem = _write_value(name, slots, target, decisions, writer)
+        if problem is not None:
+            return problem
+    if absent:
+        problem = _write_origin(absent, body, target, decisions, users, writer)
+        if problem is not None:
+            return problem
+    return writer.result(), tuple(writer.notes)
+
+
+def _write_value(
+    name: str,
+    slots: list[Slot],
+    target: Target,
+    decisions: Mapping[str, Decision | None],
+    writer: Writer,
+) -> str | None:
+    """Write one value at its outermost slot that takes a number, else replace an expression."""
+    decision = decisions[target.name]
+    assert decision is not None
+    files = writer.files
+    agreeing = [slot for slot in reversed(slots) if _users_agree(slot.users, name, decisions)]
+    for slot in agreeing:  # first: a number or an absent argument, keeping every expression
+        text = slot.text
+        if slot.element is None:
+            continue
+        if text is None:
+            if slot.call and slot.has_default:
+                new, _ = _text_at(slot.element, name, decision, slot.users, decisions, files)
+                return writer.set(slot.element, slot.attribute, new)
+            continue
+        if not _expression(text):
+            new, lost = _text_at(slot.element, name, decision, slot.users, decisions, files)
+            _note(writer, target, name, new, lost, slot)
+            return writer.set(slot.element, slot.attribute, new)
+        definition = _definition(slot)
+        if definition is not None and not _expression(definition.get("value", "")):
+            return writer.set(definition, "value", decision.texts[name])
+    for slot in agreeing:  # then: an expression becomes the number
+        if slot.element is None or slot.text is None:
+            continue
+        definition = _definition(slot)
+        place = definition if definition is not None else slot.element
+        attribute = "value" if definition is not None else slot.attribute
+        lost = place.get(attribute)
+        new = decision.texts[name]
+        _note(writer, target, name, new, lost, slot)
+        return writer.set(place, attribute, new)
+    if not agreeing:
+        return _shared(slots[-1], name, target, files)
+    return f"its {name} is not written in a place that can take a number"
+
+
+def _definition(slot: Slot) -> etree._Element | None:
+    """The macro's own property that the slot reads whole (``${inertia_ixx}``), read nowhere
+    else: editing its value keeps the property used."""
+    reference = None if slot.text is None else parameter_reference(slot.text)
+    if reference is None or slot.element is None:
+        return None
+    definition = property_definition(slot.element, reference)
+    if definition is None:
+        return None
+    macro = enclosing_macro(definition)
+    return definition if macro is not None and uses(macro, reference) == 1 else None
+
+
+def _note(writer: Writer, target: Target, name: str, new: str, lost, slot: Slot) -> None:
+    if lost is None or not _expression(lost):
+        return
+    where = writer.files.where(slot.element) if slot.element is not None else None
+    at = f" ({location(where)})" if where is not None else ""
+    writer.notes.append(
+        f"link `{target.name}` is no longer parametric: its {name} is written as {new} where "
+        f'"{lost}" was{at}; its properties no longer change it'
+    )
+
+
+def _shared(slot: Slot, name: str, target: Target, files: Files) -> str:
+    where = files.where(slot.element) if slot.element is not None else None
+    at = location(where) if where is not None else "its macro"
+    names = ", ".join(f"`{u}`" for u in slot.users[:6]) + (", ..." if len(slot.users) > 6 else "")
+    return (
+        f"its {name} is written once ({at}) for {len(slot.users)} links ({names}) that need "
+        "different values"
+    )
+
+
+def _write_origin(
+    absent: list[str],
+    body: etree._Element,
+    target: Target,
+    decisions: Mapping[str, Decision | None],
+    users,
+    writer: Writer,
+) -> str | None:
+    """Write ``xyz``/``rpy`` that the ``<inertial>`` does not write: in the body when every
+    link made from it needs the same; else through new optional parameters of its macro,
+    passed only at the calls that need another origin than ``0 0 0``."""
+    inertial = target.link.link.inertial
+    assert inertial is not None
+    decision = decisions[target.name]
+    assert decision is not None
+    files = writer.files
+    sharers = tuple(users.body[key(inertial.source)])
+    origin = child(body, "origin")
+    if all(_users_agree(sharers, name, decisions) for name in absent):
+        texts = {n: _text_at(body, n, decision, sharers, decisions, files) for n in absent}
+        for name, (new, lost) in texts.items():
+            _note(writer, target, name, new, lost, Slot(body, name, sharers))
+        if origin is not None:
+            for name, (new, _) in texts.items():
+                problem = writer.set(origin, name, new)
+                if problem is not None:
+                    return problem
+            return None
+        written = {"xyz": DEFAULT_ORIGIN, "rpy": DEFAULT_ORIGIN}
+        written |= {n: t for n, (t, _) in texts.items()}
+        return writer.insert_first(body, f'<origin xyz="{written["xyz"]}" rpy="{written["rpy"]}"/>')
+    macro = enclosing_macro(body)
+    calls = inertial.source.calls
+    call = None if not calls else files.element(calls[-1])
+    if macro is None or call is None:
+        return _shared(Slot(body, absent[0], sharers), absent[0], target, files)
+    made = tuple(users.chain.get(key(calls[-1]), ()))
+    if not all(_users_agree(made, name, decisions) for name in absent):
+        return _shared(Slot(call, absent[0], made), absent[0], target, files)
+    # the same new parameters for every link the body makes, whichever asks first
+    missing = [n for n in ("xyz", "rpy") if origin is None or origin.get(n) is None]
+    taken = parameter_names(macro)
+    names = {n: _free(f"origin_{n}", taken) for n in missing}
+    declared = " ".join(f"{names[n]}:='{DEFAULT_ORIGIN}'" for n in missing)
+    problem = writer.append(macro, "params", f" {declared}")
+    if problem is None and origin is None:
+        parts = {n: f"${{{names[n]}}}" if n in names else DEFAULT_ORIGIN for n in ("xyz", "rpy")}
+        problem = writer.insert_first(body, f'<origin xyz="{parts["xyz"]}" rpy="{parts["rpy"]}"/>')
+    elif problem is None:
+        for name in missing:
+            problem = problem or writer.set(origin, name, f"${{{names[name]}}}")
+    for name in absent:
+        if problem is not None:
+            return problem
+        new, lost = _text_at(call, name, decision, made, decisions, files)
+        _note(writer, target, name, new, lost, Slot(call, names[name], made))
+        problem = writer.set(call, names[name], new)
+    return problem
+
+
+def _free(name: str, taken: Mapping[str, bool]) -> str:
+    """``name``, or ``inertial_xyz`` style, whichever the macro does not take yet."""
+    for candidate in (name, name.replace("origin_", "inertial_"), name.replace("origin_", "com_")):
+        if candidate not in taken:
+            return candidate
+    return f"{name}_"
