@@ -254,19 +254,40 @@ def _write_value(
         definition = _definition(slot)
         if definition is not None and not _expression(definition.get("value", "")):
             return writer.set(definition, "value", decision.texts[name])
-    for slot in agreeing:  # then: an expression becomes the number
+    for slot in agreeing:  # then: an expression becomes the formula, else the number
         if slot.element is None or slot.text is None:
             continue
         definition = _definition(slot)
         place = definition if definition is not None else slot.element
         attribute = "value" if definition is not None else slot.attribute
+        written = _formula(name, place, target, decision, files)
+        if written is not None:
+            return writer.set(place, attribute, written)
         lost = place.get(attribute)
         new = decision.texts[name]
-        _note(writer, target, name, new, lost, slot)
+        _note(writer, target, name, new, lost, Slot(place, attribute, slot.users))
         return writer.set(place, attribute, new)
     if not agreeing:
         return _shared(slots[-1], name, target, files)
     return f"its {name} is not written in a place that can take a number"
+
+
+def _formula(
+    name: str, place: etree._Element, target: Target, decision: Decision, files: Files
+) -> str | None:
+    """The entry as a formula of the shape's dimensions and the kept mass, read where it is
+    written (:mod:`.formulas`); ``None`` when the mass changes or the terms read elsewhere."""
+    from inertia_kit.fixes.formulas import formula
+
+    inertial = target.link.link.inertial
+    body = None if inertial is None else files.element(inertial.source)
+    mass = None if body is None else child(body, "mass")
+    if mass is None or "mass" in decision.changed or not _same_scope(place, mass, files):
+        return None
+    found = formula(name, target, decision, mass.get("value"), files)
+    if found is None or not _same_scope(place, found[1], files):
+        return None
+    return found[0]
 
 
 def _definition(slot: Slot) -> etree._Element | None:
