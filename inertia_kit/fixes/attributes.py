@@ -99,6 +99,7 @@ class Slot:
     users: tuple[str, ...]
     call: bool = False  # a macro call's argument
     has_default: bool = False  # ... that the macro gives a default
+    stop: str | None = None  # why the value is not followed further out
 
     @property
     def text(self) -> str | None:
@@ -134,7 +135,18 @@ def chain(name: str, body: etree._Element, target: Target, users, files: Files) 
         level = body if not here.call else here.element
         mapped = _mapped(level, parameter, nested=not here.call)
         if used_elsewhere(macro, parameter, mapped):
-            break  # changing the argument would change more than this value
+            # changing the argument would change more than this value
+            here = Slot(
+                here.element,
+                here.attribute,
+                here.users,
+                here.call,
+                here.has_default,
+                f"parameter `{parameter}` of `{macro.get('name', '?')}` is used for more than "
+                "the <inertial>",
+            )
+            slots[-1] = here
+            break
         call = files.element(calls[index])
         if call is None:
             break
@@ -318,9 +330,11 @@ def _shared(slot: Slot, name: str, target: Target, files: Files) -> str:
     where = files.where(slot.element) if slot.element is not None else None
     at = location(where) if where is not None else "its macro"
     names = ", ".join(f"`{u}`" for u in slot.users[:6]) + (", ..." if len(slot.users) > 6 else "")
+    written = f'"{slot.text}" ' if slot.text is not None else ""
+    why = f" ({slot.stop})" if slot.stop else ""
     return (
-        f"its {name} is written once ({at}) for {len(slot.users)} links ({names}) that need "
-        "different values"
+        f"its {name} is written {written}once ({at}) for {len(slot.users)} links ({names}) that "
+        f"need different values{why}"
     )
 
 

@@ -148,19 +148,16 @@ def _place(
     decision = decisions[target.name]
     if decision is not None and not decision.changed:
         return Placement()  # already says this, as written
-    problems = []
     written = write_values(target, decisions, users, files)
     if not isinstance(written, str):
         return Placement(*written[:1], notes=written[1])
-    problems.append(written)
     for way in (_replace_body, _replace_call):
         result = way(target, wanted, users, files)
         if result.problem is None:
             return result
-        problems.append(result.problem)
+    # the first way's reason: the others (whole blocks) fail for the same sharing
     sharers = users.body[key(inertial.source)]
-    problem = "; ".join(dict.fromkeys(problems))
-    return Placement(problem=problem + _advice(inertial.source, sharers))
+    return Placement(problem=written + _advice(inertial.source, sharers))
 
 
 def _advice(where: Source, sharers: Sequence[str]) -> str:
@@ -169,9 +166,9 @@ def _advice(where: Source, sharers: Sequence[str]) -> str:
     if len(sharers) > 1 and where.calls:
         call = where.calls[-1]
         return (
-            f"; its values differ from those of the other links its macro makes: give the macro "
-            f"parameters for them and pass this link's values (the block below) at its call, "
-            f"{location(call)}"
+            "; a value written once cannot be right for links that differ: give the macro a "
+            "parameter for each value that differs and pass each link's own at its call "
+            f"(this link's call: {location(call)}; its values: the block below)"
         )
     return "; paste the block below there"
 
