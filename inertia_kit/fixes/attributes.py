@@ -261,7 +261,7 @@ def _write_value(
             continue
         if not _expression(text):
             new, lost = _text_at(slot.element, name, decision, slot.users, decisions, files)
-            _note(writer, target, name, new, lost, slot)
+            _note(writer, target, name, new, lost, slot, shape=True)
             return writer.set(slot.element, slot.attribute, new)
         definition = _definition(slot)
         if definition is not None and not _expression(definition.get("value", "")):
@@ -315,14 +315,23 @@ def _definition(slot: Slot) -> etree._Element | None:
     return definition if macro is not None and uses(macro, reference) == 1 else None
 
 
-def _note(writer: Writer, target: Target, name: str, new: str, lost, slot: Slot) -> None:
+def _note(
+    writer: Writer, target: Target, name: str, new: str, lost, slot: Slot, *, shape: bool = False
+) -> None:
+    """Say that ``lost`` (an expression at the slot, or the shape's ``<origin>`` text that
+    does not read the same there) is written as the number ``new``."""
     if lost is None or not _expression(lost):
         return
     where = writer.files.where(slot.element) if slot.element is not None else None
     at = f" ({location(where)})" if where is not None else ""
+    instead = (
+        f'not as its shape\'s <origin> writes it ("{lost}": read in another scope there)'
+        if shape
+        else f'where "{lost}" was'
+    )
     writer.notes.append(
-        f"link `{target.name}` is no longer parametric: its {name} is written as {new} where "
-        f'"{lost}" was{at}; its properties no longer change it'
+        f"link `{target.name}` is no longer parametric: its {name} is written as {new}{at} "
+        f"{instead}; its properties no longer change it"
     )
 
 
@@ -359,7 +368,7 @@ def _write_origin(
     if all(_users_agree(sharers, name, decisions) for name in absent):
         texts = {n: _text_at(body, n, decision, sharers, decisions, files) for n in absent}
         for name, (new, lost) in texts.items():
-            _note(writer, target, name, new, lost, Slot(body, name, sharers))
+            _note(writer, target, name, new, lost, Slot(body, name, sharers), shape=True)
         if origin is not None:
             for name, (new, _) in texts.items():
                 problem = writer.set(origin, name, new)
@@ -393,7 +402,7 @@ def _write_origin(
         if problem is not None:
             return problem
         new, lost = _text_at(call, name, decision, made, decisions, files)
-        _note(writer, target, name, new, lost, Slot(call, names[name], made))
+        _note(writer, target, name, new, lost, Slot(call, names[name], made), shape=True)
         problem = writer.set(call, names[name], new)
     return problem
 

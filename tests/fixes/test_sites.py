@@ -263,8 +263,8 @@ CASES = [
         1,
         {"robot.xacro": PARAMS_FILLED},
         (
-            f"link `long` is no longer parametric: its ixx is written as {n(_L[1])} where "
-            '"${2*1}" was',
+            f"link `long` is no longer parametric: its ixx is written as {n(_L[1])} (",
+            'where "${2*1}" was',
         ),
     ),
 ]
