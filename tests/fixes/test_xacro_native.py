@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
+from kit import write as write_file
 from kit.moments import solid_cylinder
 from kit.urdf import joint
 
@@ -192,3 +193,123 @@ def test_an_expression_that_cannot_stay_is_a_number_and_the_link_is_named(tmp_pa
     assert "${2 * 0.01}" not in text and '<box size="${size}"/>' in text
     assert '<mass value="2"/>' in text  # kept: the mass did not change
     assert_settled(path, "--fix", "all")
+
+
+# --- where each value is written ----------------------------------------------------------------
+
+NESTED = f"""<robot name="r" {XACRO_NS}>
+  <xacro:macro name="inertia_of" params="m ixx iyy izz">
+    <inertial>
+      <mass value="${{m}}"/>
+      <inertia ixx="${{ixx}}" ixy="0" ixz="0" iyy="${{iyy}}" iyz="0" izz="${{izz}}"/>
+    </inertial>
+  </xacro:macro>
+  <xacro:macro name="rod" params="name length mass ixx iyy izz">
+    <link name="${{name}}">
+      <collision><geometry><cylinder radius="0.05" length="${{length}}"/></geometry></collision>
+      <xacro:inertia_of m="${{mass}}" ixx="${{ixx}}" iyy="${{iyy}}" izz="${{izz}}"/>
+    </link>
+  </xacro:macro>
+  <link name="world"/>
+  <xacro:rod name="short" length="0.2" mass="1.5" ixx="1" iyy="1" izz="1"/>
+  <xacro:rod name="long" length="0.8" mass="3" ixx="2" iyy="2" izz="2"/>
+  {joint("world", "short")}
+  {joint("world", "long")}
+</robot>
+"""
+
+
+def n(value: float) -> str:
+    from inertia_kit.physics.formatting import xml_number
+
+    return xml_number(value, 6)
+
+
+def test_values_passed_through_two_macros_are_written_at_the_outer_calls(tmp_path):
+    """`ixx` goes from the robot's call of `rod` through `rod`'s call of `inertia_of`: the
+    numbers at the outer calls change, both macros stay as written."""
+    path = write_file(tmp_path / "robot.urdf.xacro", NESTED)
+    result = fill("--fix", "all", str(path))
+    assert result.exit_code == 1, result.stderr
+    expected = NESTED
+    for length, mass, old in ((0.2, 1.5, "1"), (0.8, 3.0, "2")):
+        _, side, _, axial = solid_cylinder(0.05, length, mass=mass)
+        expected = expected.replace(
+            f'ixx="{old}" iyy="{old}" izz="{old}"/>',
+            f'ixx="{n(side)}" iyy="{n(side)}" izz="{n(axial)}"/>',
+        )
+    assert path.read_text() == expected
+    assert_settled(path, "--fix", "all")
+
+
+PROPERTY = f"""<robot name="r" {XACRO_NS}>
+  <xacro:macro name="wheel" params="side">
+    <xacro:property name="spin" value="0.5"/>
+    <link name="${{side}}_wheel">
+      <collision><geometry><sphere radius="0.1"/></geometry></collision>
+      <inertial>
+        <mass value="2"/>
+        <inertia ixx="${{spin}}" ixy="0" ixz="0" iyy="${{0.5 * 1}}" iyz="0" izz="0.008"/>
+      </inertial>
+    </link>
+    {joint("world", "${side}_wheel")}
+  </xacro:macro>
+  <link name="world"/>
+  <xacro:wheel side="left"/>
+  <xacro:wheel side="right"/>
+</robot>
+"""
+
+
+def test_a_value_read_from_the_macros_property_is_written_in_the_property(tmp_path):
+    """`ixx="${spin}"`: the property's number changes and `${spin}` stays used; iyy's
+    expression becomes the sphere's formula; izz (already 2/5 m r²) keeps its text."""
+    path = write_file(tmp_path / "robot.urdf.xacro", PROPERTY)
+    result = fill("--fix", "all", str(path))
+    assert result.exit_code == 1, result.stderr
+    moment = 2 * 2.0 * 0.1**2 / 5
+    assert n(moment) == "0.008"
+    expected = PROPERTY.replace('value="0.5"', f'value="{n(moment)}"').replace(
+        "${0.5 * 1}", "${2 * 2 * 0.1**2 / 5}"
+    )
+    assert path.read_text() == expected
+    assert "no longer parametric" not in result.stderr
+    assert_settled(path, "--fix", "all")
+
+
+OTHER_SCOPE = f"""<robot name="r" {XACRO_NS}>
+  <xacro:property name="length" value="0.4"/>
+  <xacro:macro name="rod_inertia" params="">
+    <inertial>
+      <origin xyz="0 0 0" rpy="0 0 0"/>
+      <mass value="1"/>
+      <inertia ixx="${{(0.02**2 * 3 + length**2) / 12}}" ixy="0" ixz="0"
+               iyy="${{(0.02**2 * 3 + length**2) / 12}}" iyz="0" izz="${{0.02**2 / 2}}"/>
+    </inertial>
+  </xacro:macro>
+  <link name="world"/>
+  {joint("world", "rod")}
+  <link name="rod">
+    <collision>
+      <origin xyz="${{length/2}} 0 0" rpy="0 ${{pi/2}} 0"/>
+      <geometry><cylinder radius="0.02" length="${{length}}"/></geometry>
+    </collision>
+    <xacro:rod_inertia/>
+  </link>
+</robot>
+"""
+
+
+def test_a_shape_origin_read_in_another_scope_is_written_as_numbers_and_said(tmp_path):
+    """The <inertial> (in a macro used once) takes the collision's axes, but its written origin
+    reads `length` and `pi` in the link's scope: the numbers are written and the note says
+    so."""
+    path = write_file(tmp_path / "robot.urdf.xacro", OTHER_SCOPE)
+    result = fill("--fix", "all", str(path))
+    assert result.exit_code == 1, result.stderr
+    assert "link `rod` is no longer parametric: its xyz is written as 0.2" in result.stderr
+    assert 'not as its shape\'s <origin> writes it ("${length/2} 0 0"' in result.stderr
+    text = path.read_text()
+    assert '<origin xyz="0.2 0 0" rpy="0 1.5708 0"/>' in text
+    assert "${(0.02**2 * 3 + length**2) / 12}" in text  # the formula in the rod's axes stays
+    assert_settled(path, "--fix", "all", besides=("IN041",))
