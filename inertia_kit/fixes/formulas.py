@@ -117,7 +117,10 @@ def formula(
         return None
     axis = int(np.argmax(along[_AXES[name]]))
     text, per_mass = principal[axis]
+    written = text.format(m=m)
+    if not re.search(r"[A-Za-z_]\w*", re.sub(r"\d[eE][-+]?\d", "", written)):
+        return None  # numbers only: the number itself says as much
     value = target.properties.mass * per_mass
     if xml_number(value, DIGITS) != decision.texts[name]:
         return None  # the mass or the shape is not what the formula would read
-    return "${" + text.format(m=m) + "}", element
+    return "${" + written + "}", element
