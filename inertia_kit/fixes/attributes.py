@@ -106,7 +106,7 @@ class Slot:
         return None if self.element is None else self.element.get(self.attribute)
 
 
-def _users_agree(
+def users_agree(
     users: tuple[str, ...], name: str, decisions: Mapping[str, Decision | None]
 ) -> bool:
     texts = set()
@@ -182,7 +182,7 @@ def _same_scope(a: etree._Element, b: etree._Element, files: Files) -> bool:
     return key(where_a)[0] == key(where_b)[0] and enclosing_macro(a) is enclosing_macro(b)
 
 
-def _text_at(
+def text_at(
     slot_element: etree._Element,
     name: str,
     decision: Decision,
@@ -232,7 +232,9 @@ def write_values(
         if problem is not None:
             return problem
     if absent:
-        problem = _write_origin(absent, body, target, decisions, users, writer)
+        from inertia_kit.fixes.origins import write_origin
+
+        problem = write_origin(absent, body, target, decisions, users, writer)
         if problem is not None:
             return problem
     return writer.result(), tuple(writer.notes)
@@ -249,19 +251,19 @@ def _write_value(
     decision = decisions[target.name]
     assert decision is not None
     files = writer.files
-    agreeing = [slot for slot in reversed(slots) if _users_agree(slot.users, name, decisions)]
+    agreeing = [slot for slot in reversed(slots) if users_agree(slot.users, name, decisions)]
     for slot in agreeing:  # first: a number or an absent argument, keeping every expression
         text = slot.text
         if slot.element is None:
             continue
         if text is None:
             if slot.call and slot.has_default:
-                new, _ = _text_at(slot.element, name, decision, slot.users, decisions, files)
+                new, _ = text_at(slot.element, name, decision, slot.users, decisions, files)
                 return writer.set(slot.element, slot.attribute, new)
             continue
         if not _expression(text):
-            new, lost = _text_at(slot.element, name, decision, slot.users, decisions, files)
-            _note(writer, target, name, new, lost, slot, shape=True)
+            new, lost = text_at(slot.element, name, decision, slot.users, decisions, files)
+            note_lost(writer, target, name, new, lost, slot, shape=True)
             return writer.set(slot.element, slot.attribute, new)
         definition = _definition(slot)
         if definition is not None and not _expression(definition.get("value", "")):
@@ -277,10 +279,10 @@ def _write_value(
             return writer.set(place, attribute, written)
         lost = place.get(attribute)
         new = decision.texts[name]
-        _note(writer, target, name, new, lost, Slot(place, attribute, slot.users))
+        note_lost(writer, target, name, new, lost, Slot(place, attribute, slot.users))
         return writer.set(place, attribute, new)
     if not agreeing:
-        return _shared(slots[-1], name, target, files)
+        return shared_words(slots[-1], name, target, files)
     return f"its {name} is not written in a place that can take a number"
 
 
@@ -315,7 +317,7 @@ def _definition(slot: Slot) -> etree._Element | None:
     return definition if macro is not None and uses(macro, reference) == 1 else None
 
 
-def _note(
+def note_lost(
     writer: Writer, target: Target, name: str, new: str, lost, slot: Slot, *, shape: bool = False
 ) -> None:
     """Say that ``lost`` (an expression at the slot, or the shape's ``<origin>`` text that
@@ -335,7 +337,7 @@ def _note(
     )
 
 
-def _shared(slot: Slot, name: str, target: Target, files: Files) -> str:
+def shared_words(slot: Slot, name: str, target: Target, files: Files) -> str:
     where = files.where(slot.element) if slot.element is not None else None
     at = location(where) if where is not None else "its macro"
     names = ", ".join(f"`{u}`" for u in slot.users[:6]) + (", ..." if len(slot.users) > 6 else "")
@@ -345,71 +347,3 @@ def _shared(slot: Slot, name: str, target: Target, files: Files) -> str:
         f"its {name} is written {written}once ({at}) for {len(slot.users)} links ({names}) that "
         f"need different values{why}"
     )
-
-
-def _write_origin(
-    absent: list[str],
-    body: etree._Element,
-    target: Target,
-    decisions: Mapping[str, Decision | None],
-    users,
-    writer: Writer,
-) -> str | None:
-    """Write ``xyz``/``rpy`` that the ``<inertial>`` does not write: in the body when every
-    link made from it needs the same; else through new optional parameters of its macro,
-    passed only at the calls that need another origin than ``0 0 0``."""
-    inertial = target.link.link.inertial
-    assert inertial is not None
-    decision = decisions[target.name]
-    assert decision is not None
-    files = writer.files
-    sharers = tuple(users.body[key(inertial.source)])
-    origin = child(body, "origin")
-    if all(_users_agree(sharers, name, decisions) for name in absent):
-        texts = {n: _text_at(body, n, decision, sharers, decisions, files) for n in absent}
-        for name, (new, lost) in texts.items():
-            _note(writer, target, name, new, lost, Slot(body, name, sharers), shape=True)
-        if origin is not None:
-            for name, (new, _) in texts.items():
-                problem = writer.set(origin, name, new)
-                if problem is not None:
-                    return problem
-            return None
-        written = {"xyz": DEFAULT_ORIGIN, "rpy": DEFAULT_ORIGIN}
-        written |= {n: t for n, (t, _) in texts.items()}
-        return writer.insert_first(body, f'<origin xyz="{written["xyz"]}" rpy="{written["rpy"]}"/>')
-    macro = enclosing_macro(body)
-    calls = inertial.source.calls
-    call = None if not calls else files.element(calls[-1])
-    if macro is None or call is None:
-        return _shared(Slot(body, absent[0], sharers), absent[0], target, files)
-    made = tuple(users.chain.get(key(calls[-1]), ()))
-    if not all(_users_agree(made, name, decisions) for name in absent):
-        return _shared(Slot(call, absent[0], made), absent[0], target, files)
-    # the same new parameters for every link the body makes, whichever asks first
-    missing = [n for n in ("xyz", "rpy") if origin is None or origin.get(n) is None]
-    taken = parameter_names(macro)
-    names = {n: _free(f"origin_{n}", taken) for n in missing}
-    declared = " ".join(f"{names[n]}:='{DEFAULT_ORIGIN}'" for n in missing)
-    problem = writer.append(macro, "params", f" {declared}")
-    if problem is None and origin is None:
-        parts = {n: f"${{{names[n]}}}" if n in names else DEFAULT_ORIGIN for n in ("xyz", "rpy")}
-        problem = writer.insert_first(body, f'<origin xyz="{parts["xyz"]}" rpy="{parts["rpy"]}"/>')
-    elif problem is None:
-        for name in missing:
-            problem = problem or writer.set(origin, name, f"${{{names[name]}}}")
-    for name in absent:
-        if problem is not None:
-            return problem
-        new, lost = _text_at(call, name, decision, made, decisions, files)
-        _note(writer, target, name, new, lost, Slot(call, names[name], made), shape=True)
-        problem = writer.set(call, names[name], new)
-    return problem
-
-
-def _free(name: str, taken: Mapping[str, bool]) -> str:
-    """``name``, or ``inertial_xyz`` style, whichever the macro does not take yet."""
-    for candidate in (name, name.replace("origin_", "inertial_"), name.replace("origin_", "com_")):
-        if candidate not in taken:
-            return candidate
-    return f"{name}_"

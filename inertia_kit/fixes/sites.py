@@ -157,20 +157,60 @@ def _place(
             return result
     # the first way's reason: the others (whole blocks) fail for the same sharing
     sharers = users.body[key(inertial.source)]
-    return Placement(problem=written + _advice(inertial.source, sharers))
+    advice = _advice(inertial.source, sharers, target, decisions, files)
+    return Placement(problem=written + advice)
 
 
-def _advice(where: Source, sharers: Sequence[str]) -> str:
+def _advice(
+    where: Source,
+    sharers: Sequence[str],
+    target: Target | None = None,
+    decisions: Mapping[str, Decision | None] | None = None,
+    files: Files | None = None,
+) -> str:
     """What to do: for an element one macro writes for several links, per call (pasting one
-    link's values into the shared body would be wrong for the others); else paste the block."""
+    link's values into the shared body would be wrong for the others): the macro, the values
+    that differ between its links, this link's call and its own values; else paste the block."""
     if len(sharers) > 1 and where.calls:
         call = where.calls[-1]
+        macro = _macro_name(where, files)
+        differ = _differing(target, sharers, decisions)
+        if differ:
+            arguments = " ".join(f'{name}="{text}"' for name, text in differ.items())
+            return (
+                f"; a value written once cannot be right for links that differ: give {macro} "
+                f"a parameter for each value that differs ({', '.join(differ)}) and pass each "
+                f"link's own at its call: at this link's call, {location(call)}, {arguments}"
+            )
         return (
-            "; a value written once cannot be right for links that differ: give the macro a "
+            f"; a value written once cannot be right for links that differ: give {macro} a "
             "parameter for each value that differs and pass each link's own at its call "
             f"(this link's call: {location(call)}; its values: the block below)"
         )
     return "; paste the block below there"
+
+
+def _macro_name(where: Source, files: Files | None) -> str:
+    from inertia_kit.fixes.xacro_macros import enclosing_macro
+
+    element = None if files is None else files.element(where)
+    macro = None if element is None else enclosing_macro(element)
+    return "the macro" if macro is None else f"macro `{macro.get('name', '?')}`"
+
+
+def _differing(target, sharers, decisions) -> dict[str, str]:
+    """``name -> this link's text`` for the values whose text differs between the links."""
+    if target is None or decisions is None:
+        return {}
+    mine = decisions.get(target.name)
+    others = [decisions.get(name) for name in sharers if name != target.name]
+    if mine is None or any(d is None for d in others):
+        return {}
+    return {
+        name: text
+        for name, text in mine.texts.items()
+        if any(d.texts[name] != text for d in others if d is not None)
+    }
 
 
 def _shared_words(where: Source, sharers: Sequence[str], what: str) -> str:

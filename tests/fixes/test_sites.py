@@ -230,9 +230,9 @@ CASES = [
         (
             'link `a` not filled: its ixx is written "1" once',
             "for 2 links (`a`, `b`) that need different values",
-            "give the macro a parameter for each value that differs and pass each link's own at "
-            "its call (this link's call: ",
-            "robot.xacro:13; its values: the block below",
+            "give macro `part` a parameter for each value that differs (ixx, iyy, izz) and pass "
+            "each link's own at its call: at this link's call, ",
+            f'robot.xacro:13, ixx="{n(solid_box((0.1, 0.2, 0.4), mass=1.0)[1])}" iyy=',
             f'<mass value="{n(1.0)}"/>',
             f'ixx="{n(solid_box((0.1, 0.2, 0.4), mass=1.0)[1])}"',
         ),
