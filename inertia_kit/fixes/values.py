@@ -61,13 +61,14 @@ def differing(inertial: Inertial, new: dict[str, str]) -> list[str]:
     """
     The names of the values whose text would change. A product of inertia within rounding
     noise of zero (:data:`~inertia_kit.description.inertial_xml.PRODUCT_FLOOR` of the largest
-    moment) is the zero that would be written, whatever digits it has.
+    moment to be written) is the zero that would be written, whatever digits it has.
     """
     from inertia_kit.description.inertial_xml import PRODUCT_FLOOR
 
     old = declared_texts(inertial)
-    moments = [getattr(inertial, n) for n in ("ixx", "iyy", "izz")]
-    largest = max((abs(m) for m in moments if isinstance(m, float)), default=0.0)
+    # the moments to be written, not the declared ones: the next run compares against the
+    # same numbers, so a product kept as noise now is kept as noise then
+    largest = max(abs(float(new[n])) for n in ("ixx", "iyy", "izz"))
     changed = []
     for name in NAMES:
         if old[name] == new[name]:

@@ -120,3 +120,29 @@ def test_installed_robot_packages_settle(mode, tmp_path):
         result = settle(root, mode, package_paths=package_paths, files=files)
         changed += result.changed_again + result.crashed
     assert changed == []
+
+
+NOISY = f"""<robot name="r">
+  <link name="world"/>
+  {joint("world", "rod")}
+  <link name="rod">
+    <inertial>
+      <mass value="0.857"/>
+      <inertia ixx="1" ixy="5.2e-08" ixz="0" iyy="1" iyz="0" izz="0.01"/>
+    </inertial>
+    <collision><geometry><cylinder radius="0.0261" length="0.35"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_a_product_is_noise_by_the_moments_written_not_the_old_ones(tmp_path):
+    """Found on example-robot-data's B1 calves: ixy 5.2e-08 is noise beside the old moments
+    (1 kg·m²) but not beside the new ones (0.0089): judged by the old, the first run kept it
+    and the second wrote 0. Judged by the moments written, the first run writes 0."""
+    path = write(tmp_path / "robot.urdf", NOISY)
+    assert CliRunner().invoke(fill_command, ["--fix", "all", str(path)]).exit_code == 1
+    _, side, _, axial = solid_cylinder(0.0261, 0.35, mass=0.857)
+    filled = path.read_text()
+    assert f'ixx="{xml_number(side, 6)}" ixy="0" ixz="0"' in filled
+    assert CliRunner().invoke(fill_command, ["--fix", "all", "--check", str(path)]).exit_code == 0
