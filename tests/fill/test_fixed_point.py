@@ -142,7 +142,7 @@ def test_a_product_is_noise_by_the_moments_written_not_the_old_ones(tmp_path):
     and the second wrote 0. Judged by the moments written, the first run writes 0."""
     path = write(tmp_path / "robot.urdf", NOISY)
     assert CliRunner().invoke(fill_command, ["--fix", "all", str(path)]).exit_code == 1
-    _, side, _, axial = solid_cylinder(0.0261, 0.35, mass=0.857)
+    side = solid_cylinder(0.0261, 0.35, mass=0.857)[1]
     filled = path.read_text()
     assert f'ixx="{xml_number(side, 6)}" ixy="0" ixz="0"' in filled
     assert CliRunner().invoke(fill_command, ["--fix", "all", "--check", str(path)]).exit_code == 0
