@@ -48,6 +48,19 @@ def inertial_values(
     return values
 
 
+def as_written(properties: MassProperties, digits: int = DIGITS) -> MassProperties:
+    """
+    ``properties`` as a file holds them once written, and as the next run reads them back: the
+    mass as its text reads, the tensor scaled to that mass (what the next run computes from it),
+    the centre of mass as its text reads. Writing these instead of the values computed is what
+    makes filling a fixed point: a second run computes the same tensor and writes no new digit.
+    """
+    mass = float(xml_number(properties.mass, digits))
+    scaled = properties.with_mass(mass) if properties.mass > 0 and mass > 0 else properties
+    com = [float(xml_number(x, digits)) for x in properties.cleaned().com]
+    return MassProperties(mass, com, scaled.inertia)
+
+
 def inertial_block(
     properties: MassProperties,
     *,

@@ -33,6 +33,7 @@ class Files:
     root: Path
     sources: dict[str, SourceText] = field(default_factory=dict)
     _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
+    _positions: dict[int, tuple[str, int, int]] = field(default_factory=dict)  # id -> where
 
     @classmethod
     def for_input(cls, path: str | Path) -> Files:
@@ -94,9 +95,26 @@ class Files:
             tree = parse_xml(source.original, where.path)
             positions = start_tag_positions(source.original, tree) or {}
             self._elements[resolved] = {position: e for e, position in positions.items()}
+            for element, (line, column) in positions.items():
+                self._positions[id(element)] = (where.path, line, column)
         if where.line is None or where.column is None:
             return None
         return self._elements[resolved].get((where.line, where.column))
+
+    def where(self, element: etree._Element) -> Source | None:
+        """Where ``element`` (of a tree :meth:`element` parsed) is written."""
+        from inertia_kit.description.model import Source
+
+        found = self._positions.get(id(element))
+        return None if found is None else Source(*found)
+
+    def start(self, element: etree._Element) -> int | None:
+        """The offset of the ``<`` of ``element`` (of a tree :meth:`element` parsed)."""
+        found = self._positions.get(id(element))
+        if found is None:
+            return None
+        path, line, column = found
+        return self.source(path).offset(line, column)
 
 
 def location(where: Source) -> str:

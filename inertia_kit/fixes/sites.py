@@ -5,20 +5,22 @@ In a URDF file every element is written once, where it stands. In xacro an eleme
 from a macro body that several calls expand, so an edit there changes every link made from it.
 A link's new values go to the first of these that works:
 
-1. **The element itself**: the ``<inertial>`` is replaced (or, for a link without one, a block
-   is inserted into the ``<link>``) where it is written, when every link made from that place
-   gets the same values: a literal link, a macro used once, identical copies such as two wheels.
-2. **The macro call's parameters**: the macro writes ``<inertia ixx="${ixx}" ...>`` and the
-   call passes ``ixx="13.235"``; the number at that call is replaced (added, for a parameter
-   the call leaves to its default). Every value that must change has to be a parameter used
-   nowhere else in the macro (``origin_xyz`` that also places the collision is only accepted
-   while the centre of mass stays where it is). Tried first for a macro used several times.
+1. **The values that change, where each is written** (:mod:`.attributes`): a number in the
+   ``<inertial>``, at the macro call that passes it, or in the macro's own property; values
+   that do not change keep their text (``${wheel_mass}`` stays), and an expression is replaced
+   by a number only when no place takes one (the link is then reported as no longer
+   parametric). For a link without an ``<inertial>``, a block is inserted into its ``<link>``
+   when every link made from that place gets the same values.
+2. **The ``<inertial>`` replaced whole** where it is written, when every link made from it
+   gets the same values (an ``<inertial>`` without ``<mass>`` or ``<inertia>`` to edit).
 3. **The macro call that makes only the ``<inertial>``** (``<xacro:cylinder_inertia .../>``
    inside a link): the call is replaced by the literal block.
 
-Otherwise the link is not filled and the reason names the macro and what stopped each way;
-:func:`inertial_block` gives the block to paste. Files outside the input's package (the folder
-holding the nearest ``package.xml``, else the input's folder) are never edited.
+Values are compared as written (:mod:`.values`), and written as the next run reads them back
+(:func:`~inertia_kit.description.inertial_xml.as_written`): a second run changes nothing.
+Otherwise the link is not filled and the reason names the macro and what to do at each call.
+Files outside the input's package (the folder holding the nearest ``package.xml``, else the
+input's folder) are never edited.
 """
 
 from __future__ import annotations
@@ -30,22 +32,11 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
-from inertia_kit.description.model import Inertial
+from inertia_kit.fixes.attributes import Decision, decide, write_values
 from inertia_kit.fixes.files import Files, Key, key, location
-from inertia_kit.fixes.xacro_macros import (
-    child,
-    enclosing_macro,
-    macro_of,
-    parameter_names,
-    parameter_reference,
-    used_elsewhere,
-    written_name,
-)
-from inertia_kit.physics.formatting import xml_number
+from inertia_kit.fixes.xacro_macros import macro_of, written_name
 
 if TYPE_CHECKING:
-    from lxml import etree
-
     from inertia_kit.analysis.links import LinkAnalysis
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Source
@@ -70,6 +61,12 @@ class Target:
     properties: MassProperties
     basis: str = ""
 
+    def __post_init__(self) -> None:
+        from inertia_kit.description.inertial_xml import as_written
+
+        # what the file will hold, so that every comparison (and the next run) sees the same
+        object.__setattr__(self, "properties", as_written(self.properties))
+
     @property
     def name(self) -> str:
         return self.link.name
@@ -85,7 +82,8 @@ class Placement:
     """How a link's values get into its files: ``edits`` (empty: already there), or ``problem``."""
 
     edits: tuple[Edit, ...] = ()
-    problem: str | None = None
+    problem: str | None = None  # why not, and what to do
+    notes: tuple[str, ...] = ()  # expressions replaced by numbers: the link is no longer parametric
 
 
 def place(
@@ -96,10 +94,11 @@ def place(
     which others share a macro body with a target).
     """
     wanted = {t.name: t for t in targets}
+    decisions = {t.name: decide(t) for t in targets}
     users = _Users(links)
     placements: dict[str, Placement] = {}
     for target in targets:
-        placements[target.name] = _place(target, wanted, users, files)
+        placements[target.name] = _place(target, wanted, decisions, users, files)
     return placements
 
 
@@ -131,28 +130,87 @@ def _agree(names: Sequence[str], wanted: Mapping[str, Target]) -> bool:
     return len({tuple(wanted[name].values.items()) for name in names}) == 1
 
 
-def _place(target: Target, wanted: Mapping[str, Target], users: _Users, files: Files) -> Placement:
+def _place(
+    target: Target,
+    wanted: Mapping[str, Target],
+    decisions: Mapping[str, Decision | None],
+    users: _Users,
+    files: Files,
+) -> Placement:
     link = target.link
     inertial = link.link.inertial
     if inertial is None:
         sharers = users.link[key(link.link.source)]
         if not _agree(sharers, wanted):
-            return Placement(problem=_shared_words(link.link.source, sharers, "<link>"))
+            problem = _shared_words(link.link.source, sharers, "<link>")
+            return Placement(problem=problem + _advice(link.link.source, sharers))
         return _insert(target, files)
-    declared = link.declared
-    if declared is not None and written_values(declared) == target.values:
-        return Placement()  # already says this
-    sharers = users.body[key(inertial.source)]
-    ways = [_replace_body, _parameters, _replace_call]
-    if len(sharers) > 1:
-        ways = [_parameters, _replace_body, _replace_call]
-    problems = []
-    for way in ways:
+    decision = decisions[target.name]
+    if decision is not None and not decision.changed:
+        return Placement()  # already says this, as written
+    written = write_values(target, decisions, users, files)
+    if not isinstance(written, str):
+        return Placement(*written[:1], notes=written[1])
+    for way in (_replace_body, _replace_call):
         result = way(target, wanted, users, files)
         if result.problem is None:
             return result
-        problems.append(result.problem)
-    return Placement(problem="; ".join(dict.fromkeys(problems)))
+    # the first way's reason: the others (whole blocks) fail for the same sharing
+    sharers = users.body[key(inertial.source)]
+    advice = _advice(inertial.source, sharers, target, decisions, files)
+    return Placement(problem=written + advice)
+
+
+def _advice(
+    where: Source,
+    sharers: Sequence[str],
+    target: Target | None = None,
+    decisions: Mapping[str, Decision | None] | None = None,
+    files: Files | None = None,
+) -> str:
+    """What to do: for an element one macro writes for several links, per call (pasting one
+    link's values into the shared body would be wrong for the others): the macro, the values
+    that differ between its links, this link's call and its own values; else paste the block."""
+    if len(sharers) > 1 and where.calls:
+        call = where.calls[-1]
+        macro = _macro_name(where, files)
+        differ = _differing(target, sharers, decisions)
+        if differ:
+            arguments = " ".join(f'{name}="{text}"' for name, text in differ.items())
+            return (
+                f"; a value written once cannot be right for links that differ: give {macro} "
+                f"a parameter for each value that differs ({', '.join(differ)}) and pass each "
+                f"link's own at its call: at this link's call, {location(call)}, {arguments}"
+            )
+        return (
+            f"; a value written once cannot be right for links that differ: give {macro} a "
+            "parameter for each value that differs and pass each link's own at its call "
+            f"(this link's call: {location(call)}; its values: the block below)"
+        )
+    return "; paste the block below there"
+
+
+def _macro_name(where: Source, files: Files | None) -> str:
+    from inertia_kit.fixes.xacro_macros import enclosing_macro
+
+    element = None if files is None else files.element(where)
+    macro = None if element is None else enclosing_macro(element)
+    return "the macro" if macro is None else f"macro `{macro.get('name', '?')}`"
+
+
+def _differing(target, sharers, decisions) -> dict[str, str]:
+    """``name -> this link's text`` for the values whose text differs between the links."""
+    if target is None or decisions is None:
+        return {}
+    mine = decisions.get(target.name)
+    others = [decisions.get(name) for name in sharers if name != target.name]
+    if mine is None or any(d is None for d in others):
+        return {}
+    return {
+        name: text
+        for name, text in mine.texts.items()
+        if any(d.texts[name] != text for d in others if d is not None)
+    }
 
 
 def _shared_words(where: Source, sharers: Sequence[str], what: str) -> str:
@@ -230,7 +288,23 @@ def _replace_body(target: Target, wanted, users: _Users, files: Files) -> Placem
     sharers = users.body[key(inertial.source)]
     if not _agree(sharers, wanted):
         return Placement(problem=_shared_words(inertial.source, sharers, "<inertial>"))
-    return _replace_element(target, inertial.source, "inertial", files)
+    placed = _replace_element(target, inertial.source, "inertial", files)
+    body = files.element(inertial.source)
+    lost = (
+        []
+        if body is None
+        else [
+            value for element in body.iter() for value in element.attrib.values() if "${" in value
+        ]
+    )
+    if placed.problem is None and lost:
+        note = (
+            f"link `{target.name}` is no longer parametric: its <inertial> at "
+            f"{location(inertial.source)} is written as numbers where it read "
+            + ", ".join(f'"{v}"' for v in lost[:4])
+        )
+        return Placement(placed.edits, notes=(note,))
+    return placed
 
 
 def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placement:
@@ -250,113 +324,16 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
         if call_element is None:
             continue
         tag = written_name(call_element)
-        return _replace_element(target, call, tag, files)
+        placed = _replace_element(target, call, tag, files)
+        arguments = [v for v in call_element.attrib.values() if "${" in v or "$(" in v]
+        if placed.problem is None and arguments:
+            lost = ", ".join(f'"{v}"' for v in arguments)
+            note = (
+                f"link `{target.name}` is no longer parametric: the call at {location(call)} "
+                f"passing {lost} is replaced by its <inertial> written as numbers"
+            )
+            return Placement(placed.edits, notes=(note,))
+        return placed
     if not inertial.source.calls:
         return Placement(problem="the <inertial> is not made by a macro call")
     return Placement(problem="no macro call makes only this <inertial>")
-
-
-def _parameters(target: Target, wanted, users: _Users, files: Files) -> Placement:
-    """Way 2: the numbers the innermost macro call passes for the values that change."""
-    from inertia_kit.description.inertial_xml import DIGITS
-
-    link = target.link
-    inertial = link.link.inertial
-    assert inertial is not None
-    if not inertial.source.calls:
-        return Placement(problem="the <inertial> is not made by a macro call")
-    call = inertial.source.calls[-1]
-    body = files.element(inertial.source)
-    macro = None if body is None else enclosing_macro(body)
-    call_element = files.element(call)
-    if body is None or macro is None or call_element is None:
-        return Placement(problem="its macro was not found")
-    macro_name = macro.get("name", "?")
-    if not files.editable(call.path):
-        return Placement(problem=f"the call at {location(call)} is {files.outside(call.path)}")
-    rpy = inertial.origin.rpy if isinstance(inertial.origin.rpy, tuple) else (0.0, 0.0, 0.0)
-    new = written_values(target.properties, rpy)
-    declared = link.declared
-    if declared is None or not isinstance(inertial.origin.rpy, tuple):
-        return Placement(problem="its declared <inertial> is not complete and numeric")
-    old = written_values(declared, rpy)
-    # the current written tensor, not the link-frame one recomputed: what the file says
-    old.update(
-        {
-            name: xml_number(getattr(inertial, name), DIGITS)
-            for name in Inertial.TENSOR
-            if isinstance(getattr(inertial, name), float)
-        }
-    )
-    old["mass"] = xml_number(inertial.mass, DIGITS)
-    attributes = {
-        "mass": (child(body, "mass"), "value"),
-        "xyz": (child(body, "origin"), "xyz"),
-        **{name: (child(body, "inertia"), name) for name in Inertial.TENSOR},
-    }
-    parameters = parameter_names(macro)
-    changes: dict[str, str] = {}  # parameter -> new text
-    mapped: dict[str, list[tuple[etree._Element, str]]] = {}
-    for name, (element, attribute) in attributes.items():
-        text = None if element is None else element.get(attribute)
-        if name == "xyz" and text is None:
-            text = "0 0 0"
-        parameter = None if text is None else parameter_reference(text)
-        if parameter is not None and parameter in parameters:
-            mapped.setdefault(parameter, []).append((element, attribute))
-            if changes.get(parameter, new[name]) != new[name]:
-                return Placement(problem=f"parameter `{parameter}` would need two values")
-            if old[name] != new[name]:
-                changes[parameter] = new[name]
-            continue
-        if old[name] != new[name]:
-            label = "the centre of mass" if name == "xyz" else f"`{name}`"
-            written = "absent" if text is None else f"`{text}`"
-            return Placement(
-                problem=f"{label} in macro `{macro_name}` ({location(inertial.source)}) is "
-                f"{written}, "
-                "not a parameter the call passes"
-            )
-    sharers = users.call[(key(call), key(inertial.source))]
-    if changes and not _agree(sharers, wanted):
-        return Placement(problem=_shared_words(call, sharers, f"call of `{macro_name}`"))
-    edits = []
-    for parameter, value in changes.items():
-        if used_elsewhere(macro, parameter, mapped[parameter]):
-            return Placement(
-                problem=f"parameter `{parameter}` of `{macro_name}` is used for more than the "
-                f"<inertial>: changing it to {value} would change the rest"
-            )
-        edit = _attribute_edit(files, call, call_element, parameter, value, parameters[parameter])
-        if isinstance(edit, str):
-            return Placement(problem=edit)
-        edits.append(edit)
-    return Placement(tuple(edits))
-
-
-def _attribute_edit(files, call: Source, element, parameter: str, value: str, has_default: bool):
-    """The edit setting ``parameter="value"`` on the call's start tag, or why it cannot."""
-    from inertia_kit.description.xmlspan import element_span
-
-    source = files.source(call.path)
-    offset = files.offset(call, written_name(element))
-    if offset is None:
-        return f"the call at {location(call)} was not found"
-    span = element_span(source.text, offset)
-    start_tag = source.text[offset : span.start_tag_end]
-    match = re.search(rf"(\s){re.escape(parameter)}\s*=\s*(\"([^\"]*)\"|'([^']*)')", start_tag)
-    if match is None:
-        if not has_default:
-            return f"the call at {location(call)} does not pass `{parameter}`"
-        end = span.start_tag_end - (2 if span.empty else 1)
-        while end > offset and source.text[end - 1] in " \t\r\n":
-            end -= 1
-        return Edit(source.path, end, end, f' {parameter}="{value}"')
-    written = match.group(3) if match.group(3) is not None else match.group(4)
-    if "${" in written or "$(" in written:
-        return (
-            f'the call at {location(call)} passes {parameter}="{written}", an expression: '
-            f"write {value} there or in what it names"
-        )
-    group = 3 if match.group(3) is not None else 4
-    return Edit(source.path, offset + match.start(group), offset + match.end(group), value)

@@ -61,17 +61,61 @@ def written_name(element: etree._Element) -> str:
     return f"{element.prefix}:{local}" if element.prefix else local
 
 
+# one parameter of ``params``, as xacro reads it: name, then ``:=`` or ``=`` and a default
+# (``^`` forwards the caller's value; quotes keep spaces: ``xyz:='0 0 0'``)
+_DEFAULT = r"""\$\{.*?\}|\$\(.*?\)|(?:'.*?'|".*?"|[^\s'"]+)+|"""
+_WITH_DEFAULT = re.compile(
+    r"^\s*([^\s:=]+?)\s*:?=\s*(\^\|?)?(" + _DEFAULT + r")(?:\s+|$)(.*)", re.S
+)
+
+
 def parameter_names(macro: etree._Element) -> dict[str, bool]:
     """``name -> has a default`` for a macro's ``params`` (blocks ``*x`` left out)."""
     names = {}
-    for token in (macro.get("params") or "").split():
-        if token.startswith("*"):
-            continue
-        name, _, default = token.partition(":=")
-        if not default:
-            name, _, default = token.partition("=")
-        names[name.strip("^|")] = bool(default)
+    rest = macro.get("params") or ""
+    while rest.strip():
+        found = _WITH_DEFAULT.match(rest)
+        if found is not None:
+            name, has_default, rest = found.group(1), True, found.group(4)
+        else:
+            name, _, rest = rest.strip().partition(" ")
+            has_default = False
+        if not name.startswith("*"):
+            names[name.strip("^|")] = has_default
     return names
+
+
+def property_definition(element: etree._Element, name: str) -> etree._Element | None:
+    """
+    The ``<xacro:property name=NAME value=...>`` that ``${NAME}`` in ``element`` reads, when it
+    is defined in the innermost macro holding ``element`` (so only that macro's expansions
+    read it); ``None`` for a property defined elsewhere (a file-wide one may be read anywhere).
+    """
+    macro = enclosing_macro(element)
+    if macro is None:
+        return None
+    for candidate in macro.iter():
+        if (
+            _is_xacro(candidate, "property")
+            and candidate.get("name") == name
+            and candidate.get("value") is not None
+            and enclosing_macro(candidate) is macro
+        ):
+            return candidate
+    return None
+
+
+def uses(macro: etree._Element, name: str) -> int:
+    """How many ``${...}`` expressions in the macro's attributes and text read ``name``."""
+    word = re.compile(rf"\b{re.escape(name)}\b")
+    count = 0
+    for element in macro.iter():
+        if element is macro or not isinstance(element.tag, str):
+            continue
+        texts = [*element.attrib.values(), element.text or "", element.tail or ""]
+        for text in texts:
+            count += sum(1 for e in _EXPRESSION.findall(text) if word.search(e))
+    return count
 
 
 def used_elsewhere(macro: etree._Element, parameter: str, mapped) -> bool:

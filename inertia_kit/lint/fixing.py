@@ -204,31 +204,13 @@ def _place(
         placement = placements[target.name]
         if placement.problem is None:
             fix = LinkFix(target.name, safety, title, target, placement.edits)
+            result.notes.extend(placement.notes)
         else:
-            reason = f"{placement.problem}; {_advice(target.link, analysis)}"
-            fix = LinkFix(target.name, safety, title, target, reason=reason, block=_block(target))
-        result.links[target.name] = fix
-
-
-def _advice(link: LinkAnalysis, analysis: RobotAnalysis) -> str:
-    """What to do with values that found no place: right for every link a shared macro makes."""
-    from inertia_kit.fixes.files import key
-
-    def written(other: LinkAnalysis):
-        inertial = other.link.inertial
-        return other.link.source if inertial is None else inertial.source
-
-    where = written(link)
-    if where.calls:
-        what = "<link>" if link.link.inertial is None else "<inertial>"
-        sharers = [other.name for other in analysis.links if key(written(other)) == key(where)]
-        if len(sharers) > 1:
-            return (
-                f"that {what} is written once for {len(sharers)} links, so pasting one "
-                "link's values there would be wrong for the others: make the macro take the "
-                "values as parameters and pass each link's at its call (this link's below)"
+            # the problem says what to do, right for every link a shared macro makes
+            fix = LinkFix(
+                target.name, safety, title, target, reason=placement.problem, block=_block(target)
             )
-    return "paste the block below there, or make the macro take the values as parameters"
+        result.links[target.name] = fix
 
 
 def _block(target: Target) -> str:

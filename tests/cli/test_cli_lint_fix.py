@@ -210,7 +210,7 @@ def test_wheels_of_different_sizes_are_not_fixed_in_the_shared_body(tmp_path: Pa
     assert len(findings) == 2
     for finding in findings:
         assert finding["fix"] is None
-        assert "would be wrong for the others" in finding["unfixable"]
+        assert "cannot be right for links that differ" in finding["unfixable"]
 
 
 # --- JSON and SARIF -------------------------------------------------------------------------------

@@ -190,8 +190,8 @@ def test_refusal_advice_is_right_for_every_link_of_a_shared_macro(tmp_path: Path
         "right_wheel",
     ]
     for line in refusals:
-        assert "written once for 2 links, so pasting one link's values there would be wrong" in line
-        assert "pass each link's at its call" in line
+        assert "a value written once cannot be right for links that differ" in line
+        assert "pass each link's own at its call" in line
         assert "paste the block below there" not in line
     assert path.read_text() == SHARED
 

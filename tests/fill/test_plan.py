@@ -102,11 +102,12 @@ IMPOSSIBLE = """<robot name="r">
 </robot>
 """.replace("{joint}", joint("world", "body"))
 IMPOSSIBLE_OLD = IMPOSSIBLE[IMPOSSIBLE.index("<inertial>") : IMPOSSIBLE.index("</inertial>") + 11]
-IMPOSSIBLE_FIXED = IMPOSSIBLE.replace(
-    IMPOSSIBLE_OLD,
-    filled_inertial(
-        solid_box((0.3, 0.2, 0.1), mass=3.0), com=(0, 0, 0.1), indent="    ", first=False
-    ),
+_BODY = solid_box((0.3, 0.2, 0.1), mass=3.0)
+# only the values that change are rewritten: the comment, the layout and the kept mass stay
+IMPOSSIBLE_FIXED = IMPOSSIBLE.replace('<origin xyz="0.5 0 0"/>', '<origin xyz="0 0 0.1"/>').replace(
+    'ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="5"',
+    f'ixx="{xml_number(_BODY[1], 6)}" ixy="0" ixz="0" iyy="{xml_number(_BODY[2], 6)}" iyz="0" '
+    f'izz="{xml_number(_BODY[3], 6)}"',
 )
 
 MISSING_MESH = """<robot name="r">
@@ -143,12 +144,14 @@ FRAMES = """<robot name="r">
   </link>
 </robot>
 """.format(j1=joint("base", "tool_frame", "fixed"), j2=joint("base", "badge", "fixed"))
-# --fix all recomputes the links that have an <inertial>; the badge, a helper welded to a body
-# with mass, is never given mass unless asked by name (issue 12: franka's *_sc capsules)
+# --fix all recomputes the links that have an <inertial>, in place (the declared 2 kg kept, the
+# tensor recomputed for the 0.2 m cube); the badge, a helper welded to a body with mass, is never
+# given mass unless asked by name (issue 12: franka's *_sc capsules)
+_CUBE = solid_box((0.2, 0.2, 0.2), mass=2.0)
 FRAMES_ALL = FRAMES.replace(
-    FRAMES[FRAMES.index("<inertial>") : FRAMES.index("</inertial>") + 11],
-    # the declared 2 kg is kept, its tensor recomputed for the 0.2 m cube
-    filled_inertial(solid_box((0.2, 0.2, 0.2), mass=2.0), indent="    ", first=False),
+    'ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"',
+    f'ixx="{xml_number(_CUBE[1], 6)}" ixy="0" ixz="0" iyy="{xml_number(_CUBE[2], 6)}" iyz="0" '
+    f'izz="{xml_number(_CUBE[3], 6)}"',
 )
 
 

@@ -147,13 +147,21 @@ def moving(body: str, extra: str = "", *, name="arm", kind="revolute", root="wor
     )
 
 
+def as_written(values):
+    """(mass, ixx, iyy, izz) as inertia-fill writes them: the mass to six significant digits
+    and the moments scaled to that mass, as a second run computes them from the file."""
+    m, ixx, iyy, izz = values
+    written = float(xml_number(m, 6))
+    return written, ixx * written / m, iyy * written / m, izz * written / m
+
+
 def filled_inertial(values, com=(0, 0, 0), indent="  ", unit="  ", nl="\n", first=True) -> str:
     """
     The ``<inertial>`` block inertia-fill writes for ``values`` (mass, ixx, iyy, izz): one
     element a line, each line after ``indent`` (``first`` False leaves the first line bare),
     nested by ``unit``, numbers to six significant digits.
     """
-    m, ixx, iyy, izz = values
+    m, ixx, iyy, izz = as_written(values)
     n = lambda v: xml_number(v, 6)  # noqa: E731
     lines = [
         "<inertial>",

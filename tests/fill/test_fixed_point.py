@@ -1,0 +1,148 @@
+"""
+Filling is a fixed point (issue 12, item 3): fill, then fill again with the same options,
+changes nothing, and ``--check`` right after a fill passes unless a link is refused. In every
+mode (``--fix missing|invalid|all``, ``--mass``, ``--total-mass``, ``--density``), on every
+example, every rule document's failing example, generated robots, and (slow) the robot files
+of the installed PyPI packages.
+
+The reproducer of the issue: a plain cylinder whose declared mass is the one written to six
+digits; a second run recomputed the tensor from the rounded mass and wrote other last digits
+(``ixx="0.0191441"`` then ``"0.019144"``).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import shutil
+import tempfile
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from hypothesis import given, settings
+from kit import REPO, write
+from kit.fixed_point import MODES, mirror, robot_files, rule_failing_examples, settle
+from kit.generate import cases
+from kit.moments import solid_cylinder
+from kit.urdf import joint
+
+from inertia_kit.cli.fill import fill_command
+from inertia_kit.errors import InputError
+from inertia_kit.fill.plan import apply, plan_fill
+from inertia_kit.physics.formatting import xml_number
+
+ROD = f"""<robot name="r">
+  <link name="world"/>
+  {joint("world", "rod")}
+  <link name="rod">
+    <collision><geometry><cylinder radius="0.05" length="0.47"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("density", ["1000", "2712.34567", "7850"])
+def test_a_cylinder_filled_twice_is_written_once(density, tmp_path):
+    """The mass is written to six digits and the tensor is the one for that mass: what the
+    next run computes from the file, so it writes nothing."""
+    path = write(tmp_path / "robot.urdf", ROD)
+    first = CliRunner().invoke(fill_command, ["--density", density, str(path)])
+    assert first.exit_code == 1, first.stderr
+    filled = path.read_text()
+    volume_mass = float(density) * solid_cylinder(0.05, 0.47, density=1.0)[0]
+    mass = float(xml_number(volume_mass, 6))
+    _, side, _, axial = solid_cylinder(0.05, 0.47, mass=mass)
+    assert f'<mass value="{xml_number(mass, 6)}"/>' in filled
+    assert f'ixx="{xml_number(side, 6)}"' in filled and f'izz="{xml_number(axial, 6)}"' in filled
+    for args in (["--fix", "all"], ["--fix", "invalid"], ["--density", density, "--fix", "all"]):
+        again = CliRunner().invoke(fill_command, [*args, str(path)])
+        assert again.exit_code == 0, again.stderr
+        assert path.read_text() == filled
+        assert CliRunner().invoke(fill_command, [*args, "--check", str(path)]).exit_code == 0
+
+
+@pytest.mark.parametrize("mode", list(MODES))
+def test_every_example_settles(mode, tmp_path):
+    root = mirror(REPO / "examples", tmp_path / "examples")
+    result = settle(root, mode, package_paths=[str(root)])
+    assert result.files >= 6 and result.changed_first
+    assert (result.changed_again, result.check_failed, result.crashed) == ([], [], [])
+
+
+@pytest.mark.parametrize("mode", list(MODES))
+def test_every_rule_documents_failing_example_settles(mode, tmp_path):
+    root = rule_failing_examples(REPO / "rules", tmp_path / "rules")
+    result = settle(root, mode)
+    assert result.files >= 36 and result.changed_first
+    assert (result.changed_again, result.check_failed, result.crashed) == ([], [], [])
+
+
+@settings(max_examples=60, deadline=None)
+@given(cases())
+def test_generated_robots_settle(case):
+    """Whatever fill writes into a generated robot, planning again finds nothing to write."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = case.write(Path(folder))
+        for fix in ("missing", "invalid", "all"):
+            copy = Path(folder) / f"copy-{fix}"
+            shutil.copytree(path.parent, copy, ignore=shutil.ignore_patterns("copy-*"))
+            target = copy / case.main
+            try:
+                apply(plan_fill(target, fix=fix))
+                again = plan_fill(target, fix=fix)
+            except InputError:
+                continue
+            assert not again.changed, again.diff()
+
+
+def _installed(module: str) -> bool:
+    return importlib.util.find_spec(module) is not None
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mode", list(MODES))
+def test_installed_robot_packages_settle(mode, tmp_path):
+    """A sample of every installed PyPI robot package (benchmarks/fixed_point.py runs them
+    all): 25 files each, evenly spread."""
+    import sys
+
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    from fixed_point import PACKAGES, prepare
+
+    changed = []
+    for name in PACKAGES:
+        prepared = prepare(name, tmp_path / name)
+        if prepared is None:
+            continue
+        root, package_paths = prepared
+        files = robot_files(root)
+        files = files[:: max(1, len(files) // 25)]
+        result = settle(root, mode, package_paths=package_paths, files=files)
+        changed += result.changed_again + result.crashed
+    assert changed == []
+
+
+NOISY = f"""<robot name="r">
+  <link name="world"/>
+  {joint("world", "rod")}
+  <link name="rod">
+    <inertial>
+      <mass value="0.857"/>
+      <inertia ixx="1" ixy="5.2e-08" ixz="0" iyy="1" iyz="0" izz="0.01"/>
+    </inertial>
+    <collision><geometry><cylinder radius="0.0261" length="0.35"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_a_product_is_noise_by_the_moments_written_not_the_old_ones(tmp_path):
+    """Found on example-robot-data's B1 calves: ixy 5.2e-08 is noise beside the old moments
+    (1 kg·m²) but not beside the new ones (0.0089): judged by the old, the first run kept it
+    and the second wrote 0. Judged by the moments written, the first run writes 0."""
+    path = write(tmp_path / "robot.urdf", NOISY)
+    assert CliRunner().invoke(fill_command, ["--fix", "all", str(path)]).exit_code == 1
+    side = solid_cylinder(0.0261, 0.35, mass=0.857)[1]
+    filled = path.read_text()
+    assert f'ixx="{xml_number(side, 6)}" ixy="0" ixz="0"' in filled
+    assert CliRunner().invoke(fill_command, ["--fix", "all", "--check", str(path)]).exit_code == 0
