@@ -115,6 +115,23 @@ def apply_edits(text: str, edits: Iterable[Edit]) -> tuple[str, list[Edit]]:
     return "".join(pieces), applied
 
 
+def unified_diff(changes: Iterable[tuple[str, str, str]]) -> str:
+    """
+    A unified diff of ``(name, text before, text after)`` changes, file after file: ``a/NAME``
+    and ``b/NAME`` for a relative name (as git shows it), the name itself for an absolute one.
+    """
+    import difflib
+
+    parts = []
+    for name, before, after in changes:
+        shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
+        lines = difflib.unified_diff(
+            before.splitlines(keepends=True), after.splitlines(keepends=True), *shown
+        )
+        parts.append("".join(lines))
+    return "".join(parts)
+
+
 class ChangedWhileEditing(InputError):
     """The file on disk is no longer the one the edits were computed from."""
 

@@ -13,7 +13,6 @@ perhaps a macro body or a macro call), and the links refused with their reasons.
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -130,20 +129,12 @@ class FillPlan:
 
     def diff(self) -> str:
         """A unified diff of the change, file after file (empty when nothing changes)."""
-        parts = []
-        for source, text in self.changes():
-            name = self.path if source is self.source else source.path
-            shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
-            parts.append(
-                "".join(
-                    difflib.unified_diff(
-                        source.text.splitlines(keepends=True),
-                        text.splitlines(keepends=True),
-                        *shown,
-                    )
-                )
-            )
-        return "".join(parts)
+        from inertia_kit.description.edits import unified_diff
+
+        return unified_diff(
+            (self.path if source is self.source else source.path, source.text, text)
+            for source, text in self.changes()
+        )
 
 
 def _same_file(a: str, b: str) -> bool:

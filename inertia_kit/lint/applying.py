@@ -12,7 +12,6 @@ nothing changes, at most :data:`MAX_PASSES` times; a file that did not settle ge
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -53,20 +52,9 @@ class Pass:
     changes: tuple[tuple[SourceText, str], ...]
 
     def diff(self) -> str:
-        parts = []
-        for source, text in self.changes:
-            name = source.path
-            shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
-            parts.append(
-                "".join(
-                    difflib.unified_diff(
-                        source.text.splitlines(keepends=True),
-                        text.splitlines(keepends=True),
-                        *shown,
-                    )
-                )
-            )
-        return "".join(parts)
+        from inertia_kit.description.edits import unified_diff
+
+        return unified_diff((source.path, source.text, text) for source, text in self.changes)
 
 
 def one_pass(findings: Sequence[Finding], unsafe: bool) -> Pass:
