@@ -34,6 +34,9 @@ MODES: dict[str, tuple[str, ...]] = {
     "mass": ("--fix", "all"),
     "total-mass": ("--fix", "missing", "--total-mass", "12.3456789"),
     "density": ("--fix", "all", "--density", "2712.34567"),
+    # inertia-lint applying the fixes its findings carry (the same machinery, lint's inputs)
+    "lint-fix": ("--fix",),
+    "lint-unsafe-fixes": ("--fix", "--unsafe-fixes"),
 }
 GIVEN_MASS = "1.23456789"
 
@@ -82,6 +85,27 @@ def run_fill(arguments: Sequence[str]) -> tuple[int, str]:
     return result.exit_code, result.output
 
 
+def run_lint(arguments: Sequence[str]) -> tuple[int, str]:
+    """``inertia-lint ARGUMENTS`` in this process: exit code and what it printed."""
+    from click.testing import CliRunner
+
+    from inertia_kit.cli.lint import lint_command
+
+    result = CliRunner().invoke(lint_command, list(arguments), catch_exceptions=False)
+    return result.exit_code, result.output
+
+
+def _check(mode: str, options: Sequence[str], path: Path) -> bool:
+    """Whether the run right after says nothing is left to change: ``inertia-fill --check``
+    exits 0 (or refuses a link it says so); ``inertia-lint --diff`` shows no diff."""
+    if mode.startswith("lint-"):
+        flags = [o for o in options if o != "--fix"]
+        _, output = run_lint([*flags, "--diff", str(path)])
+        return "\n+++ " not in f"\n{output}"
+    code, output = run_fill([*options, "--check", str(path)])
+    return code != 1 or "not filled" in output
+
+
 @dataclass
 class Settling:
     """What a second fill did to the files a first fill wrote, for one mode."""
@@ -112,8 +136,9 @@ def settle(
     progress: Callable[[str], None] | None = None,
 ) -> Settling:
     """
-    Fill each robot file under ``root`` (a mirror: it is written) in ``mode``, then fill it
-    again and compare. ``package_paths`` are given to every run; ``files`` limits the inputs.
+    Fill (or, for the ``lint-`` modes, fix with ``inertia-lint``) each robot file under ``root``
+    (a mirror: it is written) in ``mode``, then do it again and compare. ``package_paths`` are
+    given to every run; ``files`` limits the inputs.
     """
     result = Settling(mode)
     everything = robot_files(root)
@@ -128,18 +153,18 @@ def settle(
             options += ["--mass", f"{link}={GIVEN_MASS}"]
         result.files += 1
         before = _snapshot(everything)
-        code, output = run_fill([*options, str(path)])
+        run = run_lint if mode.startswith("lint-") else run_fill
+        _, output = run([*options, str(path)])
         if "internal error" in output or "Traceback" in output:
             result.crashed.append(str(path))
         middle = _snapshot(everything)
         if middle != before:
             result.changed_first.append(str(path))
-        code, output = run_fill([*options, str(path)])
+        run([*options, str(path)])
         after = _snapshot(everything)
         if after != middle:
             result.changed_again.append(str(path))
-        code, output = run_fill([*options, "--check", str(path)])
-        if code == 1 and "not filled" not in output and str(path) not in result.changed_again:
+        if not _check(mode, options, path) and str(path) not in result.changed_again:
             result.check_failed.append(str(path))
         if progress is not None:
             progress(str(path))
