@@ -158,8 +158,9 @@ def fill(
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.fragments import cut, fill_targets
-    from inertia_kit.fill.plan import plan_fill
+    from inertia_kit.fill.plan import plan_fill, written_files
     from inertia_kit.fill.policy import density_option, per_link, unknown_links
+    from inertia_kit.fill.shared import disagreements, without
     from inertia_kit.lint.config_files import ConfigFinder
 
     try:
@@ -182,7 +183,7 @@ def fill(
         click.echo(f"error: {error}", err=True)
         return 2
 
-    plans, failed = [], False
+    failed = False
     options = {
         "density": density,
         "fix": fix,
@@ -191,7 +192,11 @@ def fill(
         "total_mass": total_mass,
     }
     chosen = fill_targets(paths, output, arguments, package_paths, limits)
-    for target in chosen.targets:
+
+    def plan_target(target: Any) -> Any:
+        """The plan of one robot (``None`` when it cannot be planned: told); exit 2 on a bad
+        configuration (``ConfigError`` raised)."""
+        nonlocal failed
         path = target.robot
         with processing(path):
             try:
@@ -206,10 +211,9 @@ def fill(
                     **options,
                     **per_file,
                 )
-                plans.append(cut(plan, target, chosen, arguments, package_paths, bounds))
-            except ConfigError as error:
-                click.echo(f"error: {error}", err=True)
-                return 2
+                return cut(plan, target, chosen, arguments, package_paths, bounds)
+            except ConfigError:
+                raise
             except InputError as error:
                 if not chosen.read_by_robots(target):  # else: filled through its robots
                     click.echo(f"error: {error}", err=True)
@@ -217,6 +221,21 @@ def fill(
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, path)}", err=True)
                 failed = True
+        return None
+
+    planned = []
+    try:
+        for target in chosen.targets:
+            plan = plan_target(target)
+            if plan is not None:
+                planned.append((target, plan))
+    except ConfigError as error:
+        click.echo(f"error: {error}", err=True)
+        return 2
+    # robots that include one fragment and want other values there: none writes it (fill.shared)
+    disagree = disagreements([(target.robot, plan) for target, plan in planned])
+    planned = [(target, without(plan, target.robot, disagree)) for target, plan in planned]
+    plans = [plan for _, plan in planned]
     unknown = unknown_links([*masses, *link_options], plans)
     if unknown:
         click.echo(
@@ -226,13 +245,23 @@ def fill(
 
     write = not (show_diff or check)
     changed = refused = False
-    for plan in plans:
+    written: set[Path] = set()
+    for target, plan in planned:
+        if write and written & {Path(name).resolve() for name in written_files(plan)}:
+            # a fragment several robots include: an earlier robot's fill wrote there, so this
+            # one is planned again on the new text (else its edits would not apply)
+            plan = plan_target(target)
+            if plan is None:
+                continue
+            plan = without(plan, target.robot, disagree)
         with processing(plan.path):
             try:
                 outcome = _finish(plan, write, show_diff, chosen.through(plan.path))
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, plan.path)}", err=True)
                 outcome = (False, False, True)
+        if write and outcome[0]:
+            written.update(Path(name).resolve() for name in written_files(plan))
         changed, refused, failed = (
             changed or outcome[0],
             refused or outcome[1],

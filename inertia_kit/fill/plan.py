@@ -45,6 +45,9 @@ class LinkFill:
     basis: str
     replaced: bool
     edits: tuple[Edit, ...] = ()
+    # where the link's <inertial> (or, without one, its <link>) is written: resolved path, line,
+    # column; robots that include one fragment meet there (fill.shared)
+    written_at: tuple[str, int | None, int | None] | None = None
 
     @property
     def mass_text(self) -> str:
@@ -219,6 +222,7 @@ def plan_robot(
 ) -> FillPlan:
     """The fill plan of ``robot``, whose elements are written literally in ``source``."""
     from inertia_kit.analysis.links import analyse
+    from inertia_kit.fixes.files import key
     from inertia_kit.fixes.sites import Files
     from inertia_kit.lint.fixing import robot_fixes
 
@@ -248,9 +252,11 @@ def plan_robot(
         if found.reason is not None or found.target is None:
             refused.append(Refusal(name, found.reason or "no values", found.block))
             continue
-        replaced = found.target.link.link.inertial is not None
+        link = found.target.link.link
+        replaced = link.inertial is not None
         target = found.target
-        fills.append(LinkFill(name, target.properties, target.basis, replaced, found.edits))
+        at = key(link.source if link.inertial is None else link.inertial.source)
+        fills.append(LinkFill(name, target.properties, target.basis, replaced, found.edits, at))
     main = str(Path(source.path).resolve())
     others = tuple(s for p, s in files.sources.items() if p != main)
     return FillPlan(
