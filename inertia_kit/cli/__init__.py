@@ -31,6 +31,7 @@ COMMANDS = {
     "lint": "inertia_kit.cli.lint:lint_command",
     "mass": "inertia_kit.cli.mass:mass_group",
     "report": "inertia_kit.cli.report:report_command",
+    "rules": "inertia_kit.cli.rules:rules_command",
 }
 
 

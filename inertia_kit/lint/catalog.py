@@ -21,6 +21,7 @@ from collections.abc import Iterable, Mapping
 from types import ModuleType
 from typing import Any
 
+from inertia_kit.lint.findings import Safety
 from inertia_kit.lint.options import Option
 
 # The registry: adding a rule is importing its module here. RULES below collects the modules this
@@ -111,6 +112,12 @@ def option_values(rule: ModuleType, configured: Mapping[str, Any]) -> dict[str, 
 def engine(rule: ModuleType) -> str | None:
     """The engine an engine rule (IN07x) speaks for (``ENGINE``); ``None`` for other rules."""
     return getattr(rule, "ENGINE", None)
+
+
+def fix_safety(rule: ModuleType) -> Safety | None:
+    """The safety of the rule's fix (``FIX``, else ``TEXT_FIX``); ``None`` when it has none."""
+    fix = getattr(rule, "FIX", None)
+    return fix.safety if fix is not None else getattr(rule, "TEXT_FIX", None)
 
 
 def supersedes(rule: ModuleType) -> tuple[str, ...]:
