@@ -49,6 +49,21 @@ def _colour() -> bool | None:
     help="How findings are printed (to stdout).",
 )
 @click.option(
+    "-q",
+    "--quiet",
+    is_flag=True,
+    help="Print only the findings: no notes (skipped fragments) and no summary; errors and "
+    "warnings still go to stderr.",
+)
+@click.option(
+    "--output-file",
+    "-o",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write the report (findings, --statistics or --diff) to this file, atomically, "
+    "instead of stdout.",
+)
+@click.option(
     "--select",
     multiple=True,
     metavar="CODES",
@@ -167,6 +182,8 @@ def lint(
     fix: bool | None = None,
     unsafe_fixes: bool | None = None,
     show_diff: bool = False,
+    quiet: bool = False,
+    output_file: str | None = None,
 ) -> int:
     """``inertia-lint``: print what it finds; return the exit code."""
     if explain is not None:
@@ -188,7 +205,6 @@ def lint(
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
-    from inertia_kit.lint.output.summary import summary
     from inertia_kit.lint.paths import lint_paths
     from inertia_kit.lint.runner import FileResult
 
@@ -226,6 +242,8 @@ def lint(
         return write_suppressions(paths, results, lint_all)
     run = merge(results)
     for level, text in run.messages:
+        if quiet and level == "note":
+            continue
         click.echo(f"{level}: {text}", err=True)
     if not results:
         click.echo(
@@ -234,17 +252,47 @@ def lint(
     unsafe = any(result.unsafe_fixes for result in results)
     if show_diff:
         # as ruff: the diff on stdout, instead of the findings
-        click.echo(run.diff, nl=False)
+        output = run.diff
     elif statistics:
         output = rule_statistics(run.findings, as_json=output_format == "json")
-        click.echo(output, nl=False, color=_colour())
     else:
+        # a file gets no colour codes: only a terminal reads them
+        style = None if output_file else click.style
         output = render(
-            run.findings, output_format, errors=run.errors, style=click.style, unsafe_fixes=unsafe
+            run.findings, output_format, errors=run.errors, style=style, unsafe_fixes=unsafe
         )
+    if output_file is None:
         click.echo(output, nl=False, color=_colour())
+    elif not _write_report(output_file, output):
+        return 2
     crashes = sum(isinstance(error, InternalError) for error in run.errors)
     fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
+    if not quiet:
+        _echo_summary(run, crashes, fixable, show_diff)
+    if run.errors:
+        return 2
+    if show_diff:
+        return 1 if run.diff else 0
+    return 1 if run.failing and not exit_zero else 0
+
+
+def _write_report(path: str, output: str) -> bool:
+    """Write the report to ``path`` atomically; on failure say why (the exit is then 2)."""
+    from inertia_kit.description.edits import write_atomic
+    from inertia_kit.errors import InputError
+
+    try:
+        write_atomic(path, output.encode(), create=True)
+    except InputError as error:
+        click.echo(f"error: --output-file: {error}", err=True)
+        return False
+    return True
+
+
+def _echo_summary(run: Any, crashes: int, fixable: int, show_diff: bool) -> None:
+    """The summary line on stderr (``Found ...``, ``No findings ...``)."""
+    from inertia_kit.lint.output.summary import summary
+
     click.echo(
         summary(
             run.findings,
@@ -257,8 +305,3 @@ def lint(
         ),
         err=True,
     )
-    if run.errors:
-        return 2
-    if show_diff:
-        return 1 if run.diff else 0
-    return 1 if run.failing and not exit_zero else 0
