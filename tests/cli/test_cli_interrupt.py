@@ -1,0 +1,71 @@
+"""
+Ctrl-C through the real console scripts: SIGINT while a slow xacro expands (in its forked,
+SIGINT-ignoring child, cli/guard.py and description/xacro_sandbox.py) is exit 130 with
+``interrupted`` and no traceback, at once, and the expansion's child process is gone.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from console_scripts import console_script
+from kit.runaway_xacro import doubling_chain
+
+WORKTREE = str(Path(__file__).resolve().parents[2])
+#: generous limits: the expansion is still running when Ctrl-C comes
+LIMITS = ("--xacro-limit", "timeout=60", "--xacro-limit", "memory=3000")
+LIMITS += ("--xacro-limit", "elements=100000000")
+
+pytestmark = pytest.mark.skipif(
+    not sys.platform.startswith("linux"), reason="reads /proc for the xacro child"
+)
+
+
+def children(pid: int) -> list[int]:
+    text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
+    return [int(child) for child in text.split()]
+
+
+def default_sigint() -> None:
+    # a shell without job control starts background commands with SIGINT ignored, which
+    # Python keeps; a user's terminal does not
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+@pytest.mark.parametrize("script", ["inertia-lint", "inertia-fill"])
+def test_sigint_during_a_slow_xacro_is_exit_130_and_leaves_no_child(tmp_path, script):
+    robot = tmp_path / "slow.xacro"
+    robot.write_text(doubling_chain(19))
+    process = subprocess.Popen(
+        [console_script(script), *LIMITS, str(robot)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": WORKTREE},
+        preexec_fn=default_sigint,
+    )
+    try:
+        deadline = time.monotonic() + 30
+        expanding: list[int] = []
+        while not expanding and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+            expanding = children(process.pid)
+        assert expanding, "the xacro expansion's child process never appeared"
+        time.sleep(0.3)  # well inside the expansion
+        interrupted_at = time.monotonic()
+        process.send_signal(signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=30)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert (process.returncode, stdout, stderr) == (130, "", "interrupted\n")
+    assert time.monotonic() - interrupted_at < 10  # not after the 60 s time limit
+    for child in expanding:
+        assert not Path(f"/proc/{child}").exists(), f"xacro child {child} outlived Ctrl-C"
