@@ -9,6 +9,7 @@ import click
 
 from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
 from inertia_kit.cli.options import NUMBER, SCALE, UsageError
+from inertia_kit.fill.materials import MATERIALS, canonical_material, materials_text
 
 
 @click.group("mass", cls=GuardedGroup)
@@ -36,6 +37,13 @@ _PART_OPTIONS = (
         type=SCALE,
         default=None,
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
+    ),
+    click.option(
+        "--material",
+        default=None,
+        metavar="NAME",
+        help=f"Density from a material (any case; aluminum, stainless_steel too): "
+        f"{materials_text()}.",
     ),
     click.option("--mass", "mass_kg", type=SCALE, default=None, help="Total mass, kg."),
     _triple(
@@ -160,9 +168,26 @@ def _parse_scale(text: str) -> tuple[float, float, float]:
     return values[0], values[1], values[2]
 
 
+def _material_density(options: dict[str, Any]) -> None:
+    """``--material`` turned into ``--density`` in ``options``, or a usage error."""
+    material = options.pop("material", None)
+    if material is None:
+        return
+    if options.get("density") is not None:
+        raise UsageError("give --density or --material, not both")
+    name = canonical_material(material)
+    if name is None:
+        raise UsageError(
+            f"--material: unknown {material!r}; known: {', '.join(MATERIALS)} (in any case, "
+            "with spaces or underscores for hyphens; aluminum is aluminium)"
+        )
+    options["density"] = MATERIALS[name]
+
+
 def _show(part: Any, options: dict[str, Any]) -> None:
     from inertia_kit.report.mass import render
 
+    _material_density(options)
     try:
         text = render(part, **options)
     except ValueError as error:
