@@ -92,3 +92,11 @@ def test_material_refusals(args, message):
     assert result.exit_code == 2
     assert message in result.output
     assert "Traceback" not in result.output
+
+
+def test_help_lists_the_canonical_materials():
+    from inertia_kit.fill.materials import MATERIALS
+
+    shown = " ".join(run("box", "--help").output.split())
+    for name, density in MATERIALS.items():
+        assert f"{name} {density:g}" in shown
