@@ -33,7 +33,10 @@ from inertia_kit.version import __version__
     help="Uniform density for links without a known mass, kg/m³ [default: 1000].",
 )
 @click.option(
-    "--material", default=None, metavar="NAME", help=f"Density from a material: {materials_text()}."
+    "--material",
+    default=None,
+    metavar="NAME",
+    help=f"Density from a material (any case; aluminum, stainless_steel too): {materials_text()}.",
 )
 @click.option(
     "--mass",

@@ -9,6 +9,7 @@ import click
 
 from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
 from inertia_kit.cli.options import NUMBER, SCALE, UsageError
+from inertia_kit.fill.materials import MATERIALS, canonical_material, materials_text
 
 
 @click.group("mass", cls=GuardedGroup)
@@ -36,6 +37,13 @@ _PART_OPTIONS = (
         type=SCALE,
         default=None,
         help="Uniform density, kg/m³ (default 1000 unless --mass is given).",
+    ),
+    click.option(
+        "--material",
+        default=None,
+        metavar="NAME",
+        help=f"Density from a material (any case; aluminum, stainless_steel too): "
+        f"{materials_text()}.",
     ),
     click.option("--mass", "mass_kg", type=SCALE, default=None, help="Total mass, kg."),
     _triple(
@@ -125,14 +133,19 @@ for _shape, (_help, _dimensions) in _PRIMITIVES.items():
 @click.argument("path", type=click.Path(dir_okay=False))
 @click.option(
     "--scale",
-    default="1",
-    show_default=True,
-    help='URDF mesh scale: one factor or three, e.g. 0.001 or "0.001 0.001 0.001".',
+    default=None,
+    help='URDF mesh scale: one factor or three, e.g. 0.001 or "0.001 0.001 0.001" [default: 1].',
+)
+@click.option(
+    "--trust-units",
+    is_flag=True,
+    help="The mesh is in metres: print its URDF block even when its size looks like mm, cm "
+    "or inches (without --scale, such a mesh gets a warning and no block).",
 )
 @_part_options
-def mass_mesh(path: str, scale: str, **options: Any) -> None:
+def mass_mesh(path: str, scale: str | None, trust_units: bool, **options: Any) -> None:
     """A closed triangle mesh: STL, OBJ, DAE, PLY or GLB."""
-    factors = _parse_scale(scale)
+    factors = _parse_scale(scale or "1")
     from inertia_kit.errors import MeshError
     from inertia_kit.report.mass import mesh_part
 
@@ -141,7 +154,50 @@ def mass_mesh(path: str, scale: str, **options: Any) -> None:
             part = mesh_part(path, factors)
         except MeshError as error:
             raise UsageError(str(error)) from None
-        _show(part, options)
+        warning = _unit_warning(path, part, options.get("mass_kg"))
+        withheld = None
+        if warning is not None:
+            click.echo(f"warning: {warning}", err=True)
+            if scale is None and not trust_units:
+                withheld = "the mesh looks authored in other units than metres (see the warning)"
+        _show(part, {**options, "withheld": withheld})
+
+
+def _unit_warning(path: str, part: Any, mass_kg: float | None) -> str | None:
+    """
+    What the mesh's size (and density, when ``--mass`` is given) says of its unit, when it
+    looks authored in mm, cm or inches (analysis.mesh_units decides, as IN031 does), or None.
+    A lone mesh has no joints or peers: its size alone is evidence enough.
+    """
+    from inertia_kit.analysis.mesh_units import (
+        SLIPS,
+        VIOLATION,
+        density_evidence,
+        size_evidence,
+        suspected_unit,
+    )
+    from inertia_kit.physics.formatting import fmt
+
+    low, high = part.mesh["bounds"]
+    extent = max(h - lo for lo, h in zip(low, high, strict=True))
+    if not extent > 0:
+        return None
+    evidence = [size_evidence(extent)]
+    if mass_kg is not None:
+        evidence.append(density_evidence(mass_kg, part.volume))
+    suspicion = suspected_unit(evidence, min_evidence=1)
+    if suspicion.slip is None:
+        return None
+    slip = suspicion.slip
+    scale = [fmt(v * slip, 6) for v in part.description["scale"]]
+    scale_text = scale[0] if len(set(scale)) == 1 else f'"{" ".join(scale)}"'
+    against = "; ".join(e.text(0.0) for e in evidence if e.excess() > VIOLATION)
+    unit = f"authored in {suspicion.unit}" if suspicion.unit else "scaled twice"
+    return (
+        f"{path} spans {fmt(extent, 3)} m as scaled: it looks {unit} ({SLIPS[slip]}: "
+        f"{against}); pass --scale {scale_text} (it then spans {fmt(extent * slip, 3)} m), "
+        "or --trust-units if it really is that size"
+    )
 
 
 def _parse_scale(text: str) -> tuple[float, float, float]:
@@ -160,9 +216,26 @@ def _parse_scale(text: str) -> tuple[float, float, float]:
     return values[0], values[1], values[2]
 
 
+def _material_density(options: dict[str, Any]) -> None:
+    """``--material`` turned into ``--density`` in ``options``, or a usage error."""
+    material = options.pop("material", None)
+    if material is None:
+        return
+    if options.get("density") is not None:
+        raise UsageError("give --density or --material, not both")
+    name = canonical_material(material)
+    if name is None:
+        raise UsageError(
+            f"--material: unknown {material!r}; known: {', '.join(MATERIALS)} (in any case, "
+            "with spaces or underscores for hyphens; aluminum is aluminium)"
+        )
+    options["density"] = MATERIALS[name]
+
+
 def _show(part: Any, options: dict[str, Any]) -> None:
     from inertia_kit.report.mass import render
 
+    _material_density(options)
     try:
         text = render(part, **options)
     except ValueError as error:

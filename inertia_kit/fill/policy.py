@@ -27,7 +27,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from inertia_kit.fill.materials import MATERIALS
+from inertia_kit.fill.materials import MATERIALS, canonical_material
 from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint.findings import Repairs
 from inertia_kit.physics.numbers import usable
@@ -61,9 +61,13 @@ def density_option(density: float | None, material: str | None, total_mass: floa
     if material is not None:
         if density is not None:
             raise ValueError("give --density or --material, not both")
-        if material.lower() not in MATERIALS:
-            raise ValueError(f"--material: unknown {material!r}; known: {', '.join(MATERIALS)}")
-        density = MATERIALS[material.lower()]
+        name = canonical_material(material)
+        if name is None:
+            raise ValueError(
+                f"--material: unknown {material!r}; known: {', '.join(MATERIALS)} (in any case, "
+                "with spaces or underscores for hyphens; aluminum is aluminium)"
+            )
+        density = MATERIALS[name]
     if total_mass is not None:
         if density is not None:
             raise ValueError("give --total-mass or --density/--material, not both")

@@ -68,12 +68,14 @@ def render(
     about: Triple | None,
     about_rpy: Triple | None,
     output_format: str,
+    withheld: str | None = None,
 ) -> str:
     """
     The report of ``part`` at ``density`` (kg/m³; 1000 when neither it nor ``mass_kg`` is
     given) or weighing ``mass_kg``, placed in the link frame by ``xyz`` and ``rpy`` (as a URDF
     ``<origin>``), with its tensor also about the point ``about`` in the axes rotated by
-    ``about_rpy`` when either is given. ``ValueError`` for a density or mass out of range.
+    ``about_rpy`` when either is given; no URDF block when ``withheld`` says why not.
+    ``ValueError`` for a density or mass out of range.
     """
     import numpy as np
 
@@ -88,7 +90,7 @@ def render(
     point = None if about is None and about_rpy is None else np.asarray(about or (0.0, 0.0, 0.0))
     axes = None if about_rpy is None else rpy_matrix(about_rpy)
     about_tensor = None if point is None else body.inertia_about(point, axes)
-    problem = unwritable(body)
+    problem = withheld or unwritable(body)
     block = inertial_block(body) if problem is None else None
 
     if output_format == "json":

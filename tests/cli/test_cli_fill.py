@@ -100,3 +100,37 @@ def test_help_shows_every_material_with_its_density():
     shown = " ".join(result.stdout.split())
     for name, density in MATERIALS.items():
         assert f"{name} {density:g}" in shown
+
+
+@pytest.mark.parametrize(
+    "spelling, density",
+    [
+        ("aluminum", 2700.0),
+        ("Aluminium", 2700.0),
+        ("ALUMINUM", 2700.0),
+        ("stainless steel", 8000.0),
+        ("stainless-steel", 8000.0),
+        ("Stainless_Steel", 8000.0),
+        ("ABS", 1040.0),
+        ("pla", 1240.0),
+        ("carbon fiber", 1600.0),
+    ],
+)
+def test_material_spellings_give_the_density_of_their_name(spelling, density, tmp_path: Path):
+    """The box of `upper` (0.1 × 0.1 × 0.4 m) filled at the material's density."""
+    by_name, by_density = tmp_path / "name.urdf", tmp_path / "density.urdf"
+    by_name.write_text(ROBOT)
+    by_density.write_text(ROBOT)
+    result = CliRunner().invoke(fill_command, ["--material", spelling, str(by_name)])
+    assert result.exit_code == 1, result.stderr
+    CliRunner().invoke(fill_command, ["--density", str(density), str(by_density)])
+    assert by_name.read_text() == by_density.read_text()
+    assert f'<mass value="{density * 0.004:g}"/>' in by_name.read_text()
+
+
+def test_unknown_material_lists_the_canonical_names(tmp_path: Path):
+    path = tmp_path / "robot.urdf"
+    path.write_text(ROBOT)
+    result = CliRunner().invoke(fill_command, ["--material", "aluminum alloy", str(path)])
+    assert result.exit_code == 2
+    assert f"known: {', '.join(MATERIALS)} (in any case" in result.stderr

@@ -66,3 +66,37 @@ def test_no_urdf_block_the_linter_would_refuse(tmp_path):
     assert (
         result.exit_code == 2 and "its volume or moments overflow double precision" in result.output
     )
+
+
+@pytest.mark.parametrize(
+    "spelling, density",
+    [("aluminum", 2700), ("ALUMINIUM", 2700), ("stainless_steel", 8000), ("Stainless Steel", 8000)],
+)
+def test_material_spellings(spelling, density):
+    """A 0.1 m cube of the material weighs density × 0.001 m³."""
+    result = run("box", "--size", "0.1", "0.1", "0.1", "--material", spelling)
+    assert result.exit_code == 0, result.output
+    assert f"mass:   {density * 0.001:g} kg" in result.output
+    assert f"density {density} kg/m³" in result.output
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--material", "unobtainium"], "known: steel, stainless-steel, aluminium, abs, pla"),
+        (["--material", "pla", "--density", "5"], "give --density or --material, not both"),
+    ],
+)
+def test_material_refusals(args, message):
+    result = run("sphere", "--radius", "0.1", *args)
+    assert result.exit_code == 2
+    assert message in result.output
+    assert "Traceback" not in result.output
+
+
+def test_help_lists_the_canonical_materials():
+    from inertia_kit.fill.materials import MATERIALS
+
+    shown = " ".join(run("box", "--help").output.split())
+    for name, density in MATERIALS.items():
+        assert f"{name} {density:g}" in shown

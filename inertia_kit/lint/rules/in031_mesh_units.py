@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -13,6 +13,14 @@ from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.describe import describe_geometry
 from inertia_kit.analysis.geometry import Solid
 from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.analysis.mesh_units import (
+    SLIPS,
+    VIOLATION,
+    Evidence,
+    density_evidence,
+    size_evidence,
+    suspected_unit,
+)
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
@@ -34,18 +42,6 @@ OPTIONS = (
     Option("min_evidence", int, 2, "how many observations must be out of line"),
 )
 
-# unit slips: the factor the mesh's size is wrong by, and how that happens. A factor below 1
-# shrinks the mesh (a file in mm read as m); above 1 grows it (a scale for mm applied to a file
-# already in m)
-SLIPS = {
-    0.001: "as if millimetres were read as metres",
-    0.01: "as if centimetres were read as metres",
-    0.0254: "as if inches were read as metres",
-    1000.0: "as if a millimetre scale were put on a mesh already in metres",
-    100.0: "as if a centimetre scale were put on a mesh already in metres",
-    1 / 0.0254: "as if an inch scale were put on a mesh already in metres",
-}
-
 # A mesh's size compared with the link's other evidence, as log10 ratios, and the bands real
 # robots fall in (measured on the 8 781 meshes of 1 245 published robot files: see the rule's
 # document). Joint offsets and the link's primitives are written in metres in the URDF itself,
@@ -54,41 +50,9 @@ JOINT_BAND = (-1.5, 1.2)  # log10(mesh extent / largest joint offset at the link
 PEER_BAND = (-1.5, 1.5)  # log10(mesh extent / extent of the link's other shapes)
 # joint offsets shorter than this say nothing about a link's size
 MIN_OFFSET = 0.001
-# millimetre exports are the common slip: between slips that explain the evidence equally well,
-# the others pay this many decades (measured: finds 2 points more mm and metre-scale slips for
-# 4 points fewer cm ones)
-PRIOR = {0.01: 0.3, 100.0: 0.3, 0.0254: 0.3, 1 / 0.0254: 0.3}
-# an alternative slip is named in the message when it fits within this many decades per
-# observation of the best one (cm and inches, 0.4 decades apart, often do)
-ALTERNATIVE = 0.5
 # a mesh vouches for the size of the link's other meshes when this many observations of its
 # own, all in band, back it (its size alone would let a tiny slipped mesh accuse a sound one)
 TRUST = 2
-# an evidence item counts as against the current scale beyond this many decades out of band
-# (a factor of 2): borderline values are the normal spread of real robots
-VIOLATION = 0.3
-# the best slip must explain the evidence: at most this many decades out of band in total
-EXPLAINED = 0.3
-
-
-@dataclass(frozen=True)
-class Evidence:
-    """
-    One observation about a mesh's size: ``value(log_r)`` is its log10 if the mesh were
-    ``10**log_r`` times its size, ``band`` the log10 range real robots fall in.
-    """
-
-    kind: str  # size | joints | peer | density
-    value: Callable[[float], float]
-    band: tuple[float, float]
-    text: Callable[[float], str]  # what the observation is, at a slip (0: as written)
-
-    def excess(self, log_r: float = 0.0) -> float:
-        x = self.value(log_r)
-        return max(self.band[0] - x, 0.0, x - self.band[1])
-
-    def off_centre(self, log_r: float) -> float:
-        return abs(self.value(log_r) - 0.5 * (self.band[0] + self.band[1]))
 
 
 def _extent(solid: Solid) -> float:
@@ -140,21 +104,12 @@ def _evidence(
         return []
     size = math.log10(extent)
     found = []
-    low, high = float(ctx.option("min_size")), float(ctx.option("max_size"))
     # a shape's size alone says something only of a robot part: a link with mass, one that
     # moves, or one of several links (a lone massless 120 m mesh is a scene, not a slip)
     several = link.robot is not None and len(link.robot.links) > 1
     if declared_mass(link.link) is not None or link.moves or several:
-        found.append(
-            Evidence(
-                "size",
-                lambda r: size + r,
-                (math.log10(low), math.log10(high)),
-                lambda r: (
-                    "no robot part is that " + ("large" if size + r > math.log10(high) else "small")
-                ),
-            )
-        )
+        band = (float(ctx.option("min_size")), float(ctx.option("max_size")))
+        found.append(size_evidence(extent, band))
     offset = _joint_offset(link)
     if offset is not None:
         found.append(
@@ -183,17 +138,10 @@ def _evidence(
     if mass is not None and basis.unit is not None and any(s is solid for s in basis.solids):
         own, total = mesh.volume, basis.volume
         rest = max(total - own, 0.0)
-        low_d, high_d = float(ctx.option("min_density")), float(ctx.option("max_density"))
-
-        def density(r: float) -> float:
-            return mass / (rest + own * 10 ** (3 * r))
-
+        band = (float(ctx.option("min_density")), float(ctx.option("max_density")))
         found.append(
-            Evidence(
-                "density",
-                lambda r: math.log10(density(r)),
-                (math.log10(low_d), math.log10(high_d)),
-                lambda r: f"{fmt(mass, 3)} kg in it is {fmt(density(r), 4)} kg/m³",
+            density_evidence(
+                mass, own, rest, band, lambda m, d: f"{fmt(m, 3)} kg in it is {fmt(d, 4)} kg/m³"
             )
         )
     return found
@@ -209,29 +157,8 @@ class Verdict:
 
 def _judge(link: LinkAnalysis, solid: Solid, peers: list[Solid], ctx: RuleContext) -> Verdict:
     evidence = _evidence(link, solid, peers, ctx)
-    against = [e for e in evidence if e.excess() > VIOLATION]
-    if len(against) < int(ctx.option("min_evidence")):
-        return Verdict(solid, None, tuple(evidence))
-    now = sum(e.excess() for e in evidence)
-
-    def score(slip: float) -> tuple[float, float]:
-        r = math.log10(slip)
-        return (
-            sum(e.excess(r) for e in evidence),
-            sum(e.off_centre(r) for e in evidence) + PRIOR.get(slip, 0.0),
-        )
-
-    ranked = sorted(SLIPS, key=score)
-    best = ranked[0]
-    explained = score(best)[0]
-    if explained > EXPLAINED or not explained < 0.25 * now:
-        return Verdict(solid, None, tuple(evidence))
-    others = tuple(
-        s
-        for s in ranked[1:]
-        if score(s)[0] <= EXPLAINED and score(s)[1] <= score(best)[1] + ALTERNATIVE * len(evidence)
-    )
-    return Verdict(solid, best, tuple(evidence), others)
+    suspicion = suspected_unit(evidence, int(ctx.option("min_evidence")))
+    return Verdict(solid, suspicion.slip, tuple(evidence), suspicion.others)
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
