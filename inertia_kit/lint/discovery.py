@@ -6,17 +6,23 @@ folders given, each once.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
 # folders expansion never enters: hidden ones (.git, .venv) and Python caches
 _SKIPPED_FOLDERS = ("__pycache__",)
+#: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
+#: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too)
+ROBOT_FILE = r"(?i)\.(urdf|xacro)$"
+_ROBOT_FILE = re.compile(ROBOT_FILE)
 
 
 def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:
     """
-    Files as given; folders searched for ``*.urdf``, ``*.xacro`` (``*.urdf.xacro`` too), in
-    sorted order, hidden folders (``.git``) not entered. Each file once.
+    Files as given; folders searched for ``*.urdf``, ``*.xacro`` (``*.urdf.xacro`` too; case
+    ignored, :data:`ROBOT_FILE`), in sorted order, hidden folders (``.git``) not entered. Each
+    file once.
     """
     seen: set[str] = set()
     for entry in paths:
@@ -35,5 +41,5 @@ def _robot_files(folder: Path) -> list[Path]:
         folders[:] = sorted(
             f for f in folders if not f.startswith(".") and f not in _SKIPPED_FOLDERS
         )
-        files.extend(Path(top, name) for name in names if name.endswith((".urdf", ".xacro")))
+        files.extend(Path(top, name) for name in names if _ROBOT_FILE.search(name))
     return sorted(f for f in files if f.is_file())
