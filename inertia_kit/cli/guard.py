@@ -58,11 +58,23 @@ def internal(error: BaseException, path: str | Path | None = None) -> InternalEr
     return InternalError(error, path)
 
 
+def _tolerant_streams() -> None:
+    """
+    A terminal whose encoding lacks a character of a message (``ᵀ`` on latin-1 or cp1252) shows
+    it escaped (``\\u1d40``) instead of failing the command: every message and report goes
+    through these two streams.
+    """
+    for stream in (sys.stdout, sys.stderr):
+        if getattr(stream, "errors", None) == "strict" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
+
+
 class _Guard:
     """The mixin: :meth:`invoke` turns the unforeseen into exit 2 and Ctrl-C into exit 130."""
 
     def invoke(self, ctx: click.Context) -> Any:
         _processing.set(None)
+        _tolerant_streams()
         try:
             return super().invoke(ctx)  # type: ignore[misc]
         except (click.exceptions.Exit, click.ClickException, click.Abort):

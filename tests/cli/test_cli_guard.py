@@ -174,3 +174,21 @@ def test_in_a_real_process(two_files, error, status, stderr):
     )
     assert done.returncode == status
     assert stderr in done.stderr and "Traceback" not in done.stderr
+
+
+def test_a_terminal_that_cannot_show_a_character_gets_it_escaped(tmp_path):
+    """`inertia-lint examples/` on a latin-1 terminal: IN060's help writes `d dᵀ`, which latin-1
+    cannot encode; it is shown as `\\u1d40` and the run ends with its findings (exit 1), not an
+    internal error (exit 2)."""
+    from console_scripts import console_script
+
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    done = subprocess.run(
+        [console_script("inertia-lint"), os.path.join(repo, "examples", "mrm_description")],
+        capture_output=True,
+        env={**os.environ, "PYTHONIOENCODING": "latin-1"},
+        cwd=tmp_path,
+    )
+    assert done.returncode == 1, done.stderr
+    assert b"d d\\u1d40" in done.stdout
+    assert b"internal error" not in done.stderr and b"Traceback" not in done.stderr
