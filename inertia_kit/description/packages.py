@@ -82,19 +82,8 @@ class Resolution:
 
 class PackageResolver(PackageFinder):
     """
-    Finds ROS packages and resolves mesh URIs, caching what it has looked up.
-
-    Parameters
-    ----------
-    package_paths : iterable of str or Path
-      Searched first, in order: each a package folder or a folder holding packages; also
-      PyBullet's search path for relative meshes.
-    start : str or Path, optional
-      The input file (or its folder): discovery walks up from here after the folder of the
-      file that names a package.
-    env : mapping, optional
-      The environment to read ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH`` from; defaults to
-      ``os.environ`` (read once, here).
+    Finds ROS packages and resolves mesh URIs, caching what it has looked up; its parameters
+    are :class:`~.package_lookup.PackageFinder`'s.
     """
 
     def resolve_uri(self, uri: str, base_dir: str | Path) -> tuple[Path | None, str | None]:
