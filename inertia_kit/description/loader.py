@@ -34,7 +34,7 @@ def needs_expansion(data: bytes) -> bool:
     Whether a file must go through xacro: xacro by content *and* using it (macros, ``${}``,
     ``$()``). A file that only declares the namespace, as xacro's own output does, is URDF.
     """
-    from inertia_kit.description.xacro_expand import is_xacro
+    from inertia_kit.description.xacro_detect import is_xacro
 
     data = _narrow(data)
     return is_xacro(data) and _XACRO_AT_WORK.search(data) is not None
@@ -89,7 +89,7 @@ def load(
       (``Mesh.problem``, ``Robot.invalid``).
     """
     from inertia_kit.description.packages import PackageResolver
-    from inertia_kit.description.xacro_expand import expand, is_xacro
+    from inertia_kit.description.xacro_detect import is_xacro
 
     path = Path(path)
     data = read_bounded(path)
@@ -98,6 +98,8 @@ def load(
 
     xacro = is_xacro(data)
     if needs_expansion(data):
+        from inertia_kit.description.xacro_expand import expand  # plain URDF: not imported
+
         expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
         if expanded.fragment:
             return _fragment(path, expanded.files)

@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-import re
 import threading
 import time
 from collections.abc import Mapping
@@ -41,6 +40,7 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
 from inertia_kit.description.model import Source
+from inertia_kit.description.xacro_detect import is_xacro  # noqa: F401 (callers import it here)
 from inertia_kit.description.xacro_errors import input_error
 from inertia_kit.description.xacro_limits import LimitExceeded, Meter, XacroLimits
 from inertia_kit.description.xacro_sandbox import Expansion
@@ -56,13 +56,7 @@ if TYPE_CHECKING:
 #: Top-level tags of a file meant to be included rather than expanded on its own.
 FRAGMENT_TAGS = frozenset({"xacro:macro", "xacro:property", "xacro:arg", "xacro:include"})
 
-_IS_XACRO = re.compile(rb"xmlns:xacro\s*=|<\s*xacro:[A-Za-z_]")
 _LOCK = threading.Lock()
-
-
-def is_xacro(data: bytes) -> bool:
-    """Whether ``data`` is xacro by content: the xacro namespace declared or ``xacro:`` tags."""
-    return _IS_XACRO.search(data) is not None
 
 
 @dataclass(frozen=True)

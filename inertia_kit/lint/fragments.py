@@ -149,7 +149,7 @@ def targets(
 def _xacro(file: str) -> bool:
     """Whether ``file`` may be included by a robot: xacro by name or by content. A plain URDF
     is included by none in practice, and is linted as itself without scanning the repository."""
-    from inertia_kit.description.xacro_expand import is_xacro
+    from inertia_kit.description.xacro_detect import is_xacro
 
     if file.lower().endswith(".xacro"):
         return True
