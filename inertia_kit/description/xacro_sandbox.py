@@ -71,8 +71,7 @@ def preload() -> None:
     import resource  # noqa: F401
     import select  # noqa: F401
     import signal  # noqa: F401
-    import xml.dom.expatbuilder
-    import xml.sax.saxutils  # noqa: F401
+    import xml.dom.expatbuilder  # noqa: F401
 
     from xacro import substitution_args  # noqa: F401
 

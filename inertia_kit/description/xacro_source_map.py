@@ -167,17 +167,30 @@ def to_lxml(
     return lxml_root, dict(zip(elements, sources, strict=True))
 
 
-def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
-    # saxutils pulls in urllib, http and email (~20 ms): import it only to write xacro output
-    from xml.sax.saxutils import escape, quoteattr
+def _escape(text: str) -> str:
+    """``xml.sax.saxutils.escape``: importing saxutils pulls in urllib, http, email and ssl
+    (~20 ms), on every xacro expansion."""
+    return text.replace("&", "&amp;").replace(">", "&gt;").replace("<", "&lt;")
 
+
+def _quoteattr(value: str) -> str:
+    """``xml.sax.saxutils.quoteattr``, as :func:`_escape`: escaped, white space kept, quoted."""
+    value = _escape(value).replace("\n", "&#10;").replace("\r", "&#13;").replace("\t", "&#9;")
+    if '"' not in value:
+        return f'"{value}"'
+    if "'" not in value:
+        return f"'{value}'"
+    return '"{}"'.format(value.replace('"', "&quot;"))
+
+
+def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
     kind = node.nodeType
     if kind == Node.ELEMENT_NODE:
         source = node.getUserData(STAMP) or inherited
         sources.append(source)
         out.append("<" + node.tagName)
         for name, value in node.attributes.items():
-            out.append(f" {name}={quoteattr(value)}")
+            out.append(f" {name}={_quoteattr(value)}")
         if not node.childNodes:
             out.append("/>")
             return
@@ -186,7 +199,7 @@ def _write(node, out: list[str], sources: list[Source], inherited: Source) -> No
             _write(child, out, sources, source)
         out.append(f"</{node.tagName}>")
     elif kind in (Node.TEXT_NODE, Node.CDATA_SECTION_NODE):
-        out.append(escape(node.data))
+        out.append(_escape(node.data))
     elif kind == Node.COMMENT_NODE:
         text = node.data.replace("--", "- -")
         out.append(f"<!--{text}{' ' if text.endswith('-') else ''}-->")

@@ -100,3 +100,11 @@ def test_meshed_robot_on_a_warm_cache_imports_no_mesh_library(
     monkeypatch.setattr(mesh_cache, "RACY_SECONDS", 0.0)  # a file written just now is stored
     mesh_cache.cached_mesh_solid(dae, cache_dir=cache)
     assert lint_and_list([urdf], NOT_FOR_WARM_CACHE, env) == []
+
+
+def test_xacro_lint_imports_no_web_modules(tmp_path: Path) -> None:
+    """Writing the expanded tree escapes text as xml.sax.saxutils does, without importing it:
+    saxutils pulls in urllib.request, http.client, email and ssl on every expansion."""
+    xacro = ROOT / "examples" / "mrm_description" / "urdf" / "mrm.xacro"
+    web = ("urllib.request", "http.client", "email", "ssl", "xml.sax.saxutils")
+    assert lint_and_list([xacro], ("xacro", *web), environment(tmp_path / "cache")) == ["xacro"]
