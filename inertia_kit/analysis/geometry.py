@@ -275,10 +275,11 @@ def evaluate_geometry(
     overlap = 0.0
     unit = None
     if len(parts) > 1:
-        from inertia_kit.physics.unions import union
+        # the on-disk cache, as for meshes: re-linting skips manifold3d for overlapping shapes
+        from inertia_kit.physics.union_cache import cached_union
 
         try:
-            result = union(parts, density=1.0)
+            result = cached_union(parts, density=1.0)
             unit, overlap = result.mass_properties, result.overlap_volume
         except ValueError:
             unit = None
