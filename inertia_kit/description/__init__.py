@@ -6,7 +6,8 @@ and text edits back on the original bytes.
   bounds and secures the parse, ``builder`` makes the model); ``xacro_expand`` (with
   ``xacro_session``, the hooks in xacro, ``xacro_source_map`` and ``xacro_errors``): xacro
   through the real package, with a source map, within the time, memory and element limits of
-  ``xacro_limits`` (in a forked child process: ``xacro_sandbox``);
+  ``xacro_limits`` (in a forked child process: ``xacro_sandbox``); ``xacro_detect``: whether
+  a file is xacro, without importing any of that;
   ``packages``: ``$(find)`` and ``package://`` without ROS (finding packages:
   ``package_lookup``; file checks, ``package.xml`` names and bounded walks: ``package_files``).
 - ``model``: the frozen dataclasses (Robot, Link, Joint, Inertial, ... each with its ``Source``).

@@ -7,7 +7,7 @@ XML.
   ``xyz``/``rpy`` as transforms.
 - ``primitives``: closed forms for boxes, cylinders, spheres, capsules, ellipsoids;
   ``tessellate``: their volume-exact meshes; ``unions`` (with ``manifolds``): overlapping parts
-  counted once.
+  counted once; ``union_cache``: those of overlapping primitives, cached on disk.
 - ``meshes``: mesh files as mass properties (``mesh_formats`` reads them, ``stl`` fast, without
   trimesh; ``mesh_closure`` decides how the volume is integrated; ``polyhedra`` and
   ``volume_moments`` are the integration kernel); ``mesh_cache`` (with ``mesh_cache_entries``):
