@@ -40,7 +40,6 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
 from inertia_kit.description.model import Source
-from inertia_kit.description.xacro_detect import is_xacro  # noqa: F401 (callers import it here)
 from inertia_kit.description.xacro_errors import input_error
 from inertia_kit.description.xacro_limits import LimitExceeded, Meter, XacroLimits
 from inertia_kit.description.xacro_sandbox import Expansion

@@ -32,7 +32,7 @@ from typing import Any
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.mesh_cache import cache_location, code_key
 from inertia_kit.physics.mesh_cache_entries import MAX_ENTRY_BYTES, write_entry
-from inertia_kit.physics.unions import DEFAULT_SEGMENTS, Part, UnionResult, _overlapping, union
+from inertia_kit.physics.unions import DEFAULT_SEGMENTS, Part, UnionResult, overlapping, union
 
 #: Version of the entry layout; part of the folder name and of every entry.
 FORMAT = 1
@@ -87,7 +87,7 @@ def _key(
     if len(parts) < 2 or not all(isinstance(p, Part) and p.vertices is None for p in parts):
         return None
     try:
-        if not _overlapping([part.bounds for part in parts]):
+        if not overlapping([part.bounds for part in parts]):
             return None
         described = [
             [

@@ -292,7 +292,7 @@ def union(
     parts_volume = float(sum(part.volume for part in parts))
     unit, overlap = summed, 0.0
     # parts whose boxes meet no other box add the same tessellation to both sides: skip them
-    group = _overlapping([part.bounds for part in parts])
+    group = overlapping([part.bounds for part in parts])
     if group:
         corrected = _overlap_corrected(summed, [parts[i] for i in group], segments)
         if corrected is not None:
@@ -305,7 +305,7 @@ def union(
 # --- the overlap correction -------------------------------------------------------------
 
 
-def _overlapping(bounds: list[NDArray[np.float64]]) -> list[int]:
+def overlapping(bounds: list[NDArray[np.float64]]) -> list[int]:
     """Indices of the boxes whose interior meets another box's interior."""
     low = np.array([b[0] for b in bounds])
     high = np.array([b[1] for b in bounds])
