@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from inertia_kit.cli.discovery import discovery_options
 from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
@@ -132,6 +133,7 @@ def _colour() -> bool | None:
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@discovery_options
 @click.option(
     "--add-noqa",
     "--add-suppressions",
@@ -184,8 +186,12 @@ def lint(
     show_diff: bool = False,
     quiet: bool = False,
     output_file: str | None = None,
+    **discovery: Any,
 ) -> int:
-    """``inertia-lint``: print what it finds; return the exit code."""
+    """
+    ``inertia-lint``: print what it finds; return the exit code. ``discovery``: the options
+    of :mod:`inertia_kit.cli.discovery` (``--exclude``, ``--show-files``, ...).
+    """
     if explain is not None:
         from inertia_kit.lint.documents import explain as document
 
@@ -199,14 +205,26 @@ def lint(
         click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
         return 2
 
+    from inertia_kit.cli.discovery import discovery as discovery_from
+    from inertia_kit.cli.discovery import show_files
     from inertia_kit.errors import ConfigError, InternalError
     from inertia_kit.lint.applying import applicable
+    from inertia_kit.lint.config_files import ConfigFinder
     from inertia_kit.lint.findings import Severity
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
     from inertia_kit.lint.paths import lint_paths
     from inertia_kit.lint.runner import FileResult
+
+    try:
+        walk = discovery_from(discovery, ConfigFinder(config_path))
+        if discovery.get("show_files"):
+            return show_files(paths, walk)
+    except (ConfigError, UsageError) as error:
+        message = error.format_message() if isinstance(error, UsageError) else str(error)
+        click.echo(f"error: {message}", err=True)
+        return 2
 
     def crashed(file: Path, error: Exception) -> FileResult:
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
@@ -227,6 +245,7 @@ def lint(
             fix=fix,
             unsafe_fixes=unsafe_fixes,
             diff=show_diff,
+            discovery=walk,
         )
 
     try:
