@@ -20,6 +20,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
 
@@ -97,6 +98,7 @@ from inertia_kit.version import __version__
 @xacro_arg_option
 @xacro_limit_option
 @discovery_options
+@stdin_filename_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -121,7 +123,7 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-fill --density 1200 -o robot_filled.urdf robot.urdf.xacro
       inertia-fill --total-mass 12.5 --fix all robot.urdf.xacro
     """
-    ctx.exit(fill(paths, **options))
+    ctx.exit(command_on_stdin(fill, paths, options, fills=True))
 
 
 def _masses(values: tuple[str, ...]) -> dict[str, float]:

@@ -18,6 +18,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.version import __version__
 
 if TYPE_CHECKING:
@@ -134,6 +135,7 @@ def _colour() -> bool | None:
 @xacro_arg_option
 @xacro_limit_option
 @discovery_options
+@stdin_filename_option
 @click.option(
     "--add-noqa",
     "--add-suppressions",
@@ -161,8 +163,9 @@ def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-lint --engine mujoco,gazebo robot.urdf
       inertia-lint --fix --unsafe-fixes urdf/
       inertia-lint --explain IN002
+      inertia-lint --stdin-filename urdf/robot.urdf - < robot.urdf
     """
-    ctx.exit(lint(paths, **options))
+    ctx.exit(command_on_stdin(lint, paths, options, fills=False))
 
 
 def lint(

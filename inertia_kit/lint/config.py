@@ -95,8 +95,10 @@ class PerFileIgnore:
     codes: tuple[str, ...]
 
     def matches(self, path: str | Path) -> bool:
+        from inertia_kit.lint.stand_in import named
+
         regex = _glob_regex(self.pattern)
-        absolute = os.path.abspath(path)
+        absolute = os.path.abspath(named(path))  # a robot read from stdin: the name it stands for
         if regex.match(Path(absolute).name) and "/" not in self.pattern:
             return True
         if os.path.isabs(self.pattern):

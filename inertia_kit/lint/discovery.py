@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from inertia_kit.lint.exclusion import Exclusion, exclusion
+from inertia_kit.lint.stand_in import is_stand_in
 
 #: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
 #: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too)
@@ -83,6 +84,8 @@ def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
         files.extend(
             Path(top, name)
             for name in names
-            if _ROBOT_FILE.search(name) and not rules.excluded(Path(top, name), folder=False)
+            if _ROBOT_FILE.search(name)
+            and not is_stand_in(name)  # another run's robot read from stdin
+            and not rules.excluded(Path(top, name), folder=False)
         )
     return sorted(f for f in files if f.is_file())

@@ -58,7 +58,15 @@ class Patterns:
         if relative.startswith(os.pardir) or os.path.isabs(relative):
             relative = os.path.basename(absolute)  # outside the base: names match, paths not
         relative = relative.replace(os.sep, "/") + ("/" if folder else "")
-        return bool(_spec(self.patterns).match_file(relative))
+        return bool(_last_match(_spec(self.patterns), relative, False))
+
+
+def _last_match(spec: Any, relative: str, verdict: bool | None) -> bool | None:
+    """As git reads one ignore file: the last pattern that matches decides (``!``: kept)."""
+    for pattern in spec.patterns:
+        if pattern.include is not None and pattern.match_file(relative) is not None:
+            verdict = pattern.include
+    return verdict
 
 
 _SPECS: dict[tuple[str, ...], Any] = {}
@@ -175,9 +183,7 @@ class GitIgnores:
         verdict = None
         for base, spec in self._layers(root, absolute.parent):
             relative = absolute.relative_to(base).as_posix() + ("/" if folder else "")
-            include = spec.check_file(relative).include
-            if include is not None:
-                verdict = include
+            verdict = _last_match(spec, relative, verdict)
         return bool(verdict)
 
     def _root(self, folder: Path) -> Path | None:
@@ -203,5 +209,19 @@ class GitIgnores:
                 lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
             except OSError:
                 lines = []
-            self._specs[file] = pathspec.GitIgnoreSpec.from_lines(lines)
+            try:
+                self._specs[file] = pathspec.GitIgnoreSpec.from_lines(lines)
+            except Exception:  # a line git would not read either: the file's other lines
+                self._specs[file] = pathspec.GitIgnoreSpec.from_lines(_valid(lines))
         return self._specs[file]
+
+
+def _valid(lines: list[str]) -> list[str]:
+    kept = []
+    for line in lines:
+        try:
+            compile_patterns([line])
+        except ValueError:
+            continue
+        kept.append(line)
+    return kept
