@@ -11,6 +11,7 @@ import contextlib
 import io
 import json
 import os
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -53,10 +54,8 @@ def on_stdin(
     """
     from inertia_kit.lint.stand_in import stand_in
 
-    try:
-        data = click.get_binary_stream("stdin").read()
-    except OSError as error:
-        click.echo(f"error: -: cannot read stdin: {error.strerror or error}", err=True)
+    data = _stdin()
+    if data is None:
         return 2
     shown = filename if filename is not None else "-"
     try:
@@ -83,8 +82,28 @@ def on_stdin(
     else:
         click.echo(report, nl=False, err=prints_text)
     if text is not None:
-        click.get_binary_stream("stdout").write(text)
+        _write_bytes(text)
     return code
+
+
+def _stdin() -> bytes | None:
+    """The bytes of stdin, as read; ``None`` when it cannot be read (told)."""
+    stream = getattr(sys.stdin, "buffer", None)
+    why = "stdin is closed"  # Python sets sys.stdin to None when descriptor 0 is not open
+    if stream is not None:
+        try:
+            return stream.read()
+        except OSError as error:
+            why = error.strerror or str(error)
+    click.echo(f"error: -: cannot read stdin: {why}", err=True)
+    return None
+
+
+def _write_bytes(data: bytes) -> None:
+    """``data`` on stdout as it is (after what was echoed there)."""
+    sys.stdout.flush()
+    sys.stdout.buffer.write(data)
+    sys.stdout.buffer.flush()
 
 
 def _read(path: str) -> bytes | None:
@@ -136,9 +155,11 @@ def command_on_stdin(
         return 2
     if filename is not None and walk.for_path(Path(filename)).excludes_given(filename):
         # --force-exclude: nothing linted; fill prints the robot back unchanged (formatters do)
-        data = click.get_binary_stream("stdin").read()
+        data = _stdin()
+        if data is None:
+            return 2
         if fills and not options.get("check") and not options.get("show_diff"):
-            click.get_binary_stream("stdout").write(data)
+            _write_bytes(data)
         return 0
     if options.get("show_files"):
         click.echo(filename or "-")
