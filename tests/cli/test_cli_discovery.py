@@ -178,3 +178,15 @@ def test_show_files_lints_nothing_and_keeps_the_order_given(workspace):
         "a.urdf",
     ]
     assert run(lint_main, "--show-files", "--output-format", "json", "b.urdf").stderr == ""
+
+
+def test_a_fragment_is_linted_through_the_robots_of_src_not_their_build_copies(workspace):
+    xacro = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    fragment = f'<robot {xacro}><xacro:macro name="m"><link name="x"/></xacro:macro></robot>'
+    top = f'<robot name="r" {xacro}><xacro:include filename="parts.xacro"/><xacro:m/></robot>'
+    for folder in ("src/pkg/urdf", "build/pkg/urdf", "install/pkg/share/pkg/urdf"):
+        write(workspace, f"{folder}/parts.xacro", text=fragment)
+        write(workspace, f"{folder}/robot.xacro", text=top)
+    (workspace / ".git").mkdir()
+    result = run(lint_main, "src/pkg/urdf/parts.xacro")
+    assert "linted through the robots that include it: src/pkg/urdf/robot.xacro\n" in result.stderr
