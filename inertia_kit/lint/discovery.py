@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from inertia_kit.lint.exclusion import Exclusion, exclusion
+from inertia_kit.lint.exclusion import IGNORE_MARKERS, Exclusion, exclusion
 from inertia_kit.lint.stand_in import is_stand_in
 
 #: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
@@ -80,7 +80,12 @@ def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None
 def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
     files = []
     for top, folders, names in os.walk(folder):
-        folders[:] = sorted(f for f in folders if not rules.excluded(Path(top, f), folder=True))
+        if top != os.fspath(folder) and not IGNORE_MARKERS.isdisjoint(names):
+            folders[:] = []  # colcon skips this folder (a folder given is walked all the same)
+            continue
+        folders[:] = sorted(
+            f for f in folders if not rules.excluded(Path(top, f), folder=True, markers=False)
+        )
         files.extend(
             Path(top, name)
             for name in names

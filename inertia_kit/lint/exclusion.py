@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 #: a folder holding one of these is skipped by colcon (and catkin, ament): by the walk too
-IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
+IGNORE_MARKERS = frozenset(("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE"))
 _WORKSPACE_OUTPUT = ("build", "install", "log")
 _COLCON_WRITES = ("COLCON_IGNORE", ".built_by", ".colcon_install_layout")
 DEFAULT_EXCLUDE_TEXT = "hidden folders, __pycache__, a colcon workspace's build/ install/ log/"
@@ -88,10 +88,13 @@ class Exclusion:
     force_exclude: bool = False
     gitignores: GitIgnores = field(default_factory=lambda: GitIgnores(), compare=False)
 
-    def excluded(self, path: str | Path, folder: bool) -> bool:
-        """Whether the walk leaves ``path`` (a ``folder`` or a file) out."""
+    def excluded(self, path: str | Path, folder: bool, markers: bool = True) -> bool:
+        """
+        Whether the walk leaves ``path`` (a ``folder`` or a file) out; ``markers``: a folder
+        holding an :data:`IGNORE_MARKERS` file too (the walk sees those in the folder's names).
+        """
         path = Path(path)
-        if folder and any((path / marker).is_file() for marker in IGNORE_MARKERS):
+        if markers and folder and any((path / marker).is_file() for marker in IGNORE_MARKERS):
             return True
         if self.defaults and folder and _default_excluded(path):
             return True
