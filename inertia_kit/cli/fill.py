@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.discovery import discovery_options
 from inertia_kit.cli.guard import GuardedCommand, internal, processing
 from inertia_kit.cli.options import (
     HELP,
@@ -19,6 +20,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
 
@@ -95,6 +97,8 @@ from inertia_kit.version import __version__
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@discovery_options
+@stdin_filename_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -119,7 +123,7 @@ def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-fill --density 1200 -o robot_filled.urdf robot.urdf.xacro
       inertia-fill --total-mass 12.5 --fix all robot.urdf.xacro
     """
-    ctx.exit(fill(paths, **options))
+    ctx.exit(command_on_stdin(fill, paths, options, fills=True))
 
 
 def _masses(values: tuple[str, ...]) -> dict[str, float]:
@@ -156,8 +160,14 @@ def fill(
     package_paths: tuple[str, ...] = (),
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
+    **discovery: Any,
 ) -> int:
-    """``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``)."""
+    """
+    ``inertia-fill``: plan every file, then write (not for ``--diff``/``--check``).
+    ``discovery``: the options of :mod:`inertia_kit.cli.discovery`.
+    """
+    from inertia_kit.cli.discovery import discovery as discovery_from
+    from inertia_kit.cli.discovery import show_files
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.fragments import cut, fill_targets
@@ -179,6 +189,9 @@ def fill(
             raise UsageError(str(error)) from None
         masses = _masses(mass_options)
         finder = ConfigFinder(config_path)
+        walk = discovery_from(discovery, finder)
+        if discovery.get("show_files"):
+            return show_files(paths, walk)
     except UsageError as error:
         click.echo(f"error: {error.format_message()}", err=True)
         return 2
@@ -194,7 +207,11 @@ def fill(
         "xacro_args": arguments,
         "total_mass": total_mass,
     }
-    chosen = fill_targets(paths, output, arguments, package_paths, limits)
+    try:
+        chosen = fill_targets(paths, output, arguments, package_paths, limits, walk)
+    except ConfigError as error:  # a bad configuration found by the walk
+        click.echo(f"error: {error}", err=True)
+        return 2
 
     def plan_target(target: Any) -> Any:
         """The plan of one robot (``None`` when it cannot be planned: told); exit 2 on a bad

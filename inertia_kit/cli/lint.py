@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from inertia_kit.cli.discovery import discovery_options
 from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
@@ -17,6 +18,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.version import __version__
 
 if TYPE_CHECKING:
@@ -132,6 +134,8 @@ def _colour() -> bool | None:
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@discovery_options
+@stdin_filename_option
 @click.option(
     "--add-noqa",
     "--add-suppressions",
@@ -159,8 +163,9 @@ def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-lint --engine mujoco,gazebo robot.urdf
       inertia-lint --fix --unsafe-fixes urdf/
       inertia-lint --explain IN002
+      inertia-lint --stdin-filename urdf/robot.urdf - < robot.urdf
     """
-    ctx.exit(lint(paths, **options))
+    ctx.exit(command_on_stdin(lint, paths, options, fills=False))
 
 
 def lint(
@@ -184,8 +189,12 @@ def lint(
     show_diff: bool = False,
     quiet: bool = False,
     output_file: str | None = None,
+    **discovery: Any,
 ) -> int:
-    """``inertia-lint``: print what it finds; return the exit code."""
+    """
+    ``inertia-lint``: print what it finds; return the exit code. ``discovery``: the options
+    of :mod:`inertia_kit.cli.discovery` (``--exclude``, ``--show-files``, ...).
+    """
     if explain is not None:
         from inertia_kit.lint.documents import explain as document
 
@@ -199,14 +208,26 @@ def lint(
         click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
         return 2
 
+    from inertia_kit.cli.discovery import discovery as discovery_from
+    from inertia_kit.cli.discovery import show_files
     from inertia_kit.errors import ConfigError, InternalError
     from inertia_kit.lint.applying import applicable
+    from inertia_kit.lint.config_files import ConfigFinder
     from inertia_kit.lint.findings import Severity
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
     from inertia_kit.lint.paths import lint_paths
     from inertia_kit.lint.runner import FileResult
+
+    try:
+        walk = discovery_from(discovery, ConfigFinder(config_path))
+        if discovery.get("show_files"):
+            return show_files(paths, walk)
+    except (ConfigError, UsageError) as error:
+        message = error.format_message() if isinstance(error, UsageError) else str(error)
+        click.echo(f"error: {message}", err=True)
+        return 2
 
     def crashed(file: Path, error: Exception) -> FileResult:
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
@@ -227,6 +248,7 @@ def lint(
             fix=fix,
             unsafe_fixes=unsafe_fixes,
             diff=show_diff,
+            discovery=walk,
         )
 
     try:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.fragments import Target, Targets, targets
 from inertia_kit.lint.include_graph import real
@@ -30,6 +30,7 @@ def fill_targets(
     xacro_args: Mapping[str, str] | None,
     package_paths: Sequence[str | Path],
     xacro_limits: Mapping[str, float] | None,
+    discovery: Any = None,
 ) -> Targets:
     """
     The robots to fill for ``paths``: :func:`~inertia_kit.lint.fragments.targets`; with
@@ -49,6 +50,7 @@ def fill_targets(
         xacro_args=xacro_args,
         package_paths=package_paths,
         xacro_limits=limits,
+        discovery=discovery,
     )
 
 

@@ -22,6 +22,11 @@ and the key (the command exits 2).
     unsafe-fixes = false              # ... and unsafe ones (as --unsafe-fixes)
     fixable = ["IN0"]                 # rules whose fixes may be applied (default: all)
     unfixable = ["IN021"]             # rules whose fixes are never applied
+    exclude = ["generated/"]          # gitignore-style, relative to this file's folder;
+                                      # replaces the defaults (lint.exclusion)
+    extend-exclude = ["*.gen.urdf"]   # added to exclude (and the defaults)
+    respect-gitignore = true          # .gitignore files and .git/info/exclude
+    force-exclude = false             # exclude files given by name too (pre-commit)
     [tool.inertia-kit.per-file-ignores]
     "urdf/legacy/*.xacro" = ["IN02"]  # globs relative to this file's folder; no "/": any folder
     [tool.inertia-kit.rules.IN012]    # a code or a rule name
@@ -66,6 +71,10 @@ KEYS = (
     "unsafe-fixes",
     "fixable",
     "unfixable",
+    "exclude",
+    "extend-exclude",
+    "respect-gitignore",
+    "force-exclude",
 )
 LINK_KEYS = ("density", "mass")
 
@@ -86,8 +95,10 @@ class PerFileIgnore:
     codes: tuple[str, ...]
 
     def matches(self, path: str | Path) -> bool:
+        from inertia_kit.lint.stand_in import named
+
         regex = _glob_regex(self.pattern)
-        absolute = os.path.abspath(path)
+        absolute = os.path.abspath(named(path))  # a robot read from stdin: the name it stands for
         if regex.match(Path(absolute).name) and "/" not in self.pattern:
             return True
         if os.path.isabs(self.pattern):
@@ -126,6 +137,10 @@ class Config:
     unsafe_fixes: bool | None = None  # also unsafe ones (``--unsafe-fixes``)
     fixable: tuple[str, ...] | None = None  # rules whose fixes may be applied (None: all)
     unfixable: tuple[str, ...] = ()  # rules whose fixes are never applied
+    exclude: tuple[str, ...] | None = None  # folder walk: None keeps the defaults
+    extend_exclude: tuple[str, ...] = ()
+    respect_gitignore: bool | None = None
+    force_exclude: bool | None = None
 
 
 # --- validation -------------------------------------------------------------------------------
@@ -174,6 +189,10 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
         unsafe_fixes=where.flag(table.get("unsafe-fixes"), "unsafe-fixes"),
         fixable=where.selectors(table["fixable"], "fixable", known) if "fixable" in table else None,
         unfixable=where.selectors(table.get("unfixable", []), "unfixable", known),
+        exclude=where.patterns(table["exclude"], "exclude") if "exclude" in table else None,
+        extend_exclude=where.patterns(table.get("extend-exclude", []), "extend-exclude"),
+        respect_gitignore=where.flag(table.get("respect-gitignore"), "respect-gitignore"),
+        force_exclude=where.flag(table.get("force-exclude"), "force-exclude"),
     )
 
 
@@ -280,6 +299,17 @@ class _Where:
                 self.fail(key, catalog.selector_error(item, known))
             selectors.append(selector)
         return tuple(selectors)
+
+    def patterns(self, value: Any, key: str) -> tuple[str, ...]:
+        from inertia_kit.lint.exclusion import compile_patterns
+
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            self.fail(key, f'expected a list of patterns, e.g. ["generated/"], got {_shown(value)}')
+        try:
+            compile_patterns(value)
+        except ValueError as error:
+            self.fail(key, str(error))
+        return tuple(value)
 
     def engines(self, value: Any, key: str) -> tuple[str, ...]:
         from inertia_kit.engines.vocabulary import ALL, ENGINES, parse_engines

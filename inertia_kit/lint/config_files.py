@@ -93,9 +93,13 @@ class ConfigFinder:
         self._by_file: dict[Path, Config] = {}
 
     def for_file(self, path: str | Path) -> Config:
+        return self.for_folder(os.path.dirname(os.path.abspath(path)))
+
+    def for_folder(self, folder: str | Path) -> Config:
+        """The configuration of the files in ``folder`` (and of its walk)."""
         if self.explicit is not None:
             return self.explicit
-        folder = os.path.dirname(os.path.abspath(path))
+        folder = os.path.abspath(folder)
         if folder not in self._by_folder:
             self._by_folder[folder] = find_config(folder)
         found = self._by_folder[folder]

@@ -1,33 +1,75 @@
 """
 Which files a run lints: the files given, and the robot files (``*.urdf``, ``*.xacro``) of the
-folders given, each once.
+folders given, each once; what the walk leaves out (``exclude``, ``.gitignore``, colcon's
+folders) is :mod:`.exclusion`.
 """
 
 from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
-# folders expansion never enters: hidden ones (.git, .venv) and Python caches
-_SKIPPED_FOLDERS = ("__pycache__",)
+from inertia_kit.lint.exclusion import IGNORE_MARKERS, Exclusion, exclusion
+from inertia_kit.lint.stand_in import is_stand_in
+
 #: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
 #: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too)
 ROBOT_FILE = r"(?i)\.(urdf|xacro)$"
 _ROBOT_FILE = re.compile(ROBOT_FILE)
 
 
-def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:
+@dataclass
+class Discovery:
     """
-    Files as given; folders searched for ``*.urdf``, ``*.xacro`` (``*.urdf.xacro`` too; case
-    ignored, :data:`ROBOT_FILE`), in sorted order, hidden folders (``.git``) not entered. Each
-    file once.
+    The command line's discovery options (``--exclude``, ``--extend-exclude``,
+    ``--[no-]respect-gitignore``, ``--[no-]force-exclude``; ``None``: as configured) over the
+    configuration that applies to each path given (``config``: a ``ConfigFinder``; default:
+    the nearest configuration file).
     """
+
+    exclude: Sequence[str] | None = None
+    extend_exclude: Sequence[str] = ()
+    respect_gitignore: bool | None = None
+    force_exclude: bool | None = None
+    config: Any = None
+    _by_config: dict[str | None, Exclusion] = field(default_factory=dict)
+
+    def for_path(self, path: Path) -> Exclusion:
+        """The exclusion for a path given: its configuration's, with the options over it."""
+        if self.config is None:
+            from inertia_kit.lint.config_files import ConfigFinder
+
+            self.config = ConfigFinder()
+        configured = self.config.for_folder(path) if path.is_dir() else self.config.for_file(path)
+        if configured.path not in self._by_config:
+            self._by_config[configured.path] = exclusion(
+                configured,
+                exclude=self.exclude,
+                extend_exclude=self.extend_exclude,
+                respect_gitignore=self.respect_gitignore,
+                force_exclude=self.force_exclude,
+            )
+        return self._by_config[configured.path]
+
+
+def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None) -> Iterator[Path]:
+    """
+    Files as given (with ``force-exclude``, unless excluded); folders searched for ``*.urdf``,
+    ``*.xacro`` (``*.urdf.xacro`` too; case ignored, :data:`ROBOT_FILE`), in sorted order,
+    leaving out what :mod:`.exclusion` excludes. Each file once.
+    """
+    discovery = Discovery() if discovery is None else discovery
     seen: set[str] = set()
     for entry in paths:
         path = Path(entry)
-        found = _robot_files(path) if path.is_dir() else [path]
+        rules = discovery.for_path(path)
+        if rules.excludes_given(path):
+            continue
+        found = _robot_files(path, rules) if path.is_dir() else [path]
         for file in found:
             key = os.path.normcase(os.path.abspath(file))
             if key not in seen:
@@ -35,11 +77,20 @@ def expand_paths(paths: Iterable[str | Path]) -> Iterator[Path]:
                 yield file
 
 
-def _robot_files(folder: Path) -> list[Path]:
+def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
     files = []
     for top, folders, names in os.walk(folder):
+        if top != os.fspath(folder) and not IGNORE_MARKERS.isdisjoint(names):
+            folders[:] = []  # colcon skips this folder (a folder given is walked all the same)
+            continue
         folders[:] = sorted(
-            f for f in folders if not f.startswith(".") and f not in _SKIPPED_FOLDERS
+            f for f in folders if not rules.excluded(Path(top, f), folder=True, markers=False)
         )
-        files.extend(Path(top, name) for name in names if _ROBOT_FILE.search(name))
+        files.extend(
+            Path(top, name)
+            for name in names
+            if _ROBOT_FILE.search(name)
+            and not is_stand_in(name)  # another run's robot read from stdin
+            and not rules.excluded(Path(top, name), folder=False)
+        )
     return sorted(f for f in files if f.is_file())

@@ -30,6 +30,7 @@ from inertia_kit.lint.include_graph import IncludeGraph, include_graph, real
 
 if TYPE_CHECKING:
     from inertia_kit.description.xacro_limits import XacroLimits
+    from inertia_kit.lint.discovery import Discovery
     from inertia_kit.lint.findings import Finding
 
 
@@ -109,15 +110,17 @@ def targets(
     package_paths: Sequence[str | Path] = (),
     xacro_limits: XacroLimits | None = None,
     cache_dir: str | Path | None = None,
+    discovery: Discovery | None = None,
 ) -> Targets:
     """
     The robots to lint (or fill) for ``paths`` (files and folders, walked as the linter walks
-    them): each file as itself, and each robot of the repository that includes a given file
-    (and is not given itself) for the given files it includes.
+    them, ``discovery`` saying what the walk leaves out): each file as itself, and each robot
+    of the repository that includes a given file (and is not given itself) for the given
+    files it includes.
     """
     from inertia_kit.lint.discovery import expand_paths
 
-    files = [str(file) for file in expand_paths(paths)]
+    files = [str(file) for file in expand_paths(paths, discovery)]
     given = {real(file) for file in files}
     graphs: dict[Path, IncludeGraph] = {}
     through: dict[str, list[str]] = {}  # robot (real path) -> given files it is linted for

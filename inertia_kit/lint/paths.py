@@ -35,6 +35,7 @@ def lint_paths(
     fix: bool | None = None,
     unsafe_fixes: bool | None = None,
     diff: bool = False,
+    discovery: Any = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -57,6 +58,8 @@ def lint_paths(
     ``fix`` (``--fix``; ``None``: the configured ``fix``) applies the fixes
     (:mod:`~inertia_kit.lint.applying`), safe ones, and unsafe ones with ``unsafe_fixes``
     (``None``: the configured ``unsafe-fixes``); ``diff`` computes them without writing.
+    ``discovery`` (a :class:`~inertia_kit.lint.discovery.Discovery`; default: as configured)
+    says what the folder walk leaves out.
     """
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint import unused
@@ -80,7 +83,9 @@ def lint_paths(
         except ValueError as error:
             raise ConfigError(f"--engine: {error}") from None
     finder = ConfigFinder(config)
-    chosen = _targets(paths, xacro_args, package_paths, xacro_limits)
+    if discovery is not None and discovery.config is None:
+        discovery.config = finder  # one configuration read for the walk and the linting
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     results = []
@@ -139,6 +144,7 @@ def _targets(
     xacro_args: Mapping[str, str] | None,
     package_paths: Sequence[str | Path],
     xacro_limits: Mapping[str, float] | None,
+    discovery: Any = None,
 ) -> Any:
     """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
     from inertia_kit.lint.fragments import targets
@@ -148,6 +154,7 @@ def _targets(
         xacro_args=xacro_args,
         package_paths=package_paths,
         xacro_limits=XacroLimits.resolve(None, xacro_limits),
+        discovery=discovery,
     )
 
 

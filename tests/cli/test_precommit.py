@@ -48,7 +48,8 @@ def test_manifest_is_valid_for_pre_commit():
     loaded = load_manifest(str(MANIFEST))
     assert [h["id"] for h in loaded] == ["inertia-lint", "inertia-fill"]
     for entry in loaded:
-        assert entry["entry"] == entry["id"]
+        # as ruff's hooks: files handed over by name still honour exclude (args add to entry)
+        assert entry["entry"] == f"{entry['id']} --force-exclude"
         assert entry["language"] == "python"
         assert entry["pass_filenames"] is True
         # both hooks take the same files
@@ -190,6 +191,20 @@ def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
 def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
     good = _project(tmp_path / "good", {"pyproject.toml": CONFIG, "urdf/good.urdf": GOOD})
     done = _try_repo(hook_repo, good)
+    output = done.stdout + done.stderr
+    assert done.returncode == 0, output
+    assert re.search(r"inertia-lint\.+Passed", output), output
+
+
+@pytest.mark.slow
+def test_try_repo_leaves_out_the_files_the_configuration_excludes(hook_repo, tmp_path):
+    """pre-commit hands every file over by name; `exclude` in the configuration still holds
+    (`--force-exclude` in the hook's entry), and colcon's build/ beside src/ is left out."""
+    config = CONFIG + 'extend-exclude = ["generated/"]\n'
+    files = {"pyproject.toml": config, "src/good.urdf": GOOD}
+    files.update({"generated/bad.urdf": BAD, "build/bad.urdf": BAD})
+    project = _project(tmp_path / "excluded", files)
+    done = _try_repo(hook_repo, project)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-lint\.+Passed", output), output

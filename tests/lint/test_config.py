@@ -75,7 +75,17 @@ def test_every_key_of_pyproject(tmp_path):
             "[tool.inertia-kit]\nselct = []\n",
             "`tool.inertia-kit.selct`: unknown key (did you mean `select`?); known here: "
             "`select`, `extend-select`, `ignore`, `per-file-ignores`, `fail-on`, `engines`, "
-            "`rules`, `links`, `xacro`, `fix`, `unsafe-fixes`, `fixable`, `unfixable`",
+            "`rules`, `links`, `xacro`, `fix`, `unsafe-fixes`, `fixable`, `unfixable`, "
+            "`exclude`, `extend-exclude`, `respect-gitignore`, `force-exclude`",
+        ),
+        (
+            '[tool.inertia-kit]\nexclude = "build"\n',
+            '`tool.inertia-kit.exclude`: expected a list of patterns, e.g. ["generated/"], '
+            'got "build"',
+        ),
+        (
+            "[tool.inertia-kit]\nrespect-gitignore = 1\n",
+            "`tool.inertia-kit.respect-gitignore`: expected true or false, got 1",
         ),
         (
             "[tool.inertia-kit.rules.IN098]\nlimt = 1\n",

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from inertia_kit.lint.discovery import ROBOT_FILE, expand_paths
+from inertia_kit.lint.discovery import ROBOT_FILE, Discovery, expand_paths
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -24,3 +24,53 @@ def test_a_folder_gives_robot_files_whatever_their_case(tmp_path):
     (tmp_path / ".hidden" / "h.urdf").write_text("<robot/>")
     found = [path.name for path in expand_paths([tmp_path])]
     assert found == sorted(["GEN.URDF", "arm.urdf", "arm.urdf.xacro", "Macros.XACRO"])
+
+
+def _files(root: Path, *names: str) -> None:
+    for name in names:
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
+        (root / name).write_text("<robot/>")
+
+
+def _found(root: Path, discovery: Discovery | None = None) -> list[str]:
+    return [path.relative_to(root).as_posix() for path in expand_paths([root], discovery)]
+
+
+def test_a_package_folder_named_build_is_linted_unless_it_is_colcon_output(tmp_path):
+    # robot packages may keep generated descriptions in build/: only a workspace's is output
+    _files(tmp_path, "pkg/build/robot.urdf", "pkg/install/robot.urdf", "pkg/log/robot.urdf")
+    assert _found(tmp_path) == [
+        "pkg/build/robot.urdf",
+        "pkg/install/robot.urdf",
+        "pkg/log/robot.urdf",
+    ]
+    (tmp_path / "pkg" / "src").mkdir()  # now pkg looks like a workspace root
+    assert _found(tmp_path) == []
+    _files(tmp_path, "__pycache__/x.urdf", ".venv/y.urdf", "pkg/src/z.urdf")
+    assert _found(tmp_path) == ["pkg/src/z.urdf"]
+
+
+def test_a_deeper_gitignore_re_includes_what_a_higher_one_ignores(tmp_path):
+    (tmp_path / ".git").mkdir()
+    _files(tmp_path, "a/keep.urdf", "a/drop.urdf", "a/b/keep.urdf", "top.urdf")
+    (tmp_path / ".gitignore").write_text("*.urdf\n!top.urdf\n")
+    (tmp_path / "a" / ".gitignore").write_text("!keep.urdf\n")
+    assert _found(tmp_path) == ["a/b/keep.urdf", "a/keep.urdf", "top.urdf"]
+    # no repository above: .gitignore files are not read
+    (tmp_path / ".git").rmdir()
+    assert len(_found(tmp_path)) == 4
+
+
+def test_patterns_outside_their_base_match_names_only(tmp_path, monkeypatch):
+    _files(tmp_path, "ws/gen/a.urdf", "ws/b.urdf")
+    monkeypatch.chdir(tmp_path / "ws")
+    # the current folder is the base: `/gen` is anchored there, `b.urdf` matches any depth
+    assert _found(tmp_path / "ws", Discovery(extend_exclude=["/gen", "b.urdf"])) == []
+    monkeypatch.chdir(tmp_path / "ws" / "gen")
+    # outside the base, an anchored pattern matches nothing, a name still does
+    assert _found(tmp_path / "ws", Discovery(extend_exclude=["/gen", "b.urdf"])) == ["gen/a.urdf"]
+
+
+def test_a_stand_in_for_stdin_is_never_walked(tmp_path):
+    _files(tmp_path, ".inertia-kit-stdin-0a1b2c3d-robot.urdf", "robot.urdf")
+    assert _found(tmp_path) == ["robot.urdf"]

@@ -1,0 +1,230 @@
+"""
+Which paths the folder walk leaves out, as ruff does: ``exclude`` (replaces the defaults) and
+``extend-exclude`` (adds), from the configuration and the command line, ``.gitignore`` files
+(``respect-gitignore``), and folders colcon itself skips.
+
+Patterns are gitignore-style (pathspec's ``gitignore`` flavour): one without ``/`` matches a
+file or folder name at any depth (``build``, ``*.gen.urdf``), one with ``/`` is anchored to
+its base (``robots/legacy``), a trailing ``/`` matches folders only. A configuration's patterns
+are relative to its folder, the command line's to the current folder.
+
+The defaults (dropped when ``exclude`` is set): hidden folders (``.git``, ``.venv``),
+``__pycache__``, and a colcon workspace's ``build/``, ``install/`` and ``log/`` - a folder of
+that name next to a ``src`` folder (the workspace root) or holding what colcon writes there
+(``COLCON_IGNORE``, ``.built_by``, ``.colcon_install_layout``). A robot package's own folder
+named ``build`` is not workspace output and stays linted. Whatever ``exclude`` says, a folder
+holding ``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` is skipped, as colcon does.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+#: a folder holding one of these is skipped by colcon (and catkin, ament): by the walk too
+IGNORE_MARKERS = frozenset(("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE"))
+_WORKSPACE_OUTPUT = ("build", "install", "log")
+_COLCON_WRITES = ("COLCON_IGNORE", ".built_by", ".colcon_install_layout")
+DEFAULT_EXCLUDE_TEXT = "hidden folders, __pycache__, a colcon workspace's build/ install/ log/"
+
+
+def compile_patterns(patterns: Sequence[str]) -> Any:
+    """A pathspec for gitignore-style ``patterns``; ``ValueError`` says which one is bad."""
+    import pathspec
+
+    for pattern in patterns:
+        try:
+            pathspec.GitIgnoreSpec.from_lines([pattern])
+        except Exception as error:  # pathspec raises its own GitWildMatchPatternError
+            raise ValueError(f"{pattern!r} is not a gitignore-style pattern: {error}") from None
+    return pathspec.GitIgnoreSpec.from_lines(list(patterns))
+
+
+@dataclass(frozen=True)
+class Patterns:
+    """Gitignore-style patterns relative to ``base`` (an absolute folder)."""
+
+    base: str
+    patterns: tuple[str, ...]
+
+    def matches(self, path: str | Path, folder: bool) -> bool:
+        if not self.patterns:
+            return False
+        absolute = os.path.abspath(path)
+        relative = os.path.relpath(absolute, self.base)
+        if relative.startswith(os.pardir) or os.path.isabs(relative):
+            relative = os.path.basename(absolute)  # outside the base: names match, paths not
+        relative = relative.replace(os.sep, "/") + ("/" if folder else "")
+        return bool(_last_match(_spec(self.patterns), relative, False))
+
+
+def _last_match(spec: Any, relative: str, verdict: bool | None) -> bool | None:
+    """As git reads one ignore file: the last pattern that matches decides (``!``: kept)."""
+    for pattern in spec.patterns:
+        if pattern.include is not None and pattern.match_file(relative) is not None:
+            verdict = pattern.include
+    return verdict
+
+
+_SPECS: dict[tuple[str, ...], Any] = {}
+
+
+def _spec(patterns: tuple[str, ...]) -> Any:
+    if patterns not in _SPECS:
+        _SPECS[patterns] = compile_patterns(patterns)
+    return _SPECS[patterns]
+
+
+@dataclass(frozen=True)
+class Exclusion:
+    """What one walk leaves out; :func:`exclusion` builds it from configuration and options."""
+
+    defaults: bool = True
+    patterns: tuple[Patterns, ...] = ()
+    respect_gitignore: bool = True
+    force_exclude: bool = False
+    gitignores: GitIgnores = field(default_factory=lambda: GitIgnores(), compare=False)
+
+    def excluded(self, path: str | Path, folder: bool, markers: bool = True) -> bool:
+        """
+        Whether the walk leaves ``path`` (a ``folder`` or a file) out; ``markers``: a folder
+        holding an :data:`IGNORE_MARKERS` file too (the walk sees those in the folder's names).
+        """
+        path = Path(path)
+        if markers and folder and any((path / marker).is_file() for marker in IGNORE_MARKERS):
+            return True
+        if self.defaults and folder and _default_excluded(path):
+            return True
+        if any(patterns.matches(path, folder) for patterns in self.patterns):
+            return True
+        return self.respect_gitignore and self.gitignores.ignored(path, folder)
+
+    def excludes_given(self, path: str | Path) -> bool:
+        """
+        With ``force-exclude``, whether a path given on the command line is left out: it, or
+        a folder it is in below the current folder, is excluded (``.gitignore`` aside: a
+        file a hook hands over is tracked).
+        """
+        if not self.force_exclude:
+            return False
+        absolute = Path(os.path.abspath(path))
+        rules = Exclusion(self.defaults, self.patterns, respect_gitignore=False)
+        if rules.excluded(absolute, absolute.is_dir()):
+            return True
+        here = Path(os.getcwd())
+        return any(
+            rules.excluded(parent, True)
+            for parent in absolute.parents
+            if parent != here and here in parent.parents
+        )
+
+
+def _default_excluded(folder: Path) -> bool:
+    name = folder.name
+    if name.startswith(".") or name == "__pycache__":
+        return True
+    if name not in _WORKSPACE_OUTPUT:
+        return False
+    return (folder.parent / "src").is_dir() or any(
+        (folder / mark).exists() for mark in _COLCON_WRITES
+    )
+
+
+def exclusion(
+    configured: Any,
+    *,
+    exclude: Sequence[str] | None = None,
+    extend_exclude: Sequence[str] = (),
+    respect_gitignore: bool | None = None,
+    force_exclude: bool | None = None,
+) -> Exclusion:
+    """
+    The exclusion of one walk: the ``configured`` one (a :class:`~.config.Config`) with the
+    command line's over it (``exclude``: replaces the configured ``exclude`` and the defaults;
+    ``extend_exclude``: added), patterns on the command line relative to the current folder.
+    """
+    here = os.getcwd()
+    base = here if configured.path is None else str(Path(os.path.abspath(configured.path)).parent)
+    parts = []
+    if exclude is not None:
+        parts.append(Patterns(here, tuple(exclude)))
+    elif configured.exclude is not None:
+        parts.append(Patterns(base, configured.exclude))
+    parts.append(Patterns(base, configured.extend_exclude))
+    parts.append(Patterns(here, tuple(extend_exclude)))
+    return Exclusion(
+        defaults=exclude is None and configured.exclude is None,
+        patterns=tuple(p for p in parts if p.patterns),
+        respect_gitignore=_first(respect_gitignore, configured.respect_gitignore, True),
+        force_exclude=_first(force_exclude, configured.force_exclude, False),
+    )
+
+
+def _first(*values: bool | None) -> bool:
+    return next(value for value in values if value is not None)
+
+
+class GitIgnores:
+    """
+    The ``.gitignore`` files of the repositories walked (each folder's, from the git top
+    level down; a deeper file's match, negations included, wins) and ``.git/info/exclude``;
+    read once each, without git.
+    """
+
+    def __init__(self) -> None:
+        self._roots: dict[Path, Path | None] = {}
+        self._specs: dict[Path, Any] = {}
+
+    def ignored(self, path: Path, folder: bool) -> bool:
+        absolute = Path(os.path.abspath(path))
+        root = self._root(absolute.parent)
+        if root is None:
+            return False
+        verdict = None
+        for base, spec in self._layers(root, absolute.parent):
+            relative = absolute.relative_to(base).as_posix() + ("/" if folder else "")
+            verdict = _last_match(spec, relative, verdict)
+        return bool(verdict)
+
+    def _root(self, folder: Path) -> Path | None:
+        if folder not in self._roots:
+            if (folder / ".git").exists():
+                self._roots[folder] = folder
+            else:
+                parent = folder.parent
+                self._roots[folder] = None if parent == folder else self._root(parent)
+        return self._roots[folder]
+
+    def _layers(self, root: Path, folder: Path) -> Iterable[tuple[Path, Any]]:
+        exclude = root / ".git" / "info" / "exclude"
+        yield root, self._read(exclude)
+        for each in (*reversed(folder.relative_to(root).parents), folder.relative_to(root)):
+            yield root / each, self._read(root / each / ".gitignore")
+
+    def _read(self, file: Path) -> Any:
+        if file not in self._specs:
+            import pathspec
+
+            try:
+                lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
+            except OSError:
+                lines = []
+            try:
+                self._specs[file] = pathspec.GitIgnoreSpec.from_lines(lines)
+            except Exception:  # a line git would not read either: the file's other lines
+                self._specs[file] = pathspec.GitIgnoreSpec.from_lines(_valid(lines))
+        return self._specs[file]
+
+
+def _valid(lines: list[str]) -> list[str]:
+    kept = []
+    for line in lines:
+        try:
+            compile_patterns([line])
+        except ValueError:
+            continue
+        kept.append(line)
+    return kept
