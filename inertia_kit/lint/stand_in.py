@@ -38,7 +38,7 @@ def stand_in(data: bytes, filename: str | None) -> Iterator[str]:
     named as a xacro or URDF file by its content); its path as given, removed on exit. Raises
     ``OSError`` when the folder cannot take it.
     """
-    from inertia_kit.description.xacro_expand import is_xacro
+    from inertia_kit.description.xacro_detect import is_xacro
 
     if filename is None:
         folder, suffix = "", ".urdf.xacro" if is_xacro(data) else ".urdf"
