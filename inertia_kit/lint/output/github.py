@@ -53,5 +53,7 @@ def _command(finding: Finding) -> str:
 def _unlinted(error: InputError | InternalError) -> str:
     """An annotation on the file (at its line when known) that could not be linted."""
     head = _head(UNLINTED, error.path, error.line, error.column)
-    text = f"{UNLINTED} {unlinted_name(error)}: {error}"
+    where = location(error.path, error.line, error.column) if error.path else ""
+    text = f"{where}: " if where else ""
+    text += f"{UNLINTED} {unlinted_name(error)}: {error.message}"
     return f"::error {head}::{_escape_data(text)}"
