@@ -9,8 +9,8 @@ from __future__ import annotations
 import json
 
 import pytest
+from kit.junit import valid
 from output_kit import lint
-from test_output_junit import valid
 
 BROKEN = '<?xml version="1.0"?>\n<robot name="b">\n  <link name="a">\n</robot>\n'
 ERROR = "not well-formed XML: Opening and ending tag mismatch: link line 3 and robot"
