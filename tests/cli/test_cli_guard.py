@@ -70,9 +70,8 @@ def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
         )
         assert crash["message"].startswith("internal error: RuntimeError: boom")
     if output_format == "github":
-        assert f"::error title=inertia-lint (IN000),file={bad}::IN000 internal-error: " in (
-            result.stdout
-        )
+        head = f"::error title=inertia-lint (IN000),file={bad}::{bad}: IN000 internal-error: "
+        assert head + "internal error: RuntimeError: boom" in result.stdout
     if output_format == "junit":
         assert '<error message="internal error: RuntimeError: boom' in result.stdout
         assert 'type="internal-error"' in result.stdout
