@@ -24,7 +24,7 @@ from inertia_kit.version import __version__
 if TYPE_CHECKING:
     from pathlib import Path
 
-OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif")
+OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
 
 
 def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
@@ -281,7 +281,12 @@ def lint(
         # a file gets no colour codes: only a terminal reads them
         style = None if output_file else click.style
         output = render(
-            run.findings, output_format, errors=run.errors, style=style, unsafe_fixes=unsafe
+            run.findings,
+            output_format,
+            errors=run.errors,
+            style=style,
+            unsafe_fixes=unsafe,
+            linted=run.linted,
         )
     if output_file is None:
         click.echo(output, nl=False, color=_colour())
@@ -321,6 +326,7 @@ def _echo_summary(run: Any, crashes: int, fixable: int, show_diff: bool) -> None
             run.checked,
             len(run.errors) - crashes,
             crashes,
+            flagged=run.flagged,
             fixed=run.fixed,
             fixable=fixable,
             hidden=0 if show_diff else run.hidden,

@@ -26,7 +26,9 @@ class Merged:
     not be read; ``messages`` what to tell besides the findings, as ``(level, text)`` each once
     (``error`` unreadable, ``note`` a skipped fragment, ``warning`` a suppression comment not
     understood); ``failing`` whether a file has a finding at or above its ``fail-on``;
-    ``checked`` how many files were linted.
+    ``checked`` how many files were linted (a fragment linted through its robots counts when
+    they found something in it), ``linted`` which, and ``flagged`` how many of them gave
+    findings (in themselves or in what they include).
     """
 
     findings: list[Finding]
@@ -37,6 +39,8 @@ class Merged:
     fixed: int = 0  # findings whose fix was applied (``--fix``)
     diff: str = ""  # ``--diff``: the fixes' unified diff, each file once
     hidden: int = 0  # fixes that ``--unsafe-fixes`` would enable
+    linted: tuple[str, ...] = ()
+    flagged: int = 0
 
 
 def merge(results: Sequence[FileResult]) -> Merged:
@@ -63,12 +67,14 @@ def merge(results: Sequence[FileResult]) -> Merged:
                 both = first.via and finding.via
                 via = tuple(dict.fromkeys(first.via + finding.via)) if both else ()
                 findings[where] = dataclasses.replace(first, via=via)
+    linted = [r for r in results if r.error is None and not r.disabled]
+    linted = [r for r in linted if not r.fragment or r.findings]
     return Merged(
         list(findings.values()),
         [result.error for result in results if result.error is not None],
         list(messages),
         any(result.failing for result in results),
-        sum(1 for r in results if r.error is None and not r.fragment and not r.disabled),
+        len(linted),
         sum(result.fixed for result in results),
         "".join(dict.fromkeys(result.diff for result in results if result.diff)),
         sum(
@@ -77,4 +83,6 @@ def merge(results: Sequence[FileResult]) -> Merged:
             for finding in result.findings
             if hidden(finding, result.unsafe_fixes)
         ),
+        tuple(result.path for result in linted),
+        sum(1 for result in linted if result.findings),
     )

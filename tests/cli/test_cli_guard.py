@@ -42,7 +42,9 @@ def two_files(tmp_path):
     return write(tmp_path / "bad.urdf", GOOD), write(tmp_path / "good.urdf", GOOD)
 
 
-@pytest.mark.parametrize("output_format", ["full", "concise", "json", "github", "sarif"])
+@pytest.mark.parametrize(
+    "output_format", ["full", "concise", "json", "github", "sarif", "junit", "gitlab"]
+)
 def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
     two_files, monkeypatch, output_format
 ):
@@ -59,7 +61,24 @@ def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
     assert "IN002" in result.stdout and str(good) in result.stdout  # the other file was linted
     assert "an internal error in 1 file" in result.stderr
     if output_format == "json":
-        assert [f["file"] for f in json.loads(result.stdout)] == [str(good)]
+        finding, crash = json.loads(result.stdout)
+        assert (finding["file"], finding["code"]) == (str(good), "IN002")
+        assert (crash["file"], crash["code"], crash["name"]) == (
+            str(bad),
+            "IN000",
+            "internal-error",
+        )
+        assert crash["message"].startswith("internal error: RuntimeError: boom")
+    if output_format == "github":
+        head = f"::error title=inertia-lint (IN000),file={bad}::{bad}: IN000 internal-error: "
+        assert head + "internal error: RuntimeError: boom" in result.stdout
+    if output_format == "junit":
+        assert '<error message="internal error: RuntimeError: boom' in result.stdout
+        assert 'type="internal-error"' in result.stdout
+    if output_format == "gitlab":
+        crash = json.loads(result.stdout)[-1]
+        assert (crash["check_name"], crash["severity"]) == ("IN000", "critical")
+        assert crash["description"].startswith("IN000: internal-error: internal error: Runtime")
     if output_format == "sarif":
         (invocation,) = json.loads(result.stdout)["runs"][0]["invocations"]
         assert invocation["executionSuccessful"] is False

@@ -184,7 +184,7 @@ def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
     assert "- exit code: 1" in output
     assert "urdf/bad.urdf:9:7: IN002 [error] link `arm`: mass = 0 kg is not positive" in output
     assert "good.urdf.xacro" not in output
-    assert "Found 1 error in 1 file." in output
+    assert "Found 1 error in 1 of 2 files." in output
 
 
 @pytest.mark.slow
@@ -326,7 +326,7 @@ def test_try_repo_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
         ) in output
     assert f"(via {ROBOT})" in output
     assert f"note: {WHEELS}: linted through the robots that include it: {ROBOT}" in output
-    assert "Found 2 errors in 1 file." in output
+    assert "Found 2 errors in 1 of 1 file." in output
 
 
 @pytest.mark.slow

@@ -59,3 +59,21 @@ def test_a_finding_several_robots_report_names_them_all_once():
     # the file linted as itself too: its own finding, told without `via`
     merged = merge([FileResult("a.xacro", [one]), FileResult("wheels.xacro", [shared])])
     assert [f.via for f in merged.findings] == [()]
+
+
+def test_linted_files_and_those_that_gave_findings():
+    """
+    The summary's `in 2 of 4 files`: a robot whose findings are in its includes gave findings;
+    a fragment linted through its robots counts when they found something in it.
+    """
+    results = [
+        FileResult("a.xacro", [finding("macros.xacro", 7)]),
+        FileResult("b.urdf"),
+        FileResult("c.urdf", [finding("c.urdf", 1)]),
+        FileResult("macros.xacro", [finding("macros.xacro", 7)], fragment=True, remarks=["r"]),
+        FileResult("empty.xacro", fragment=True, remarks=["r"]),
+        FileResult("bad.urdf", error=InputError("no such file", "bad.urdf")),
+    ]
+    merged = merge(results)
+    assert merged.linted == ("a.xacro", "b.urdf", "c.urdf", "macros.xacro")
+    assert (merged.checked, merged.flagged) == (4, 3)

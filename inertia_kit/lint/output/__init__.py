@@ -6,7 +6,13 @@ Findings out: the output formats of ``inertia-lint``, one module each.
 - ``concise``: ``path:line:col: CODE message``, one line each, for editors;
 - ``json``: one array of :meth:`Finding.to_json` objects;
 - ``github``: workflow commands that GitHub Actions shows as annotations;
-- ``sarif``: SARIF 2.1.0, for code scanning.
+- ``sarif``: SARIF 2.1.0, for code scanning;
+- ``junit``: JUnit XML, a test suite per file, for CI test reports;
+- ``gitlab``: a GitLab Code Quality report.
+
+Files that could not be read, and internal errors (a bug), are in every machine-read format
+(json, github, sarif, junit, gitlab) as :mod:`.common`'s ``IN000`` entries; the text formats
+(full, concise) leave them to the caller's ``error:`` lines on stderr.
 
 :mod:`.summary` adds the statistics and the summary line. Paths are shown as the findings carry
 them (as given on the command line, or as xacro included them). Colour is added by ``style``,
@@ -23,7 +29,7 @@ from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.output.common import Style, plain
 
-FORMATS = ("full", "concise", "json", "github", "sarif")
+FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
 
 
 def render(
@@ -33,12 +39,14 @@ def render(
     errors: Sequence[InputError] = (),
     style: Style | None = None,
     unsafe_fixes: bool = False,
+    linted: Sequence[str] = (),
 ) -> str:
     """
-    The findings in one format, ending in a newline (empty for no findings, except ``json``
-    and ``sarif``, which always give a document); ``[*]`` marks a finding whose fix ``--fix``
-    applies (``unsafe_fixes``: unsafe ones too). ``errors`` (unreadable files) go into SARIF's
-    invocation; the other formats leave them to the caller's error stream.
+    The findings in one format, ending in a newline (empty for no findings, except ``json``,
+    ``sarif``, ``junit`` and ``gitlab``, which always give a document); ``[*]`` marks a finding
+    whose fix ``--fix`` applies (``unsafe_fixes``: unsafe ones too). ``errors`` (unreadable
+    files, internal errors) are in the machine-read formats; ``linted`` (the files linted)
+    gives ``junit`` a passing test for each file without findings.
     """
     # each format is imported when chosen: a lint run pays for its own format only
     style = style or plain
@@ -53,13 +61,21 @@ def render(
     if output_format == "json":
         from inertia_kit.lint.output import json as json_array
 
-        return json_array.render(findings)
+        return json_array.render(findings, errors)
     if output_format == "github":
         from inertia_kit.lint.output import github
 
-        return github.render(findings)
+        return github.render(findings, errors)
     if output_format == "sarif":
         from inertia_kit.lint.output import sarif
 
         return sarif.render(findings, errors)
+    if output_format == "junit":
+        from inertia_kit.lint.output import junit
+
+        return junit.render(findings, errors, linted)
+    if output_format == "gitlab":
+        from inertia_kit.lint.output import gitlab
+
+        return gitlab.render(findings, errors)
     raise ValueError(f"unknown output format {output_format!r}; known: {', '.join(FORMATS)}")

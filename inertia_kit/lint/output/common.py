@@ -1,6 +1,7 @@
 """
 What the output formats share: where a finding is (``path:line:col``), its colour, the style
-hook that colours text, and JSON that holds no non-finite number.
+hook that colours text, JSON that holds no non-finite number, and what the machine-read
+formats call a file that could not be linted.
 """
 
 from __future__ import annotations
@@ -8,9 +9,16 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.findings import Finding, Severity
+
+if TYPE_CHECKING:
+    from inertia_kit.errors import InputError, InternalError
+
+# a file that could not be linted, in the machine-read formats: a code no rule has (ruff's E902
+# io-error); `--select` and `--ignore` cannot turn it off, as it is why the exit code is 2
+UNLINTED = "IN000"
 
 COLOURS = {Severity.ERROR: "red", Severity.WARNING: "yellow", Severity.INFO: "blue"}
 
@@ -55,3 +63,10 @@ def fix_mark(finding: Finding, unsafe_fixes: bool) -> str:
     from inertia_kit.lint.applying import applicable
 
     return "[*] " if applicable(finding, unsafe_fixes) else ""
+
+
+def unlinted_name(error: InputError | InternalError) -> str:
+    """``unreadable-file``, or ``internal-error`` for a bug in inertia-kit."""
+    from inertia_kit.errors import InternalError
+
+    return "internal-error" if isinstance(error, InternalError) else "unreadable-file"

@@ -3,15 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import location, message
+from inertia_kit.lint.output.common import UNLINTED, location, message, unlinted_name
+
+if TYPE_CHECKING:
+    from inertia_kit.errors import InputError, InternalError
 
 _LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
 
-def render(findings: Sequence[Finding]) -> str:
-    return "".join(_command(finding) + "\n" for finding in findings)
+def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalError] = ()) -> str:
+    commands = [_command(finding) for finding in findings]
+    commands += [_unlinted(error) for error in errors]
+    return "".join(command + "\n" for command in commands)
 
 
 def _escape_data(text: str) -> str:
@@ -24,15 +30,30 @@ def _escape_property(text: str) -> str:
     return _escape_data(text).replace(":", "%3A").replace(",", "%2C")
 
 
+def _head(code: str, path: str | None, line: int | None, column: int | None) -> str:
+    properties = [("title", f"inertia-lint ({code})")]
+    if path is not None:
+        properties.append(("file", path))
+        if line is not None:
+            properties.append(("line", str(line)))
+            if column is not None:
+                properties.append(("col", str(column)))
+    return ",".join(f"{key}={_escape_property(value)}" for key, value in properties)
+
+
 def _command(finding: Finding) -> str:
-    properties = [("title", f"inertia-lint ({finding.code})"), ("file", finding.path)]
-    if finding.line is not None:
-        properties.append(("line", str(finding.line)))
-        if finding.column is not None:
-            properties.append(("col", str(finding.column)))
-    head = ",".join(f"{key}={_escape_property(value)}" for key, value in properties)
+    head = _head(finding.code, finding.path, finding.line, finding.column)
     where = location(finding.path, finding.line, finding.column)
     text = f"{where}: {finding.code} {message(finding)}"
     if finding.help:
         text += f"\nhelp: {finding.help}"
     return f"::{_LEVELS[finding.severity]} {head}::{_escape_data(text)}"
+
+
+def _unlinted(error: InputError | InternalError) -> str:
+    """An annotation on the file (at its line when known) that could not be linted."""
+    head = _head(UNLINTED, error.path, error.line, error.column)
+    where = location(error.path, error.line, error.column) if error.path else ""
+    text = f"{where}: " if where else ""
+    text += f"{UNLINTED} {unlinted_name(error)}: {error.message}"
+    return f"::error {head}::{_escape_data(text)}"

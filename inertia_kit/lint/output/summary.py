@@ -29,30 +29,37 @@ def summary(
     unreadable: int = 0,
     internal: int = 0,
     *,
+    flagged: int | None = None,
     fixed: int = 0,
     fixable: int = 0,
     hidden: int = 0,
 ) -> str:
     """
-    ``Found 3 errors, 1 warning in 2 files.`` or ``No findings in 4 files.``, and the files that
-    could not be read or met an internal error (a bug). With fixes: ``Fixed 2 findings; 1 error
-    remains in 1 file.``, and a line counting the fixes ``--fix`` (``fixable``) or
+    One shape, whose ``N files`` always counts the files linted (``checked``):
+    ``Found 3 errors, 1 warning in 2 of 6 files.`` or ``No findings in 6 files.``, where 2
+    (``flagged``; default: the files the findings are in) is how many of them gave findings,
+    then the files that could not be read or met an internal error (a bug). With fixes:
+    ``Fixed 2 findings; 1 error remains in 1 of 6 files.`` or ``Fixed 2 findings; no findings
+    remain in 6 files.``, and a line counting the fixes ``--fix`` (``fixable``) or
     ``--unsafe-fixes`` (``hidden``) would apply.
     """
+    if flagged is None:
+        flagged = len({f.path for f in findings})
+    # a finding always comes from a linted file: never "in 2 of 1 files"
+    checked = max(checked, flagged)
     if findings:
         by_severity = Counter(f.severity for f in findings)
         words = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "info"}
-        parts = [
+        parts = ", ".join(
             _count(by_severity[level], word, "info" if level is Severity.INFO else None)
             for level, word in words.items()
             if by_severity[level]
-        ]
-        files = len({f.path for f in findings})
-        text = f"Found {', '.join(parts)} in {_count(files, 'file')}"
+        )
+        where = f"in {flagged} of {_count(checked, 'file')}"
+        text = f"Found {parts} {where}"
         if fixed:
             verb = "remains" if len(findings) == 1 else "remain"
-            text = f"Fixed {_count(fixed, 'finding')}; {', '.join(parts)} {verb} in "
-            text += _count(files, "file")
+            text = f"Fixed {_count(fixed, 'finding')}; {parts} {verb} {where}"
     else:
         text = f"No findings in {_count(checked, 'file')}"
         if fixed:

@@ -1,0 +1,100 @@
+"""
+``junit``: JUnit XML, as ruff writes it, for the test reports of CI dashboards (GitLab's
+``artifacts:reports:junit``, GitHub test-report actions). A ``<testsuite>`` per file, named by
+its path; in it a ``<testcase>`` per finding with a ``<failure>`` (the finding's severity as its
+``type``), a passing ``<testcase>`` for a linted file without findings, and a ``<testcase>`` with
+an ``<error>`` for a file that could not be linted. Test cases carry ``file``, ``line`` and
+``column``, which report viewers use to link to the source.
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from collections.abc import Sequence
+from pathlib import PurePath
+from typing import TYPE_CHECKING
+
+from inertia_kit.lint.findings import Finding
+from inertia_kit.lint.output.common import UNLINTED, message, unlinted_name
+
+if TYPE_CHECKING:
+    from inertia_kit.errors import InputError, InternalError
+
+PACKAGE = "org.inertia-kit"
+CLEAN = "no findings"
+# characters XML 1.0 cannot hold, even escaped (ElementTree writes them as they are)
+_NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff\ud800-\udfff]")
+
+
+def render(
+    findings: Sequence[Finding],
+    errors: Sequence[InputError | InternalError] = (),
+    linted: Sequence[str] = (),
+) -> str:
+    cases: dict[str, list[ET.Element]] = {}
+    for finding in findings:
+        cases.setdefault(finding.path, []).append(_failure(finding))
+    for error in errors:
+        cases.setdefault(error.path or "", []).append(_error(error))
+    for path in linted:
+        cases.setdefault(path, [])
+    report = ET.Element("testsuites", name="inertia-lint")
+    if not cases:  # nothing linted: one passing test, so that a report exists (ruff's)
+        cases["inertia-lint"] = []
+    for path in sorted(cases):
+        report.append(_suite(path, cases[path] or [_case(CLEAN, path)]))
+    for count in ("tests", "failures", "errors"):
+        report.set(count, str(sum(int(suite.get(count, 0)) for suite in report)))
+    ET.indent(report, space="    ")
+    text = _NOT_XML.sub("\ufffd", ET.tostring(report, "unicode"))
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
+
+
+def _suite(path: str, cases: list[ET.Element]) -> ET.Element:
+    suite = ET.Element("testsuite", name=path)
+    failures = sum(case.find("failure") is not None for case in cases)
+    errors = sum(case.find("error") is not None for case in cases)
+    suite.attrib |= {
+        "tests": str(len(cases)),
+        "disabled": "0",
+        "errors": str(errors),
+        "failures": str(failures),
+        "package": PACKAGE,
+    }
+    suite.extend(cases)
+    return suite
+
+
+def _case(name: str, path: str, line: int | None = None, column: int | None = None) -> ET.Element:
+    # classname: the path without its suffixes, as ruff's (robots/arm.urdf.xacro -> robots/arm)
+    pure = PurePath(path)
+    classname = pure.with_name(pure.name.split(".")[0]).as_posix() if pure.name else path
+    case = ET.Element("testcase", name=name, classname=classname, file=path)
+    if line is not None:
+        case.set("line", str(line))
+        if column is not None:
+            case.set("column", str(column))
+    return case
+
+
+def _where(line: int | None, column: int | None) -> str:
+    parts = [f"line {line}" if line is not None else "", f"col {column}" if column else ""]
+    return "".join(f"{part}, " for part in parts if part)
+
+
+def _failure(finding: Finding) -> ET.Element:
+    case = _case(f"{finding.code} {finding.name}", finding.path, finding.line, finding.column)
+    failure = ET.SubElement(case, "failure", message=message(finding), type=str(finding.severity))
+    failure.text = _where(finding.line, finding.column) + message(finding)
+    if finding.help:
+        failure.text += f"\nhelp: {finding.help}"
+    return case
+
+
+def _error(error: InputError | InternalError) -> ET.Element:
+    name = unlinted_name(error)
+    case = _case(f"{UNLINTED} {name}", error.path or "", error.line, error.column)
+    failed = ET.SubElement(case, "error", message=error.message, type=name)
+    failed.text = _where(error.line, error.column) + error.message
+    return case
