@@ -75,7 +75,7 @@ def test_a_fragment_included_directly_is_linted_through_its_robot(repo):
     assert code == 1
     assert err == (
         "note: arm_description/urdf/leaf.xacro: linted through the robots that include it: "
-        "arm_description/urdf/arm.urdf.xacro\nFound 1 error in 1 of 1 file.\n"
+        "arm_description/urdf/arm.urdf.xacro\nFound 1 error in 1 file.\n"
     )
 
 

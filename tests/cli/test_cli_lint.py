@@ -98,7 +98,7 @@ def test_findings_exit_1(here):
     assert run("--output-format", "concise", "bad.urdf") == (
         1,
         "bad.urdf:2:29: IN097 l0: 0 kg\n",
-        "Found 1 error in 1 of 1 file.\n",
+        "Found 1 error in 1 file.\n",
     )
 
 
@@ -141,7 +141,7 @@ def test_unreadable_file_among_good_ones_still_lints_them_and_exits_2(here):
         "a.urdf:2:29: IN097 l0: 0 kg\nc.urdf:2:29: IN098 l0: 20 kg\n",
         "error: broken.urdf: empty file: not a robot description\n"
         "error: missing.urdf: no such file\n"
-        "Found 1 error, 1 warning in 2 of 2 files; 2 files could not be read.\n",
+        "Found 1 error, 1 warning in 2 files; 2 files could not be read.\n",
     )
 
 
@@ -157,7 +157,7 @@ def test_folders_fragments_and_hidden_folders(here):
         # robots/.git makes robots/ the repository the fragment's robots are looked for in
         "note: robots/a/macros.xacro: a xacro fragment no robot in robots (the git top level) "
         "includes; nothing to lint\n"
-        "Found 1 error, 1 warning in 2 of 2 files.\n",
+        "Found 1 error, 1 warning in 2 files.\n",
     )
 
 
@@ -205,7 +205,7 @@ def test_statistics(here):
     assert run("--statistics", "r.urdf") == (
         1,
         "2  IN097  stub-error\n1  IN098  stub-warning\n",
-        "Found 2 errors, 1 warning in 1 of 1 file.\n",
+        "Found 2 errors, 1 warning in 1 file.\n",
     )
 
 
@@ -320,7 +320,7 @@ def test_console_script(tmp_path):
     )
     assert done.returncode == 1, done.stderr
     assert done.stdout == f"{bad}:2:29: IN002 link `l0`: mass = 0 kg is not positive\n"
-    assert done.stderr == "Found 1 error in 1 of 1 file.\n"
+    assert done.stderr == "Found 1 error in 1 file.\n"
 
 
 # --- --explain --------------------------------------------------------------------------------

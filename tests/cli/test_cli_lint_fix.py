@@ -56,7 +56,7 @@ def test_fix_moves_the_mrm_tensors_to_the_com_at_the_call_sites(tmp_path: Path):
     assert len(before) == 6  # the base box (about its COM already) and five cylinders
     code, stdout, stderr = lint("--fix", "--output-format", "concise", str(folder / "urdf"))
     assert code == 1  # IN041 (the root's <inertial>) remains: no fix
-    assert "Fixed 5 findings; 1 warning remains in 1 of 1 file." in stderr
+    assert "Fixed 5 findings; 1 warning remains in 1 file." in stderr
     assert [line.split(": ")[1].split()[0] for line in stdout.splitlines()] == ["IN041"]
     after = calls(mrm.read_text())
     for old, new in zip(before, after, strict=True):

@@ -37,7 +37,8 @@ def summary(
     """
     One shape, whose ``N files`` always counts the files linted (``checked``):
     ``Found 3 errors, 1 warning in 2 of 6 files.`` or ``No findings in 6 files.``, where 2
-    (``flagged``; default: the files the findings are in) is how many of them gave findings,
+    (``flagged``; default: the files the findings are in) is how many of them gave findings
+    (``in 6 files`` when all did),
     then the files that could not be read or met an internal error (a bug). With fixes:
     ``Fixed 2 findings; 1 error remains in 1 of 6 files.`` or ``Fixed 2 findings; no findings
     remain in 6 files.``, and a line counting the fixes ``--fix`` (``fixable``) or
@@ -55,7 +56,9 @@ def summary(
             for level, word in words.items()
             if by_severity[level]
         )
-        where = f"in {flagged} of {_count(checked, 'file')}"
+        # every file linted gave findings: "in 2 files" (still the files linted)
+        some = "" if flagged == checked else f"{flagged} of "
+        where = f"in {some}{_count(checked, 'file')}"
         text = f"Found {parts} {where}"
         if fixed:
             verb = "remains" if len(findings) == 1 else "remain"

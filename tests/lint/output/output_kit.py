@@ -124,7 +124,7 @@ def lint(*args: str) -> tuple[int, str, str]:
 NOTE = (
     "note: robots/wheel.xacro: linted through the robots that include it: robots/cart.urdf.xacro\n"
 )
-SUMMARY = "Found 2 errors, 1 warning, 1 info in 2 of 2 files.\n"
+SUMMARY = "Found 2 errors, 1 warning, 1 info in 2 files.\n"
 NO_FINDINGS = "No findings in 1 file.\n"
 
 
