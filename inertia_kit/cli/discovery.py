@@ -60,6 +60,8 @@ def _patterns(option: str, values: Sequence[str]) -> list[str]:
     from inertia_kit.lint.exclusion import compile_patterns
 
     patterns = [p.strip() for value in values for p in value.split(",") if p.strip()]
+    if not patterns:
+        return patterns  # pathspec (~10 ms) is imported only when there are patterns
     try:
         compile_patterns(patterns)
     except ValueError as error:

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import contextlib
 import io
-import json
 import os
 import sys
 from collections.abc import Callable, Sequence
@@ -122,6 +121,8 @@ def _told(text: str, path: str, shown: str) -> str:
     name = os.path.basename(path)
     if shown != "-":
         return text.replace(name, os.path.basename(shown))
+    import json  # only for a run that reads stdin
+
     for raw in (os.path.abspath(path), path):
         text = text.replace(json.dumps(raw)[1:-1], "-").replace(raw, "-")
     return text.replace(name, "-")

@@ -11,7 +11,6 @@ the name it stands for (:func:`named`).
 from __future__ import annotations
 
 import os
-import secrets
 from collections.abc import Iterator
 from contextlib import contextmanager, suppress
 from pathlib import Path
@@ -47,6 +46,8 @@ def stand_in(data: bytes, filename: str | None) -> Iterator[str]:
         folder, name = os.path.split(filename)
         suffix = "-" + name
         stands_for = os.path.abspath(filename)
+    import secrets  # hmac and hashlib: only for a run that reads stdin
+
     path = os.path.join(folder, f"{PREFIX}{secrets.token_hex(4)}{suffix}")
     descriptor = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
     try:

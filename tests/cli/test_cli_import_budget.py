@@ -31,6 +31,9 @@ NOT_FOR_PLAIN_URDF = (
     "email",
     "http.client",
     "ssl",
+    # a file given by name with no exclude patterns compiles none; stdin's helpers wait for `-`
+    "pathspec",
+    "secrets",
 )
 #: a warm cache reads no mesh file, so it needs no mesh library
 NOT_FOR_WARM_CACHE = ("trimesh", "manifold3d", "collada")
