@@ -110,7 +110,9 @@ def _pooled(
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(jobs, mp_context=_context(), initializer=_worker_started)
+    pool = ProcessPoolExecutor(
+        jobs, mp_context=_context(), initializer=_worker_started, initargs=(dict(os.environ),)
+    )
     try:
         futures = {pool.submit(_call, work, items[i]): i for i in indices}
         left = set(futures)
@@ -162,7 +164,11 @@ def _terminate(pool: Any) -> None:
             process.join()
 
 
-def _worker_started() -> None:
+def _worker_started(environment: dict[str, str]) -> None:
+    # the forkserver kept the environment of its own start; the caller's may have changed since
+    # (INERTIA_KIT_CACHE_DIR, ...); the working folder comes with the pool's preparation data
+    os.environ.clear()
+    os.environ.update(environment)
     # Ctrl-C reaches the whole process group: the parent alone handles it
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _ended)
