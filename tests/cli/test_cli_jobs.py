@@ -135,3 +135,18 @@ def test_two_jobs_print_what_one_prints_on_installed_robot_packages(package, tmp
         one = lint("-j", "1", *mode, folder)
         assert one[1]
         assert lint("-j", "2", *mode, folder) == one
+
+
+def test_fill_accepts_jobs_and_does_what_it_does_without(monkeypatch):
+    from inertia_kit.cli.fill import fill_command
+
+    monkeypatch.chdir(EXAMPLES)
+
+    def fill(*args: str) -> tuple[int, str, str]:
+        result = CliRunner().invoke(fill_command, list(args))
+        return result.exit_code, result.stdout, result.stderr
+
+    without = fill("--check", ".")
+    assert without[0] == 1  # an example has a link to fill
+    assert fill("-j", "2", "--check", ".") == without
+    assert fill("-j", "x", "--check", ".")[0] == 2
