@@ -260,16 +260,16 @@ def lint(
     try:
         results = lint_all(told=told if streams else None, progress=progress.update)
     except (ConfigError, UsageError) as error:
-        progress.clear()
         message = error.format_message() if isinstance(error, UsageError) else str(error)
         click.echo(f"error: {message}", err=True)
         return 2
+    finally:
+        progress.clear()  # also on Ctrl-C, before `interrupted`
 
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
 
         return write_suppressions(paths, results, lint_all)
-    progress.clear()
     run = merge(results)
     for level, text in run.messages:
         if quiet and level == "note":
