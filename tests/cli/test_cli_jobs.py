@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import sysconfig
 import time
 import zlib
 from pathlib import Path
@@ -116,7 +117,7 @@ ROBOT_PACKAGES = {
     "pybullet_data": lambda: __import__("pybullet_data").getDataPath(),
     "rtbdata": lambda: os.path.dirname(__import__("rtbdata").__file__),
     "example-robot-data": lambda: os.path.join(
-        __import__("sys").prefix, "lib", "site-packages", "cmeel.prefix", "share"
+        sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data"
     ),
 }
 
@@ -132,9 +133,9 @@ def test_two_jobs_print_what_one_prints_on_installed_robot_packages(package, tmp
         pytest.skip(f"{package} is not installed")
     monkeypatch.setenv("INERTIA_KIT_CACHE_DIR", str(tmp_path / "cache"))
     for mode in (("--output-format", "concise"), ("--output-format", "json")):
-        one = lint("-j", "1", *mode, folder)
+        one = lint("-j", "1", *mode, "--package-path", folder, folder)
         assert one[1]
-        assert lint("-j", "2", *mode, folder) == one
+        assert lint("-j", "2", *mode, "--package-path", folder, folder) == one
 
 
 def test_fill_accepts_jobs_and_does_what_it_does_without(monkeypatch):
