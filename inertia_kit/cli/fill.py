@@ -94,6 +94,15 @@ from inertia_kit.version import __version__
     "text, edited; for xacro, the fully expanded URDF, where links made by macros are filled "
     "too. OUT is always written; exit 1 if links were filled or refused, 0 if none needed it.",
 )
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(min=0),
+    default=None,
+    metavar="N",
+    help="Accepted as inertia-lint takes it; fill runs in one process, since it writes files "
+    "and robots that include one fragment must agree on what is written there.",
+)
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
@@ -160,6 +169,7 @@ def fill(
     package_paths: tuple[str, ...] = (),
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
+    jobs: int | None = None,  # accepted, unused: see the option's help
     **discovery: Any,
 ) -> int:
     """

@@ -25,6 +25,8 @@ if TYPE_CHECKING:
     from pathlib import Path
 
 OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
+#: formats printed file by file as the files are linted (json and sarif are one document)
+STREAMED = ("full", "concise", "github")
 
 
 def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
@@ -64,6 +66,15 @@ def _colour() -> bool | None:
     default=None,
     help="Write the report (findings, --statistics or --diff) to this file, atomically, "
     "instead of stdout.",
+)
+@click.option(
+    "-j",
+    "--jobs",
+    type=click.IntRange(min=0),
+    default=None,
+    metavar="N",
+    help="Lint in N processes, output in input order as with one [default: the usable cores "
+    "when there are several files; 0: the same]. --fix always runs in one.",
 )
 @click.option(
     "--select",
@@ -189,6 +200,7 @@ def lint(
     show_diff: bool = False,
     quiet: bool = False,
     output_file: str | None = None,
+    jobs: int | None = None,
     **discovery: Any,
 ) -> int:
     """
@@ -213,7 +225,7 @@ def lint(
     from inertia_kit.errors import ConfigError, InternalError
     from inertia_kit.lint.applying import applicable
     from inertia_kit.lint.config_files import ConfigFinder
-    from inertia_kit.lint.findings import Severity
+    from inertia_kit.lint.findings import Finding, Severity
     from inertia_kit.lint.merge import merge
     from inertia_kit.lint.output import render
     from inertia_kit.lint.output.summary import statistics as rule_statistics
@@ -233,7 +245,21 @@ def lint(
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
         return FileResult(str(file), error=internal(error, file))
 
-    def lint_all() -> list[FileResult]:
+    from inertia_kit.cli.progress import Progress
+
+    progress = Progress.for_terminal(quiet)
+    streams = output_format in STREAMED and not (statistics or show_diff or output_file or add_noqa)
+    printed: dict[tuple, None] = {}  # the findings already printed, as merge keys
+
+    def told(result: FileResult, settled: list[Finding]) -> None:
+        fresh = [f for f in settled if _key(f) not in printed]
+        if fresh:
+            printed.update(dict.fromkeys(map(_key, fresh)))
+            progress.clear()
+            text = render(fresh, output_format, style=click.style, unsafe_fixes=result.unsafe_fixes)
+            click.echo(text, nl=False, color=_colour())
+
+    def lint_all(**streaming: Any) -> list[FileResult]:
         return lint_paths(
             paths,
             config=config_path,
@@ -249,14 +275,18 @@ def lint(
             unsafe_fixes=unsafe_fixes,
             diff=show_diff,
             discovery=walk,
+            jobs=jobs,
+            **streaming,
         )
 
     try:
-        results = lint_all()
+        results = lint_all(told=told if streams else None, progress=progress.update)
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)
         click.echo(f"error: {message}", err=True)
         return 2
+    finally:
+        progress.clear()  # also on Ctrl-C, before `interrupted`
 
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
@@ -280,8 +310,9 @@ def lint(
     else:
         # a file gets no colour codes: only a terminal reads them
         style = None if output_file else click.style
+        rest = [finding for finding in run.findings if _key(finding) not in printed]
         output = render(
-            run.findings,
+            rest,
             output_format,
             errors=run.errors,
             style=style,
@@ -301,6 +332,11 @@ def lint(
     if show_diff:
         return 1 if run.diff else 0
     return 1 if run.failing and not exit_zero else 0
+
+
+def _key(finding: Any) -> tuple:
+    """A finding as :func:`~inertia_kit.lint.merge.merge` tells it once."""
+    return (finding.path, finding.line, finding.column, finding.code, finding.message)
 
 
 def _write_report(path: str, output: str) -> bool:

@@ -8,6 +8,7 @@ them (:mod:`.unused`).
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -15,8 +16,14 @@ from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
 from inertia_kit.lint import catalog
-from inertia_kit.lint.findings import Severity
-from inertia_kit.lint.runner import DEFAULT_FAIL_ON, FileResult, lint_file, selection_for
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.runner import (
+    DEFAULT_FAIL_ON,
+    FileResult,
+    Selection,
+    lint_file,
+    selection_for,
+)
 
 
 def lint_paths(
@@ -36,6 +43,9 @@ def lint_paths(
     unsafe_fixes: bool | None = None,
     diff: bool = False,
     discovery: Any = None,
+    jobs: int | None = 1,
+    told: Callable[[FileResult, list[Finding]], None] | None = None,
+    progress: Callable[[int, int, str | None], None] | None = None,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -60,6 +70,14 @@ def lint_paths(
     (``None``: the configured ``unsafe-fixes``); ``diff`` computes them without writing.
     ``discovery`` (a :class:`~inertia_kit.lint.discovery.Discovery`; default: as configured)
     says what the folder walk leaves out.
+
+    ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
+    are several files); ``--fix`` always lints in this process (:func:`_run` says why).
+    ``told(result, settled)`` is called, in input order, as soon as a file and every file
+    before it are linted: ``settled`` its findings that no other file's result can still change
+    (:func:`settled`), the others are only final in the returned results.
+    ``progress(done, total, current)`` is called as files are done (``current``: the first
+    file in input order not done yet).
     """
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint import unused
@@ -88,55 +106,159 @@ def lint_paths(
     chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
-    results = []
+    tasks = []
     for target, found in plan:
-        file = target.robot
         unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
-        fixing = diff or bool(found.fix if fix is None else fix)
         choice = MassChoice.checked(
             DEFAULT_DENSITY,
             {n: v.mass for n, v in found.links.items() if v.mass is not None},
             {n: v.density for n, v in found.links.items() if v.density is not None},
         )
-
-        def once(
-            file=file, target=target, found=found, choice=choice, unsafe=unsafe, fixing=fixing
-        ):
-            result = lint_file(
-                file,
+        tasks.append(
+            _Task(
+                target,
                 selection_for(found, select, ignore, engines),
-                xacro_args=xacro_args,
-                package_paths=package_paths,
-                load_mesh=load_mesh,
-                xacro_limits=limits[found.path],
-                mass_choice=choice,
-                fixes="safe" if fixing and not unsafe else "all",
+                xacro_args,
+                tuple(package_paths),
+                load_mesh,
+                limits[found.path],
+                choice,
+                unsafe,
+                diff or bool(found.fix if fix is None else fix),
+                diff,
+                # not `or`: Severity.INFO is 0
+                next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None),
             )
-            if target.changed:  # a given fragment: only what lands in it is fixed and told
-                from inertia_kit.lint.fragments import located
-
-                result.findings = located(result.findings, target.robot, target.changed)
-            return result
-
-        try:
-            if fixing:
-                from inertia_kit.lint.applying import fix_file
-
-                outcome = fix_file(once, unsafe, write=not diff)
-                result = outcome.result
-                result.fixed, result.diff = outcome.fixed, outcome.diff
-            else:
-                result = once()
-            result.unsafe_fixes = unsafe
-        except Exception as error:
-            if on_error is None:
-                raise
-            result = on_error(file, error)
-        # not `or`: Severity.INFO is 0
-        result.fail_on = next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None)
-        results.append(result)
+        )
+    results = _run(tasks, chosen, jobs, on_error, told, progress)
     unused.judge_shared(results)
     return _through_robots(results, chosen)
+
+
+@dataclass(frozen=True)
+class _Task:
+    """One file to lint, with everything a worker process needs (small, picklable)."""
+
+    target: Any  # fragments.Target
+    selection: Selection
+    xacro_args: dict[str, str] | None
+    package_paths: tuple[str | Path, ...]
+    load_mesh: MeshLoader | None
+    xacro_limits: XacroLimits
+    mass_choice: MassChoice
+    unsafe: bool
+    fixing: bool
+    diff: bool
+    fail_on: Severity
+
+
+def _lint_task(task: _Task) -> FileResult:
+    """Lint one file as :func:`lint_paths` does (in this process or a worker)."""
+    target = task.target
+
+    def once() -> FileResult:
+        result = lint_file(
+            target.robot,
+            task.selection,
+            xacro_args=task.xacro_args,
+            package_paths=task.package_paths,
+            load_mesh=task.load_mesh,
+            xacro_limits=task.xacro_limits,
+            mass_choice=task.mass_choice,
+            fixes="safe" if task.fixing and not task.unsafe else "all",
+        )
+        if target.changed:  # a given fragment: only what lands in it is fixed and told
+            from inertia_kit.lint.fragments import located
+
+            result.findings = located(result.findings, target.robot, target.changed)
+        return result
+
+    if task.fixing:
+        from inertia_kit.lint.applying import fix_file
+
+        outcome = fix_file(once, task.unsafe, write=not task.diff)
+        result = outcome.result
+        result.fixed, result.diff = outcome.fixed, outcome.diff
+    else:
+        result = once()
+    result.unsafe_fixes = task.unsafe
+    result.fail_on = task.fail_on
+    return result
+
+
+def _run(
+    tasks: list[_Task],
+    chosen: Any,
+    jobs: int | None,
+    on_error: Callable[[Path, Exception], FileResult] | None,
+    told: Callable[[FileResult, list[Finding]], None] | None,
+    progress: Callable[[int, int, str | None], None] | None,
+) -> list[FileResult]:
+    """
+    Every task's result, in ``jobs`` processes. ``--fix`` runs here, one file after the
+    other: robots that include the same fragment write it, and each fix pass lints the file
+    as the previous pass left it, so two processes would fix a shared fragment from stale
+    text. ``--diff`` writes nothing and runs in parallel. A loader of meshes that cannot be
+    sent to a worker (the API's ``load_mesh``) also keeps the work here.
+    """
+    from inertia_kit.lint import parallel
+
+    def failed(task: _Task, error: BaseException) -> FileResult:
+        if on_error is None or not isinstance(error, Exception):
+            raise error
+        result = on_error(Path(task.target.robot), error)
+        result.fail_on = task.fail_on
+        return result
+
+    def tell(index: int, result: FileResult) -> None:
+        if told is not None:
+            told(result, settled(result, tasks[index].target, chosen))
+
+    def done(count: int, first: int) -> None:
+        if progress is not None:
+            current = tasks[first].target.robot if first < len(tasks) else None
+            progress(count, len(tasks), current)
+
+    serial = any(task.fixing and not task.diff for task in tasks) or not _picklable(tasks)
+    workers = 1 if serial else parallel.worker_count(jobs, len(tasks))
+    return parallel.run_ordered(_lint_task, tasks, workers, failed=failed, told=tell, done=done)
+
+
+def _picklable(tasks: list[_Task]) -> bool:
+    import pickle
+
+    try:
+        pickle.dumps(tasks[:1])
+    except Exception:
+        return False
+    return True
+
+
+def settled(result: FileResult, target: Any, chosen: Any) -> list[Finding]:
+    """
+    The findings of ``result`` that no other file's result can change, so they can be printed
+    at once: those in the linted file itself, when no given robot reads that file (it is no
+    fragment of theirs), less the suppression rule's (IN090) when the file's comments shared
+    with other files are judged over all of them. Findings of a file linted for a given
+    fragment (``via`` a robot) wait: another robot may find the same, and both are named.
+    """
+    from inertia_kit.lint.include_graph import real
+    from inertia_kit.lint.unused import SCOPE
+
+    if target.changed or result.error is not None or not result.findings:
+        return []
+    own = real(result.path)
+    if own in chosen.fragments:
+        return []
+    shared_comments = any(real(path) != own for path, _ in (result.uses or {}))
+    scoped = {rule.CODE for rule in catalog.RULES if rule.SCOPE == SCOPE}
+    return [
+        finding
+        for finding in result.findings
+        if finding.path
+        and real(finding.path) == own
+        and not (shared_comments and finding.code in scoped)
+    ]
 
 
 def _targets(

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
+from kit.in_process import lint_in_process
 
 from inertia_kit.cli import lint_main
 from inertia_kit.cli.add_noqa import writable_under
@@ -201,6 +202,7 @@ def _robot_rule(monkeypatch):
     rule.SUMMARY = "a stub"
     rule.check = lambda robot, ctx: iter([ctx.finding("about the robot", None)])
     monkeypatch.setattr(catalog, "RULES", (*catalog.RULES, rule))
+    lint_in_process(monkeypatch)
 
 
 def test_a_finding_without_a_line_is_suppressed_before_the_robot(tmp_path, monkeypatch):

@@ -14,6 +14,7 @@ import sys
 import pytest
 from click.testing import CliRunner
 from kit import write
+from kit.in_process import lint_in_process
 from kit.urdf import box, collision, inertial, joint, link, robot
 
 from inertia_kit.cli import fill_main, lint_main, main
@@ -51,6 +52,7 @@ def test_lint_reports_an_internal_error_for_its_file_and_lints_the_others(
     from inertia_kit.lint import runner
 
     monkeypatch.setattr(runner, "analyse", failing_for("bad.urdf", runner.analyse))
+    lint_in_process(monkeypatch)
     bad, good = two_files
     result = CliRunner().invoke(
         lint_main, ["--select", "IN002", "--output-format", output_format, str(bad), str(good)]

@@ -69,3 +69,48 @@ def test_sigint_during_a_slow_xacro_is_exit_130_and_leaves_no_child(tmp_path, sc
     assert time.monotonic() - interrupted_at < 10  # not after the 60 s time limit
     for child in expanding:
         assert not Path(f"/proc/{child}").exists(), f"xacro child {child} outlived Ctrl-C"
+
+
+def descendants(pid: int) -> list[int]:
+    found = []
+    for child in children(pid):
+        found += [child, *descendants(child)]
+    return found
+
+
+def test_sigint_with_worker_processes_is_exit_130_and_leaves_no_process(tmp_path):
+    """Ctrl-C reaches the whole process group: the command, its workers, their xacro children."""
+    for name in ("a.xacro", "b.xacro"):
+        (tmp_path / name).write_text(doubling_chain(19))
+    process = subprocess.Popen(
+        [console_script("inertia-lint"), "-j", "2", *LIMITS, str(tmp_path)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": WORKTREE},
+        start_new_session=True,  # its own process group, as a terminal's foreground job
+        preexec_fn=default_sigint,
+    )
+    try:
+        deadline = time.monotonic() + 60
+        tree: list[int] = []
+        # the forkserver, two workers, and an expansion's child under each worker
+        while len(tree) < 5 and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+            tree = descendants(process.pid)
+        assert len(tree) >= 5, f"workers and their xacro children never all appeared: {tree}"
+        time.sleep(0.3)
+        interrupted_at = time.monotonic()
+        os.killpg(process.pid, signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=30)
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.communicate()
+    assert (process.returncode, stdout, stderr) == (130, "", "interrupted\n")
+    assert time.monotonic() - interrupted_at < 10
+    deadline = time.monotonic() + 5
+    while any(Path(f"/proc/{pid}").exists() for pid in tree) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    left = [pid for pid in tree if Path(f"/proc/{pid}").exists()]
+    assert not left, f"processes outlived Ctrl-C: {left}"

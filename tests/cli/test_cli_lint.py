@@ -18,6 +18,7 @@ import pytest
 from click.testing import CliRunner
 from console_scripts import console_script
 from kit import REPO
+from kit.in_process import lint_in_process
 from kit.urdf import inertial, link, robot_lines
 
 from inertia_kit.cli import lint_main, main
@@ -66,6 +67,7 @@ def here(tmp_path, monkeypatch):
     """An empty current folder, stub rules as the registry, no colour."""
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(catalog, "RULES", STUBS)
+    lint_in_process(monkeypatch)
     monkeypatch.delenv("FORCE_COLOR", raising=False)
     return tmp_path
 

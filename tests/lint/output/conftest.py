@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+from kit.in_process import lint_in_process
 from output_kit import FILES, STUBS
 
 from inertia_kit.lint import catalog
@@ -16,5 +17,6 @@ def robots(tmp_path, monkeypatch):
         (tmp_path / name).write_text(text)
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(catalog, "RULES", STUBS)
+    lint_in_process(monkeypatch)
     monkeypatch.delenv("FORCE_COLOR", raising=False)
     return tmp_path

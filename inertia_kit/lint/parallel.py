@@ -1,0 +1,201 @@
+"""
+Work on many files in worker processes (``inertia-lint -j N``), results told in input order.
+
+Workers come from a ``forkserver`` context (``spawn`` where there is none): the server imports
+the linter once and forks each worker from it, so a worker starts without re-importing, and
+never inherits the parent's threads or open files. A worker ignores Ctrl-C (the parent alone
+decides: it ends the workers and exits 130); the parent ends a worker with SIGTERM, which the
+worker turns into an exit through ``finally`` blocks, so that a xacro expansion's sandbox child
+(:mod:`inertia_kit.description.xacro_sandbox`) is killed with it, not orphaned.
+
+A worker that dies (a crash in C, out of memory) breaks the pool; the files not yet done are
+then tried again one at a time, each in a pool of its own, so that only the file that kills
+its worker gets the error.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any, TypeVar
+
+Item = TypeVar("Item")
+Result = TypeVar("Result")
+
+#: what the forkserver imports once, before forking workers
+PRELOAD = ["inertia_kit.lint.paths", "inertia_kit.lint.runner", "inertia_kit.lint.applying"]
+
+
+def usable_cores() -> int:
+    """The cores this process may run on (its CPU affinity), at least 1."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def worker_count(jobs: int | None, files: int) -> int:
+    """``-j``: ``None`` or 0 → the usable cores; never more workers than files, at least 1."""
+    wanted = jobs or usable_cores()
+    return max(1, min(wanted, files))
+
+
+class WorkerDied(Exception):
+    """A worker process ended while working on a file (a crash in C, killed, out of memory)."""
+
+
+def run_ordered(
+    work: Callable[[Item], Result],
+    items: Sequence[Item],
+    jobs: int,
+    *,
+    failed: Callable[[Item, BaseException], Result],
+    told: Callable[[int, Result], None] | None = None,
+    done: Callable[[int, int], None] | None = None,
+) -> list[Result]:
+    """
+    ``[work(item) for item in items]`` in ``jobs`` processes (``work`` a module-level function,
+    items and results picklable). ``told(index, result)`` is called in the parent, in input
+    order, as soon as an item and every item before it are done; ``done(count, first)``
+    whenever one more item is done, in any order (``first``: the first item in input order not
+    done). An exception ``work`` raises, or its worker's death (:class:`WorkerDied`), gives
+    ``failed(item, exception)`` as that item's result.
+    """
+    results: dict[int, Result] = {}
+    pending = list(range(len(items)))
+    next_told = 0
+
+    def finish(index: int, result: Result) -> None:
+        nonlocal next_told
+        results[index] = result
+        while next_told in results:
+            if told is not None:
+                told(next_told, results[next_told])
+            next_told += 1
+        if done is not None:
+            done(len(results), next_told)
+
+    if jobs <= 1:
+        for index in pending:
+            finish(index, _guarded(work, items[index], failed))
+        return [results[i] for i in range(len(items))]
+    broken = _pooled(work, items, pending, jobs, failed, finish)
+    for index in broken:  # one at a time: the file that kills its worker is the one told
+        if _pooled(work, items, [index], 1, failed, finish):
+            finish(index, failed(items[index], WorkerDied("its worker process died")))
+    return [results[i] for i in range(len(items))]
+
+
+def _guarded(
+    work: Callable[[Item], Result], item: Item, failed: Callable[[Item, BaseException], Result]
+) -> Result:
+    try:
+        return work(item)
+    except Exception as error:
+        return failed(item, error)
+
+
+def _pooled(
+    work: Callable[[Item], Result],
+    items: Sequence[Item],
+    indices: list[int],
+    jobs: int,
+    failed: Callable[[Item, BaseException], Result],
+    finish: Callable[[int, Result], None],
+) -> list[int]:
+    """Run ``indices`` in a pool of ``jobs``; the indices left undone when the pool broke."""
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures.process import BrokenProcessPool
+
+    pool = ProcessPoolExecutor(
+        jobs, mp_context=_context(), initializer=_worker_started, initargs=(dict(os.environ),)
+    )
+    try:
+        futures = {pool.submit(_call, work, items[i]): i for i in indices}
+        left = set(futures)
+        broken = False
+        while left:
+            finished, left = wait(left, return_when=FIRST_COMPLETED)
+            for future in sorted(finished, key=futures.__getitem__):
+                index = futures[future]
+                try:
+                    kind, value = future.result()
+                except BrokenProcessPool:
+                    broken = True
+                    continue
+                finish(index, value if kind == "ok" else failed(items[index], value))
+            if broken:
+                pool.shutdown()
+                undone = sorted(futures[f] for f in left) + sorted(
+                    futures[f] for f in finished if f.exception() is not None
+                )
+                return sorted(undone)
+        pool.shutdown()
+        return []
+    except BaseException:  # Ctrl-C: end the workers (and their xacro children), then exit
+        _terminate(pool)
+        raise
+
+
+def _context() -> Any:
+    import multiprocessing
+
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    if context.get_start_method() == "forkserver":
+        context.set_forkserver_preload(PRELOAD)
+    return context
+
+
+def _terminate(pool: Any) -> None:
+    """End every worker of ``pool`` at once (SIGTERM) and wait for them."""
+    processes = list(getattr(pool, "_processes", {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    for process in processes:
+        process.join(10)
+        if process.is_alive():
+            process.kill()
+            process.join()
+
+
+def _worker_started(environment: dict[str, str]) -> None:
+    # the forkserver kept the environment of its own start; the caller's may have changed since
+    # (INERTIA_KIT_CACHE_DIR, ...); the working folder comes with the pool's preparation data
+    os.environ.clear()
+    os.environ.update(environment)
+    # Ctrl-C reaches the whole process group: the parent alone handles it
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _ended)
+
+
+def _ended(signum: int, frame: Any) -> None:
+    # unwinds through `finally` (the xacro sandbox kills its child there), then exits
+    raise SystemExit(128 + signum)
+
+
+def _call(work: Callable[[Any], Any], item: Any) -> tuple[str, Any]:
+    """In a worker: ``("ok", result)`` or ``("error", exception)``, both picklable."""
+    try:
+        return "ok", work(item)
+    except SystemExit:
+        os._exit(1)  # SIGTERM from the parent: nothing to send back
+    except Exception as error:
+        if os.environ.get("INERTIA_KIT_TRACEBACK"):
+            import traceback
+
+            traceback.print_exception(type(error), error, error.__traceback__, file=sys.stderr)
+        return "error", _picklable(error)
+
+
+def _picklable(error: Exception) -> Exception:
+    try:
+        pickle.loads(pickle.dumps(error))
+    except Exception:
+        return RuntimeError(f"{type(error).__name__}: {error}")
+    return error

@@ -1,0 +1,76 @@
+"""
+Work in worker processes (lint/parallel.py): results in input order, told in input order as
+soon as every earlier item is done, an exception or a dying worker failing its item only.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from inertia_kit.lint import parallel
+
+
+def slow_square(item: int) -> int:
+    """A module-level function, so that a worker process can import it."""
+    time.sleep(0.3 if item == 0 else 0.01)  # the first item finishes last
+    return item * item
+
+
+def troubled(item: int) -> int:
+    if item == 2:
+        raise ValueError("item 2 is bad")
+    if item == 4:
+        os._exit(3)  # the worker dies, as in a crash in C
+    return item * 10
+
+
+def failed(item: int, error: BaseException) -> str:
+    return f"{item}: {type(error).__name__}: {error}"
+
+
+@pytest.mark.parametrize("jobs", [1, 2, 3])
+def test_results_and_telling_in_input_order(jobs):
+    told, counts = [], []
+    results = parallel.run_ordered(
+        slow_square,
+        list(range(6)),
+        jobs,
+        failed=failed,
+        told=lambda index, result: told.append((index, result)),
+        done=lambda count, first: counts.append((count, first)),
+    )
+    assert results == [0, 1, 4, 9, 16, 25]
+    assert told == list(enumerate(results))
+    assert [count for count, _ in counts] == [1, 2, 3, 4, 5, 6]
+    assert counts[-1] == (6, 6)
+    if jobs > 1:  # item 0 was the slowest: others were done while it was not told
+        assert counts[0][1] == 0
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_an_exception_fails_its_item_only(jobs):
+    items = [0, 1, 2, 3]
+    results = parallel.run_ordered(troubled, items, jobs, failed=failed)
+    assert results == [0, 10, "2: ValueError: item 2 is bad", 30]
+
+
+def test_a_dying_worker_fails_its_item_only():
+    results = parallel.run_ordered(troubled, [0, 1, 3, 4, 5, 6], 2, failed=failed)
+    assert results == [0, 10, 30, "4: WorkerDied: its worker process died", 50, 60]
+
+
+def test_worker_count(monkeypatch):
+    monkeypatch.setattr(parallel, "usable_cores", lambda: 4)
+    assert parallel.worker_count(None, 10) == 4  # the default: the usable cores
+    assert parallel.worker_count(0, 10) == 4  # -j 0: the same
+    assert parallel.worker_count(None, 1) == 1  # one file: no worker process
+    assert parallel.worker_count(3, 2) == 2  # never more than the files
+    assert parallel.worker_count(1, 10) == 1
+
+
+def test_usable_cores_are_this_process_affinity():
+    expected = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None
+    assert parallel.usable_cores() == (expected or os.cpu_count() or 1)
