@@ -43,9 +43,15 @@ def writable_under(paths: Sequence[str]) -> Callable[[str], bool]:
 
 
 def add_noqa(
-    paths: Sequence[str], results: Sequence[FileResult], relint: Callable[[], list[FileResult]]
+    paths: Sequence[str],
+    results: Sequence[FileResult],
+    relint: Callable[[], list[FileResult]],
+    quiet: bool = False,
 ) -> int:
-    """Write the comments, lint again to prove them, say what was done; the exit code."""
+    """
+    Write the comments, lint again to prove them, say what was done (``quiet``: only errors and
+    the findings that still fail); the exit code.
+    """
     from inertia_kit.description.edits import write_all_atomic
     from inertia_kit.errors import InputError
     from inertia_kit.lint.add_noqa import plan
@@ -62,16 +68,19 @@ def add_noqa(
     total = sum(planned.added.values())
     where = "" if not total else f" in {_count(len(planned.added), 'file')}"
     extended = "" if not planned.extended else f" ({planned.extended} already there, given codes)"
-    click.echo(f"Added {_count(total, 'suppression comment')}{extended}{where}.", err=True)
-    for path, count in planned.added.items():
-        click.echo(f"  {os.path.relpath(path)}: {count}", err=True)
-    for finding, why in planned.skipped:
-        line = "" if finding.line is None else f":{finding.line}"
-        click.echo(f"note: {finding.path}{line}: {finding.code} not suppressed: {why}", err=True)
+    if not quiet:
+        click.echo(f"Added {_count(total, 'suppression comment')}{extended}{where}.", err=True)
+        for path, count in planned.added.items():
+            click.echo(f"  {os.path.relpath(path)}: {count}", err=True)
+        for finding, why in planned.skipped:
+            line = "" if finding.line is None else f":{finding.line}"
+            note = f"{finding.path}{line}: {finding.code} not suppressed: {why}"
+            click.echo(f"note: {note}", err=True)
     relint_results = relint() if writes else list(results)
     after = merge(relint_results)
     for level, text in after.messages:
-        click.echo(f"{level}: {text}", err=True)
+        if not (quiet and level == "note"):
+            click.echo(f"{level}: {text}", err=True)
     if after.errors:
         return 2
     if after.failing:

@@ -232,6 +232,13 @@ def lint(
     from inertia_kit.lint.paths import lint_paths
     from inertia_kit.lint.runner import FileResult
 
+    if add_noqa and output_file is not None:
+        click.echo(
+            "error: --output-file: --add-noqa writes comments into the files and prints no "
+            "report to write; drop one of them",
+            err=True,
+        )
+        return 2
     try:
         walk = discovery_from(discovery, ConfigFinder(config_path))
         if discovery.get("show_files"):
@@ -291,7 +298,7 @@ def lint(
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
 
-        return write_suppressions(paths, results, lint_all)
+        return write_suppressions(paths, results, lint_all, quiet=quiet)
     run = merge(results)
     for level, text in run.messages:
         if quiet and level == "note":

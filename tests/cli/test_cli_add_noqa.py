@@ -329,3 +329,20 @@ def test_an_unreadable_file_is_reported_and_the_others_adopt(tmp_path):
     assert f"error: {tmp_path / 'broken.urdf'}:2" in result.output
     assert "Added 1 suppression comment in 1 file." in result.output
     assert "ignore[IN002]" in (tmp_path / "r.urdf.xacro").read_text()
+
+
+def test_quiet_writes_the_comments_and_says_nothing(examples):
+    before = snapshot(examples)
+    result = lint("--add-noqa", "-q", examples)
+    assert result.exit_code == 0, result.output
+    assert snapshot(examples) != before  # written all the same
+    assert result.output == ""  # no "Added ...", no per-file list, no notes
+    assert lint(examples).exit_code == 0
+
+
+def test_output_file_has_no_report_to_write(examples, tmp_path):
+    before = snapshot(examples)
+    result = lint("--add-noqa", "-o", tmp_path / "report.txt", examples)
+    assert result.exit_code == 2
+    assert "--output-file" in result.output and "--add-noqa" in result.output
+    assert snapshot(examples) == before and not (tmp_path / "report.txt").exists()
