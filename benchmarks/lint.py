@@ -40,6 +40,7 @@ from pathlib import Path
 
 import lint_collada  # benchmarks/, this script's folder
 import numpy as np
+from import_budget import NOT_FOR_PLAIN_URDF, NOT_FOR_WARM_CACHE
 
 try:
     import resource
@@ -57,18 +58,6 @@ DENSITY = 2700.0  # aluminium, kg/m³
 START_UP_RATIO = 8.0
 WARM_RATIO = 2.0
 COLD = 0.400
-#: what no run may import: a plain URDF needs no xacro (nor what it pulls in), and a warm
-#: cache reads no mesh, so needs no mesh library
-NOT_FOR_PLAIN_URDF = (
-    "inertia_kit.description.xacro_expand",
-    "xacro",
-    "yaml",
-    "urllib.request",
-    "email",
-    "http.client",
-    "ssl",
-)
-NOT_FOR_WARM_CACHE = ("trimesh", "manifold3d", "collada")
 
 RECORD = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
 

@@ -14,6 +14,7 @@ from inertia_kit.cli.options import (
     HELP,
     SCALE,
     UsageError,
+    jobs_option,
     package_path_option,
     parse_xacro_args,
     parse_xacro_limits,
@@ -94,14 +95,9 @@ from inertia_kit.version import __version__
     "text, edited; for xacro, the fully expanded URDF, where links made by macros are filled "
     "too. OUT is always written; exit 1 if links were filled or refused, 0 if none needed it.",
 )
-@click.option(
-    "-j",
-    "--jobs",
-    type=click.IntRange(min=0),
-    default=None,
-    metavar="N",
-    help="Accepted as inertia-lint takes it; fill runs in one process, since it writes files "
-    "and robots that include one fragment must agree on what is written there.",
+@jobs_option(
+    "Accepted as inertia-lint takes it; fill runs in one process, since it writes files "
+    "and robots that include one fragment must agree on what is written there."
 )
 @package_path_option
 @xacro_arg_option

@@ -12,6 +12,7 @@ from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
     UsageError,
+    jobs_option,
     package_path_option,
     parse_xacro_args,
     parse_xacro_limits,
@@ -67,14 +68,9 @@ def _colour() -> bool | None:
     help="Write the report (findings, --statistics or --diff) to this file, atomically, "
     "instead of stdout.",
 )
-@click.option(
-    "-j",
-    "--jobs",
-    type=click.IntRange(min=0),
-    default=None,
-    metavar="N",
-    help="Lint in N processes, output in input order as with one [default: the usable cores "
-    "when there are several files; 0: the same]. --fix always runs in one.",
+@jobs_option(
+    "Lint in N processes, output in input order as with one [default: the usable cores "
+    "when there are several files; 0: the same]. --fix always runs in one."
 )
 @click.option(
     "--select",

@@ -50,6 +50,14 @@ class Number(click.ParamType):
 NUMBER = Number()
 SCALE = Number(scale=True)
 
+
+def jobs_option(help: str) -> Any:
+    """``-j/--jobs N`` (N ≥ 0), with the command's own help."""
+    return click.option(
+        "-j", "--jobs", type=click.IntRange(min=0), default=None, metavar="N", help=help
+    )
+
+
 package_path_option = click.option(
     "--package-path",
     "package_paths",

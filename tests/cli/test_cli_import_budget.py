@@ -7,10 +7,12 @@ every run costs every commit. ``benchmarks/lint.py`` times the same runs.
 from __future__ import annotations
 
 import ast
+import importlib.util
 import os
 import subprocess
 import sys
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
@@ -22,21 +24,20 @@ from inertia_kit.physics import mesh_cache
 
 ROOT = Path(__file__).resolve().parents[2]
 
-#: a plain URDF needs no xacro, nor what xacro and its YAML and ``$(find)`` support pull in
-NOT_FOR_PLAIN_URDF = (
-    "inertia_kit.description.xacro_expand",
-    "xacro",
-    "yaml",
-    "urllib.request",
-    "email",
-    "http.client",
-    "ssl",
-    # a file given by name with no exclude patterns compiles none; stdin's helpers wait for `-`
-    "pathspec",
-    "secrets",
-)
-#: a warm cache reads no mesh file, so it needs no mesh library
-NOT_FOR_WARM_CACHE = ("trimesh", "manifold3d", "collada")
+
+def _budget() -> ModuleType:
+    """benchmarks/import_budget.py: the benchmark and these tests check the same lists."""
+    path = ROOT / "benchmarks" / "import_budget.py"
+    spec = importlib.util.spec_from_file_location("import_budget", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+#: a plain URDF needs no xacro, nor what xacro and its YAML and ``$(find)`` support pull in; a
+#: warm cache reads no mesh file, so it needs no mesh library
+NOT_FOR_PLAIN_URDF = _budget().NOT_FOR_PLAIN_URDF
+NOT_FOR_WARM_CACHE = _budget().NOT_FOR_WARM_CACHE
 
 
 def lint_and_list(paths: list[Path], heavy: tuple[str, ...], env: dict[str, str]) -> list[str]:
