@@ -134,6 +134,8 @@ class MeshTable:
             return False
         small = sum(m.triangles for m in self.meshes if m.triangles <= KEPT_WHOLE)
         large = total - small
+        if large == 0:
+            return False  # every mesh is as small as a mesh is kept
         share = max(budget - small, 0) / large
         decimated = False
         for mesh in self.meshes:
@@ -171,11 +173,21 @@ def decimate(
 def _indexed(
     triangles: NDArray[np.float64],
 ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """A triangle soup (n, 3, 3) as shared vertices (v, 3) and faces (n, 3)."""
-    flat = np.ascontiguousarray(triangles.reshape(-1, 3))
-    # exact duplicates only: the file's own vertices, shared by their triangles
-    unique, inverse = np.unique(flat, axis=0, return_inverse=True)
-    return unique, inverse.reshape(-1, 3).astype(np.int64)
+    """
+    A triangle soup (n, 3, 3) as shared vertices (v, 3) and faces (n, 3): exact duplicates
+    merged (the file's own vertices, shared by their triangles).
+    """
+    flat = triangles.reshape(-1, 3)
+    # rows ranked one column at a time, each step a 1-D unique of int64 keys: several times
+    # faster than np.unique(axis=0), which sorts rows as 24-byte records (5 s for 1M triangles)
+    ids = np.zeros(len(flat), dtype=np.int64)
+    for column in flat.T:
+        _, rank = np.unique(column, return_inverse=True)
+        _, ids = np.unique(ids * (int(rank.max()) + 1) + rank, return_inverse=True)
+    # ids are dense ranks 0..v-1: any row of each rank stands for its vertex
+    rows = np.empty(int(ids.max()) + 1 if len(ids) else 0, dtype=np.int64)
+    rows[ids] = np.arange(len(ids))
+    return flat[rows], ids.reshape(-1, 3)
 
 
 def _dimensions(geometry: model.Geometry) -> tuple[float, ...] | None:
