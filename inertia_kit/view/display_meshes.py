@@ -128,24 +128,28 @@ class MeshTable:
         Decimate the meshes, each in proportion, so the page's triangles (each distinct mesh
         once) fit ``budget``; meshes of at most :data:`KEPT_WHOLE` triangles are kept as they
         are. Whether any mesh was decimated.
+
+        The decimation lands near each target, not on it, and meshes cut to the floor of
+        :data:`KEPT_WHOLE` keep more than their share: a few more passes, each aiming a little
+        lower, take the total under the budget (a page of only small meshes may stay over).
         """
-        total = sum(m.triangles for m in self.meshes)
-        if total <= budget:
-            return False
-        small = sum(m.triangles for m in self.meshes if m.triangles <= KEPT_WHOLE)
-        large = total - small
-        if large == 0:
-            return False  # every mesh is as small as a mesh is kept
-        share = max(budget - small, 0) / large
         decimated = False
-        for mesh in self.meshes:
-            if mesh.triangles <= KEPT_WHOLE:
-                continue
-            target = max(KEPT_WHOLE, int(mesh.triangles * share))
-            if target < mesh.triangles:
-                mesh.positions, mesh.indices = decimate(mesh.positions, mesh.indices, target)
-                decimated = True
+        for attempt in range(_PASSES):
+            total = sum(m.triangles for m in self.meshes)
+            small = sum(m.triangles for m in self.meshes if m.triangles <= KEPT_WHOLE)
+            if total <= budget or total == small:
+                break
+            share = max(budget - small, 0) / (total - small) * (1.0 - 0.02 * attempt)
+            for mesh in self.meshes:
+                target = max(KEPT_WHOLE, int(mesh.triangles * share))
+                if mesh.triangles > KEPT_WHOLE and target < mesh.triangles:
+                    mesh.positions, mesh.indices = decimate(mesh.positions, mesh.indices, target)
+                    decimated = True
         return decimated
+
+
+#: passes of :meth:`MeshTable.within_budget` at most
+_PASSES = 4
 
 
 def decimate(
