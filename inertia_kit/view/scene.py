@@ -19,7 +19,7 @@ import numpy as np
 
 from inertia_kit.analysis.links import LinkAnalysis, analyse
 from inertia_kit.description import model
-from inertia_kit.errors import InputError
+from inertia_kit.errors import ConfigError, InputError
 from inertia_kit.fixes.masses import DEFAULT_DENSITY
 from inertia_kit.lint.findings import Finding
 from inertia_kit.physics.formatting import fmt
@@ -64,7 +64,9 @@ def build_scene(
     if file.is_dir():
         raise InputError("is a folder: give one robot file (.urdf or .xacro)", file)
     if triangle_budget < 1:
-        raise ValueError(f"the triangle budget must be positive, got {triangle_budget}")
+        raise ConfigError(
+            f"the triangle budget must be a positive number of triangles, got {triangle_budget}"
+        )
     results = lint_paths(
         [file],
         config=config,

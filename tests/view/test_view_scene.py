@@ -15,7 +15,7 @@ from kit.moments import solid_box
 from kit.urdf import box, box_inertial, collision, inertial, joint, link, mesh, robot, visual
 
 from inertia_kit.cli import lint_main
-from inertia_kit.errors import InputError
+from inertia_kit.errors import ConfigError, InputError
 from inertia_kit.view.scene import build_scene
 
 PAN_TILT = EXAMPLES / "pan_tilt_description" / "urdf" / "pan_tilt.urdf"
@@ -146,6 +146,11 @@ def test_a_fragment_or_a_folder_is_no_robot(tmp_path):
         build_scene(EXAMPLES / "mrm_description" / "urdf" / "links_joints.xacro")
     with pytest.raises(InputError, match="folder"):
         build_scene(tmp_path)
+
+
+def test_a_budget_below_one_triangle_is_a_configuration_error(tmp_path):
+    with pytest.raises(ConfigError, match="triangle budget"):
+        _scene(tmp_path, robot(link("a")), triangle_budget=0)
 
 
 def test_select_and_ignore_are_lint_s(tmp_path):
