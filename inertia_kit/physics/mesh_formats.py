@@ -80,6 +80,35 @@ def read_surface(
       ``not-found`` for a missing file; ``unreadable`` for a corrupt file or an unsupported
       format; ``empty`` for a file with no triangles.
     """
+    file, suffix = _readable(path)
+    if suffix != ".stl":
+        triangles, unit_scale = _read_scene(file, suffix)
+        return integrate(triangles), triangles, unit_scale
+    try:
+        integrator = read_stl(file)
+    except OSError as error:
+        raise MeshError(
+            path, "unreadable", f"cannot read the file ({error}); check its permissions"
+        ) from None
+    except MeshError as error:
+        raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
+    triangles = None if integrator.closed else _read_scene(file, suffix)[0]
+    return integrator, triangles, 1.0
+
+
+def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
+    """
+    Every triangle of a mesh file, read as :func:`read_surface` reads it (STL too, through
+    trimesh), for a display: ``(n, 3, 3)`` triangles in the file's unit, and metres per unit.
+
+    Raises ``MeshError`` as :func:`read_surface` does.
+    """
+    file, suffix = _readable(path)
+    return _read_scene(file, suffix)
+
+
+def _readable(path: str | Path) -> tuple[Path, str]:
+    """The file and its lower-case suffix; ``MeshError`` when it is missing or not a mesh."""
     file = Path(path)
     if not file.is_file():
         what = "is a directory, not a mesh file" if file.is_dir() else "does not exist"
@@ -94,20 +123,7 @@ def read_surface(
             f"unsupported mesh format `{file.suffix or '(no suffix)'}`, expected one of "
             f"{', '.join(FORMATS)}; convert the mesh to STL",
         )
-
-    if suffix != ".stl":
-        triangles, unit_scale = _read_scene(file, suffix)
-        return integrate(triangles), triangles, unit_scale
-    try:
-        integrator = read_stl(file)
-    except OSError as error:
-        raise MeshError(
-            path, "unreadable", f"cannot read the file ({error}); check its permissions"
-        ) from None
-    except MeshError as error:
-        raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
-    triangles = None if integrator.closed else _read_scene(file, suffix)[0]
-    return integrator, triangles, 1.0
+    return file, suffix
 
 
 def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:

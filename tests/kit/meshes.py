@@ -171,3 +171,21 @@ def write_ascii_stl(path: Path, triangles) -> Path:
 def write_box_stl(path: Path, size) -> Path:
     """A closed box of ``size``, centred on the origin, as a binary STL file."""
     return write_binary_stl(path, box_triangles(size, low=np.multiply(size, -0.5)))
+
+
+def torus_triangles(major: float, minor: float, rings: int, sides: int) -> np.ndarray:
+    """
+    A closed torus about z (radii ``major`` and ``minor``) as ``2 · rings · sides`` triangles
+    (float64), wound counter-clockwise seen from outside: a large mesh with no poles.
+    """
+    u = 2 * np.pi * np.arange(rings) / rings
+    v = 2 * np.pi * np.arange(sides) / sides
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    radius = major + minor * np.cos(vv)
+    points = np.stack([radius * np.cos(uu), radius * np.sin(uu), minor * np.sin(vv)], axis=-1)
+    i, j = np.meshgrid(np.arange(rings), np.arange(sides), indexing="ij")
+    a, b = points[i, j], points[(i + 1) % rings, j]
+    c, d = points[(i + 1) % rings, (j + 1) % sides], points[i, (j + 1) % sides]
+    first = np.stack([a, b, c], axis=-2).reshape(-1, 3, 3)
+    second = np.stack([a, c, d], axis=-2).reshape(-1, 3, 3)
+    return np.concatenate([first, second])
