@@ -49,22 +49,6 @@ TEMPLATE = """\
 </html>
 """
 
-# first of all, so that an error in three.js or in our script is recorded too: what the browser
-# tests read (an empty #page-errors is a page without errors)
-CAPTURE = """\
-(function () {
-  var box = document.getElementById("page-errors");
-  function record(text) { box.hidden = false; box.textContent += text + "\\n"; }
-  window.onerror = function (message, source, line) { record("error: " + message + " (line " + line + ")"); };
-  window.addEventListener("unhandledrejection", function (event) { record("unhandled rejection: " + event.reason); });
-  var original = console.error;
-  console.error = function () {
-    record("console.error: " + Array.prototype.map.call(arguments, String).join(" "));
-    return original.apply(console, arguments);
-  };
-})();
-"""
-
 
 @cache
 def _asset(name: str) -> str:
@@ -94,7 +78,7 @@ def render_page(scene: dict[str, Any], *, title: str | None = None) -> str:
         version=html.escape(__version__),
         title=html.escape(title),
         css=_asset("page.css"),
-        capture=CAPTURE,
+        capture=_asset("capture.js"),
         scene=scene_json(scene),
         three=_asset("three.min.js"),
         app=_asset("page.js"),

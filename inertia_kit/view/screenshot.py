@@ -9,6 +9,7 @@ The network is off: every host resolves to nothing and every request goes to a d
 from __future__ import annotations
 
 import base64
+import contextlib
 import json
 import os
 import select
@@ -53,6 +54,7 @@ _STATE = """JSON.stringify({
   ready: document.body ? document.body.dataset.ready === "1" : false,
   errors: (document.getElementById("page-errors") || {}).textContent || "",
   projected: JSON.parse((document.getElementById("projected") || {}).textContent || "[]"),
+  panel: (document.getElementById("panel") || {}).innerText || "",
   firstFrameMs: Number(document.body ? document.body.dataset.firstFrameMs : NaN)
 })"""
 
@@ -69,6 +71,7 @@ class Capture:
     errors: str  # the page's captured errors (window.onerror, console.error): "" when none
     projected: list[dict[str, Any]] = field(default_factory=list)  # box centres, CSS pixels
     first_frame_ms: float = float("nan")  # from navigation start, the page's own clock
+    panel: str = ""  # the side panel's text
 
 
 def find_chromium() -> str | None:
@@ -83,7 +86,9 @@ def find_chromium() -> str | None:
     return None
 
 
-def capture(html: str | Path, *, width: int = 1280, height: int = 800, timeout: float = 60) -> Capture:
+def capture(
+    html: str | Path, *, width: int = 1280, height: int = 800, timeout: float = 60
+) -> Capture:
     """Open ``html`` (a file) in headless Chromium at ``width``×``height`` CSS pixels."""
     if os.name != "posix":
         raise RendererError("a PNG of the page needs Linux or macOS here (Chromium on a pipe)")
@@ -97,7 +102,9 @@ def capture(html: str | Path, *, width: int = 1280, height: int = 800, timeout: 
             return devtools.load(url, width, height)
 
 
-def screenshot(html: str | Path, png: str | Path, *, width: int = 1280, height: int = 800) -> Capture:
+def screenshot(
+    html: str | Path, png: str | Path, *, width: int = 1280, height: int = 800
+) -> Capture:
     """Render ``html`` to the PNG file ``png`` (written atomically); ``RendererError`` if not."""
     from inertia_kit.description.edits import write_atomic
 
@@ -136,21 +143,21 @@ class _DevTools:
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.PIPE,
-                preexec_fn=pipes_at_3_and_4,  # noqa: PLW1509 (no threads start browsers here)
+                preexec_fn=pipes_at_3_and_4,  # the pipes must be fds 3 and 4
                 close_fds=False,
             )
         except OSError as error:
-            raise RendererError(f"cannot run {self.command[0]}: {error.strerror}; {INSTALL}") from None
+            raise RendererError(
+                f"cannot run {self.command[0]}: {error.strerror}; {INSTALL}"
+            ) from None
         finally:
             os.close(to_browser)
             os.close(from_browser)
         return self
 
     def __exit__(self, *exc: object) -> None:
-        try:
+        with contextlib.suppress(RendererError):  # it may be gone already
             self._send("Browser.close")
-        except RendererError:
-            pass
         try:
             self.process.wait(timeout=5)
         except subprocess.TimeoutExpired:
@@ -181,6 +188,7 @@ class _DevTools:
             errors=state["errors"],
             projected=state["projected"],
             first_frame_ms=state["firstFrameMs"],
+            panel=state["panel"],
         )
 
     def _evaluate(self, expression: str, session: str) -> Any:

@@ -46,14 +46,20 @@ def solid_box(mass: float, size, com) -> dict:
     (sides √(6 (I_j + I_k − I_i) / m)): the box itself.
     """
     a, b, c = size
-    moments = [mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12]
+    moments = [
+        mass * (b * b + c * c) / 12,
+        mass * (a * a + c * c) / 12,
+        mass * (a * a + b * b) / 12,
+    ]
     order = sorted(range(3), key=lambda i: moments[i])
     principal = [moments[i] for i in order]
     axes = np.zeros((3, 3))
     for column, i in enumerate(order):
         axes[i, column] = 1.0
     i1, i2, i3 = principal
-    box = [math.sqrt(6 * (j + k - i) / mass) for i, j, k in ((i1, i2, i3), (i2, i1, i3), (i3, i1, i2))]
+    box = [
+        math.sqrt(6 * (j + k - i) / mass) for i, j, k in ((i1, i2, i3), (i2, i1, i3), (i3, i1, i2))
+    ]
     return {
         "mass": mass,
         "com": list(com),
