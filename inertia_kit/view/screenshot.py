@@ -72,6 +72,7 @@ class Capture:
     projected: list[dict[str, Any]] = field(default_factory=list)  # box centres, CSS pixels
     first_frame_ms: float = float("nan")  # from navigation start, the page's own clock
     panel: str = ""  # the side panel's text
+    result: Any = None  # what ``then`` gave
 
 
 def find_chromium() -> str | None:
@@ -87,9 +88,18 @@ def find_chromium() -> str | None:
 
 
 def capture(
-    html: str | Path, *, width: int = 1280, height: int = 800, timeout: float = 60
+    html: str | Path,
+    *,
+    width: int = 1280,
+    height: int = 800,
+    timeout: float = 60,
+    then: str | None = None,
 ) -> Capture:
-    """Open ``html`` (a file) in headless Chromium at ``width``×``height`` CSS pixels."""
+    """
+    Open ``html`` (a file) in headless Chromium at ``width``×``height`` CSS pixels. ``then``:
+    a JavaScript expression run once the page is ready (a click, a slider moved: the tests),
+    its value kept; the picture and the page's records are taken two frames after it.
+    """
     if os.name != "posix":
         raise RendererError("a PNG of the page needs Linux or macOS here (Chromium on a pipe)")
     browser = find_chromium()
@@ -99,7 +109,7 @@ def capture(
     with tempfile.TemporaryDirectory(prefix="inertia-kit-chromium-") as profile:
         command = [browser, *FLAGS, f"--user-data-dir={profile}", f"--window-size={width},{height}"]
         with _DevTools(command, timeout) as devtools:
-            return devtools.load(url, width, height)
+            return devtools.load(url, width, height, then)
 
 
 def screenshot(
@@ -168,7 +178,7 @@ class _DevTools:
         os.close(self.writer)
         os.close(self.reader)
 
-    def load(self, url: str, width: int, height: int) -> Capture:
+    def load(self, url: str, width: int, height: int, then: str | None) -> Capture:
         target = self._send("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self._send("Target.attachToTarget", {"targetId": target, "flatten": True})
         session_id = session["sessionId"]
@@ -182,6 +192,12 @@ class _DevTools:
             if time.monotonic() > self.deadline:
                 raise RendererError(f"the page did not draw its first frame in Chromium ({url})")
             time.sleep(0.05)
+        result = None
+        if then is not None and not state["errors"]:
+            result = self._evaluate(then, session_id)
+            two_frames = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(r)))"
+            self._evaluate(two_frames, session_id)
+            state = json.loads(self._evaluate(_STATE, session_id))
         shot = self._send("Page.captureScreenshot", {"format": "png"}, session_id)
         return Capture(
             png=base64.b64decode(shot["data"]),
@@ -189,13 +205,17 @@ class _DevTools:
             projected=state["projected"],
             first_frame_ms=state["firstFrameMs"],
             panel=state["panel"],
+            result=result,
         )
 
     def _evaluate(self, expression: str, session: str) -> Any:
-        result = self._send(
-            "Runtime.evaluate", {"expression": expression, "returnByValue": True}, session
-        )
-        return result.get("result", {}).get("value", "{}")
+        asked = {"expression": expression, "returnByValue": True, "awaitPromise": True}
+        result = self._send("Runtime.evaluate", asked, session)
+        if "exceptionDetails" in result:
+            details = result["exceptionDetails"]
+            text = details.get("exception", {}).get("description") or details.get("text")
+            raise RendererError(f"Chromium: {text}")
+        return result.get("result", {}).get("value")
 
     def _send(self, method: str, params: dict | None = None, session: str | None = None) -> dict:
         self.next_id += 1

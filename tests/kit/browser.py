@@ -18,11 +18,19 @@ NO_BROWSER = (
 )
 
 
-def open_page(html: Path, width: int = 1280, height: int = 800) -> Capture:
-    """Load ``html`` in headless Chromium with the network off; skip the test without one."""
+def open_page(html: Path, width: int = 1280, height: int = 800, then: str | None = None) -> Capture:
+    """
+    Load ``html`` in headless Chromium with the network off (``then``: JavaScript to run once
+    it is ready); skip the test without a Chromium.
+    """
     if find_chromium() is None:
         pytest.skip(NO_BROWSER)
-    return capture(html, width=width, height=height)
+    return capture(html, width=width, height=height, then=then)
+
+
+def boxes(loaded: Capture) -> dict[tuple[str, str], dict]:
+    """The page's projected boxes by (link, "declared" | "geometry")."""
+    return {(box["link"], box["kind"]): box for box in loaded.projected}
 
 
 def pixels(capture_: Capture):

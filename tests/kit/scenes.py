@@ -99,34 +99,42 @@ def finding(code: str, message: str, severity: str = "error", line: int = 7) -> 
     }
 
 
-def two_box_scene() -> dict:
+def two_box_scene(scale: float = 1.0) -> dict:
     """
     A base and an arm on a revolute joint, each a 0.2 m cube; the arm's declared box sits
-    0.5 m along x from its geometry box (a COM in the wrong place), and it has an error.
+    0.5 m along x from its geometry box (a COM in the wrong place), and it has an error. Every
+    length times ``scale``.
     """
-    size = (0.2, 0.2, 0.2)
+    size = (0.2 * scale,) * 3
     base_inertia = solid_box(2.0, size, (0, 0, 0))
     joint = {
         "name": "shoulder",
         "type": "revolute",
-        "origin": translation(0, 0, 0.4),
+        "origin": translation(0, 0, 0.4 * scale),
         "axis": [0, 0, 1],
         "lower": -1.0,
         "upper": 1.0,
     }
-    geometry = dict(solid_box(2.0, size, (0, 0, 0)), density=250.0, basis="test: a solid box")
+    density = 250.0 / scale**3
+    geometry = dict(solid_box(2.0, size, (0, 0, 0)), density=density, basis="a solid box")
     return {
         "format": 1,
         "robot": "two_boxes",
         "file": "robot.urdf",
         "links": [
-            link("base", declared=base_inertia, geometry=dict(base_inertia, density=250.0)),
+            link(
+                "base",
+                size=size,
+                declared=base_inertia,
+                geometry=dict(base_inertia, density=density),
+            ),
             link(
                 "arm",
                 "base",
                 joint=joint,
-                world=translation(0, 0, 0.4),
-                declared=solid_box(2.0, size, (0.5, 0, 0)),
+                world=translation(0, 0, 0.4 * scale),
+                size=size,
+                declared=solid_box(2.0, size, (0.5 * scale, 0, 0)),
                 geometry=geometry,
                 findings=[finding("IN020", "the COM is 0.5 m from the centroid </script> <!--")],
                 worst="error",

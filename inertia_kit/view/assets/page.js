@@ -2,7 +2,7 @@
  * inertia_kit/view/scene.py) with three.js. Z is up, as in URDF: the camera's up is +z, so the
  * robot's frames are used as they are. Everything the tests read is in the DOM:
  * #page-errors (errors, empty when none), body[data-ready="1"] after the first frame, and
- * #projected: each box's centre in CSS pixels, as JSON. */
+ * #projected: each box's centre and screen rectangle in CSS pixels, as JSON. */
 (function () {
   "use strict";
 
@@ -192,7 +192,11 @@
     var entry = links[record.name];
     addInertia(entry, record.declared, "declared", extent * 0.012);
     addInertia(entry, record.geometry, "geometry", extent * 0.012);
-    entry.boxes.forEach(function (box) { robotBounds.expandByObject(box.object); });
+  });
+  // Box3.expandByObject reads matrixWorld as it is: bring the new boxes' up to date first
+  world.updateMatrixWorld(true);
+  scene.links.forEach(function (record) {
+    links[record.name].boxes.forEach(function (box) { robotBounds.expandByObject(box.object); });
   });
 
   // --- forward kinematics (joint sliders) ------------------------------------------------------
@@ -345,7 +349,7 @@
       var bounds = new THREE.Box3();
       entry.visuals.concat(entry.boxes.map(function (b) { return b.object; })).concat(entry.markers).forEach(function (o) { bounds.expandByObject(o); });
       if (bounds.isEmpty()) bounds.setFromCenterAndSize(new THREE.Vector3().setFromMatrixPosition(entry.group.matrixWorld), new THREE.Vector3(0.1, 0.1, 0.1));
-      frame(bounds, 1.6);
+      frame(bounds, 1.3);
     } else {
       entry.card.scrollIntoView({ block: "nearest" });
     }
@@ -390,14 +394,22 @@
 
   function publishProjections() {
     var rect = renderer.domElement.getBoundingClientRect();
+    function toX(ndc) { return rect.left + ((ndc + 1) / 2) * rect.width; }
+    function toY(ndc) { return rect.top + ((1 - ndc) / 2) * rect.height; }
     var out = [];
     scene.links.forEach(function (record) {
       links[record.name].boxes.forEach(function (box) {
         var centre = new THREE.Vector3().setFromMatrixPosition(box.object.matrixWorld).project(camera);
+        var screen = new THREE.Box2(); // the box's 8 corners on the screen
+        for (var corner = 0; corner < 8; corner++) {
+          var point = new THREE.Vector3((corner & 1) - 0.5, ((corner >> 1) & 1) - 0.5, ((corner >> 2) & 1) - 0.5);
+          point.applyMatrix4(box.object.matrixWorld).project(camera);
+          screen.expandByPoint(new THREE.Vector2(toX(point.x), toY(point.y)));
+        }
         out.push({
           link: record.name, kind: box.kind,
-          x: rect.left + ((centre.x + 1) / 2) * rect.width,
-          y: rect.top + ((1 - centre.y) / 2) * rect.height,
+          x: toX(centre.x), y: toY(centre.y),
+          rect: [screen.min.x, screen.min.y, screen.max.x, screen.max.y],
           visible: Math.abs(centre.x) <= 1 && Math.abs(centre.y) <= 1 && centre.z < 1,
         });
       });
@@ -426,5 +438,5 @@
   window.addEventListener("resize", resize);
   jointSliders();
   resize(); // the aspect first: framing fits the narrower field of view
-  frame(robotBounds, 1.05);
+  frame(robotBounds, 1.15);
 })();
