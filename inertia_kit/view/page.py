@@ -1,6 +1,6 @@
 """
 One self-contained HTML file from a scene (:mod:`inertia_kit.view.scene`'s contract): three.js,
-our page script and style, and the scene as JSON, all inline. A Content-Security-Policy that
+our page scripts and style, and the scene as JSON, all inline. A Content-Security-Policy that
 allows inline scripts and styles and nothing else keeps the page from fetching anything, so it
 reads the same offline, from a CI artifact or a pull request.
 """
@@ -44,6 +44,8 @@ TEMPLATE = """\
 <script>
 {three}</script>
 <script>
+{panel}</script>
+<script>
 {app}</script>
 </body>
 </html>
@@ -81,5 +83,6 @@ def render_page(scene: dict[str, Any], *, title: str | None = None) -> str:
         capture=_asset("capture.js"),
         scene=scene_json(scene),
         three=_asset("three.min.js"),
+        panel=_asset("panel.js"),
         app=_asset("page.js"),
     )

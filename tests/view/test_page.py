@@ -71,8 +71,8 @@ def test_the_scene_round_trips_even_with_script_ends_in_its_strings():
     assert "</script>" in scene["links"][1]["findings"][0]["message"]
     elements = parse(render_page(scene))
     assert json.loads(elements.scripts["scene-data"]) == scene
-    # the four scripts (error capture, scene, three.js, the app), none cut short
-    assert len(elements.scripts) == 4
+    # the five scripts (error capture, scene, three.js, the panel, the app), none cut short
+    assert len(elements.scripts) == 5
     assert "OrbitControls" in elements.scripts["#2"]
 
 

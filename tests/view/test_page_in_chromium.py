@@ -122,3 +122,17 @@ def test_clicking_a_box_in_3d_selects_its_link_in_the_panel(page, loaded):
       return [...document.querySelectorAll(".link.selected")].map(e => e.dataset.link);
     }})()"""
     assert open_page(page, then=click).result == ["arm"]
+
+
+def test_an_error_in_the_page_is_recorded_and_fails_the_png(tmp_path):
+    from inertia_kit.view.screenshot import RendererError, screenshot
+
+    scene = two_box_scene()
+    del scene["meshes"]  # page.js reads scene.meshes: a TypeError
+    html = tmp_path / "broken.html"
+    html.write_text(render_page(scene), encoding="utf-8")
+    loaded = open_page(html)
+    assert "TypeError" in loaded.errors
+    with pytest.raises(RendererError, match=r"the page reported errors in Chromium: .*TypeError"):
+        screenshot(html, tmp_path / "broken.png")
+    assert not (tmp_path / "broken.png").exists()

@@ -40,34 +40,16 @@
     return geometry;
   }
 
-  // --- the page's elements -------------------------------------------------------------------
+  // --- the page's elements (panel.js) ---------------------------------------------------------
 
-  function element(tag, attributes, children) {
-    var node = document.createElement(tag);
-    Object.keys(attributes || {}).forEach(function (key) {
-      if (key === "text") node.textContent = attributes[key];
-      else node.setAttribute(key, attributes[key]);
-    });
-    (children || []).forEach(function (child) { if (child) node.appendChild(child); });
-    return node;
-  }
-
+  var element = InertiaKitPanel.element;
   var view = element("div", { id: "view" });
   var panel = element("div", { id: "panel" });
   var projected = element("pre", { id: "projected" });
   document.body.appendChild(view);
   document.body.appendChild(panel);
   document.body.appendChild(projected);
-  view.appendChild(element("div", { id: "legend" }, [
-    legendRow("swatch-declared", "declared inertia: equivalent box, ● COM"),
-    legendRow("swatch-geometry", "geometry's inertia: equivalent box (dashed), ● centroid"),
-    legendRow("swatch-visual", "visual geometry"),
-    legendRow("swatch-error", "link with an error"),
-  ]));
-
-  function legendRow(swatch, text) {
-    return element("div", {}, [element("i", { class: swatch }), element("span", { text: text })]);
-  }
+  view.appendChild(InertiaKitPanel.legend());
 
   // --- three.js set-up -----------------------------------------------------------------------
 
@@ -263,68 +245,10 @@
     view.appendChild(box);
   }
 
-  // --- side panel ------------------------------------------------------------------------------
+  // --- side panel (panel.js) ------------------------------------------------------------------
 
-  function number(value, unit) {
-    if (value === null || value === undefined) return "—";
-    var text = Math.abs(value) >= 1e4 || (value !== 0 && Math.abs(value) < 1e-3) ? value.toExponential(3) : value.toPrecision(4);
-    return unit ? text + " " + unit : text;
-  }
-
-  function row(label, value, kind) {
-    return element("tr", {}, [element("td", { text: label }), element("td", { text: value, class: kind || "" })]);
-  }
-
-  function inertiaRows(inertia, kind, label) {
-    if (!inertia) return [row(label, "none", kind)];
-    var rows = [
-      row(label + " mass", number(inertia.mass, "kg"), kind),
-      row(label + " moments", inertia.moments.map(function (m) { return number(m); }).join(", ") + " kg·m²", kind),
-    ];
-    if (inertia.box) rows.push(row(label + " box", inertia.box.map(function (s) { return number(s); }).join(" × ") + " m", kind));
-    if (inertia.problem) rows.push(row(label + " box", inertia.problem, "problem"));
-    if (kind === "geometry" && inertia.basis) rows.push(row("basis", inertia.basis, kind));
-    return rows;
-  }
-
-  function findingItem(finding) {
-    var where = finding.file ? finding.file + (finding.line ? ":" + finding.line : "") + (finding.column ? ":" + finding.column : "") : "";
-    return element("li", {}, [
-      element("span", { class: "code " + finding.severity, text: finding.code + " " }),
-      element("span", { text: finding.message }),
-      where ? element("div", { class: "where", text: where }) : null,
-    ]);
-  }
-
-  function card(record) {
-    var heading = element("h2", {}, [element("span", { text: record.name })]);
-    if (record.worst) heading.appendChild(element("span", { class: "badge " + record.worst, text: record.worst }));
-    var table = element("table", {}, [].concat(
-      inertiaRows(record.declared, "declared", "declared"),
-      inertiaRows(record.geometry, "geometry", "geometry"),
-      [row("implied density", number(record.implied_density, "kg/m³"))]
-    ));
-    var findings = element("ul", { class: "findings" }, (record.findings || []).map(findingItem));
-    var node = element("div", { class: "link" + (record.worst ? " worst-" + record.worst : ""), "data-link": record.name }, [heading, table, findings]);
-    node.addEventListener("click", function () { select(record.name, true); });
-    return node;
-  }
-
-  panel.appendChild(element("h1", { text: scene.robot + ": inertia review" }));
-  panel.appendChild(element("div", { class: "file", text: scene.file }));
-  if (scene.budget && scene.budget.decimated) {
-    panel.appendChild(element("div", { class: "file", text: "meshes decimated for display to " + scene.budget.triangles + " triangles (mass properties use the originals)" }));
-  }
-  if ((scene.findings_elsewhere || []).length) {
-    panel.appendChild(element("div", { class: "link" }, [
-      element("h2", { text: "robot and joints" }),
-      element("ul", { class: "findings" }, scene.findings_elsewhere.map(findingItem)),
-    ]));
-  }
-  scene.links.forEach(function (record) {
-    links[record.name].card = card(record);
-    panel.appendChild(links[record.name].card);
-  });
+  var cards = InertiaKitPanel.fill(panel, scene, function (name) { select(name, true); });
+  scene.links.forEach(function (record) { links[record.name].card = cards[record.name]; });
 
   // --- selection -------------------------------------------------------------------------------
 
