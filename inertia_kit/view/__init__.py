@@ -1,6 +1,12 @@
 """
-The review page (``inertia-kit view``): every link's declared inertia and the one its geometry
-implies, drawn as equivalent boxes over the robot, with the findings beside them, in one
-self-contained offline HTML file (:mod:`.page`), and a PNG of it where a headless Chromium is
-installed (:mod:`.screenshot`). At the level of ``fill``: it may import lint, report and below.
+view: the review page of ``inertia-kit view``, every link's inertia drawn over its geometry.
+At the level of ``fill``: it may use lint, report and every layer below; ``cli`` calls it.
+
+- ``scene``: ``build_scene(path, ...)``, the page's data (the scene contract): the robot linted
+  as ``inertia-lint`` lints it, each link with its drawing, its declared and geometry-derived
+  mass properties as equivalent boxes, and its findings.
+- ``boxes``: the equivalent uniform box of mass properties (principal axes and sides).
+- ``pose``: each link's world frame in the zero pose.
+- ``display_meshes``: each shape as a triangle mesh in its own frame, distinct meshes carried
+  once, decimated for display over a triangle budget.
 """
