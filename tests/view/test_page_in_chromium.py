@@ -136,3 +136,13 @@ def test_an_error_in_the_page_is_recorded_and_fails_the_png(tmp_path):
     with pytest.raises(RendererError, match=r"the page reported errors in Chromium: .*TypeError"):
         screenshot(html, tmp_path / "broken.png")
     assert not (tmp_path / "broken.png").exists()
+
+
+def test_a_joint_whose_limits_exclude_zero_still_opens_in_the_zero_pose(tmp_path):
+    scene = two_box_scene()
+    scene["links"][1]["joint"].update(lower=0.5, upper=1.0)
+    html = tmp_path / "review.html"
+    html.write_text(render_page(scene), encoding="utf-8")
+    read = """(() => { const s = document.querySelector('#joints input[data-joint="shoulder"]');
+                       return [s.min, s.max, s.value]; })()"""
+    assert open_page(html, then=read).result == ["0", "1", "0"]

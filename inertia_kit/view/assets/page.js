@@ -219,19 +219,23 @@
   function jointSliders() {
     var moving = scene.links.filter(function (r) { return r.joint && MOVING[r.joint.type]; });
     if (!moving.length) return;
-    var box = element("div", { id: "joints" });
+    // open when the sliders do not hide the robot (and the picture --png takes)
+    var box = element("details", { id: "joints" }, [element("summary", { text: "joints (" + moving.length + ")" })]);
+    box.open = moving.length <= 8;
     moving.forEach(function (record) {
       var joint = record.joint;
       var lower = joint.lower, upper = joint.upper;
       if (joint.type === "continuous" || lower === null || upper === null || !(upper > lower)) {
         if (joint.type === "prismatic") { lower = -extent / 2; upper = extent / 2; } else { lower = -Math.PI; upper = Math.PI; }
       }
-      var start = Math.min(Math.max(0, lower), upper);
-      angles[joint.name] = start;
-      var value = element("span", { text: start.toFixed(3) });
+      // the page opens in the zero pose: the range takes in 0 even where the limits do not
+      lower = Math.min(lower, 0);
+      upper = Math.max(upper, 0);
+      angles[joint.name] = 0;
+      var value = element("span", { text: (0).toFixed(3) });
       var slider = element("input", {
         type: "range", min: String(lower), max: String(upper), step: String((upper - lower) / 500),
-        value: String(start), "data-joint": joint.name,
+        value: "0", "data-joint": joint.name,
       });
       slider.addEventListener("input", function () {
         angles[joint.name] = parseFloat(slider.value);

@@ -67,7 +67,8 @@ var InertiaKitPanel = (function () {
     var table = element("table", {}, [].concat(
       inertiaRows(record.declared, "declared"),
       inertiaRows(record.geometry, "geometry"),
-      [row("implied density", number(record.implied_density, "kg/m³"))]
+      [row("implied density", number(record.implied_density, "kg/m³"))],
+      record.shown === "collision" ? [row("drawn", "collision geometry (no visual)")] : []
     ));
     var findings = element("ul", { class: "findings" }, (record.findings || []).map(findingItem));
     var classes = "link" + (record.worst ? " worst-" + record.worst : "");
