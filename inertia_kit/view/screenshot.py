@@ -147,16 +147,20 @@ class _DevTools:
             os.dup2(reading, 3)
             os.dup2(writing, 4)
 
+        # Chromium's log (GL driver messages on every read-back) to a file: a pipe nobody reads
+        # while we wait for the page would fill and stop the browser
+        self.log = tempfile.TemporaryFile()
         try:
             self.process = subprocess.Popen(
                 self.command,
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
-                stderr=subprocess.PIPE,
+                stderr=self.log,
                 preexec_fn=pipes_at_3_and_4,  # the pipes must be fds 3 and 4
                 close_fds=False,
             )
         except OSError as error:
+            self.log.close()
             raise RendererError(
                 f"cannot run {self.command[0]}: {error.strerror}; {INSTALL}"
             ) from None
@@ -173,8 +177,7 @@ class _DevTools:
         except subprocess.TimeoutExpired:
             self.process.kill()
             self.process.wait()
-        if self.process.stderr is not None:
-            self.process.stderr.close()
+        self.log.close()
         os.close(self.writer)
         os.close(self.reader)
 
@@ -248,7 +251,10 @@ class _DevTools:
         return json.loads(message)
 
     def _stderr(self) -> str:
-        if self.process.poll() is None or self.process.stderr is None:
+        try:
+            self.process.wait(timeout=2)  # it closed the pipe: it is exiting
+        except subprocess.TimeoutExpired:
             return "no message"
-        lines = self.process.stderr.read().decode(errors="replace").strip().splitlines()
+        self.log.seek(0)
+        lines = self.log.read().decode(errors="replace").strip().splitlines()
         return lines[-1] if lines else f"exit code {self.process.returncode}"

@@ -35,5 +35,5 @@ def test_a_browser_that_exits_at_once(page, monkeypatch, tmp_path):
     false.write_text("#!/bin/sh\necho 'fake-chromium: broken' >&2\nexit 3\n")
     false.chmod(0o755)
     monkeypatch.setenv("INERTIA_KIT_CHROMIUM", str(false))
-    with pytest.raises(RendererError, match="exited early"):
+    with pytest.raises(RendererError, match="exited early: fake-chromium: broken"):
         capture(page, timeout=20)
