@@ -73,6 +73,7 @@ class Capture:
     first_frame_ms: float = float("nan")  # from navigation start, the page's own clock
     panel: str = ""  # the side panel's text
     result: Any = None  # what ``then`` gave
+    requests: list[str] = field(default_factory=list)  # every URL the page asked for, itself too
 
 
 def find_chromium() -> str | None:
@@ -133,6 +134,7 @@ class _DevTools:
         self.deadline = time.monotonic() + timeout
         self.next_id = 0
         self.buffer = b""
+        self.requests: list[str] = []  # Network.requestWillBeSent, as they come
 
     def __enter__(self) -> _DevTools:
         to_browser, self.writer = os.pipe()
@@ -187,6 +189,7 @@ class _DevTools:
         session_id = session["sessionId"]
         metrics = {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": False}
         self._send("Emulation.setDeviceMetricsOverride", metrics, session_id)
+        self._send("Network.enable", {}, session_id)
         self._send("Page.navigate", {"url": url}, session_id)
         while True:
             state = json.loads(self._evaluate(_STATE, session_id))
@@ -209,6 +212,7 @@ class _DevTools:
             first_frame_ms=state["firstFrameMs"],
             panel=state["panel"],
             result=result,
+            requests=list(self.requests),
         )
 
     def _evaluate(self, expression: str, session: str) -> Any:
@@ -231,6 +235,8 @@ class _DevTools:
             raise RendererError(f"{self.command[0]} exited early: {self._stderr()}") from None
         while True:
             reply = self._receive()
+            if reply.get("method") == "Network.requestWillBeSent":
+                self.requests.append(reply["params"]["request"]["url"])
             if reply.get("id") == self.next_id:
                 if "error" in reply:
                     raise RendererError(f"Chromium: {method}: {reply['error'].get('message')}")

@@ -30,9 +30,21 @@ def width(box) -> float:
     return box["rect"][2] - box["rect"][0]
 
 
-def test_no_errors_and_a_first_frame(loaded):
+def test_no_errors_a_first_frame_and_no_request_but_the_page(page, loaded):
     assert loaded.errors == ""
     assert math.isfinite(loaded.first_frame_ms) and loaded.first_frame_ms > 0
+    assert loaded.requests == [page.resolve().as_uri()]
+
+
+def test_a_request_would_be_seen(tmp_path):
+    # the check above can fail: a page that asks for an image is caught asking (and the CSP
+    # and the dead network refuse it)
+    html = tmp_path / "review.html"
+    text = render_page(two_box_scene()).replace(
+        '<pre id="page-errors"', '<img src="https://example.com/x.png"><pre id="page-errors"'
+    )
+    html.write_text(text, encoding="utf-8")
+    assert "https://example.com/x.png" in open_page(html).requests
 
 
 def test_each_box_shows_its_colour_at_its_centre(loaded):
