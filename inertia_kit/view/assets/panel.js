@@ -1,0 +1,105 @@
+/* inertia-kit review page: the page's HTML elements and the side panel (each link's numbers and
+ * findings), built with the DOM only (no markup strings: every name and message is text).
+ * page.js, which draws the scene, uses it through the global InertiaKitPanel. */
+var InertiaKitPanel = (function () {
+  "use strict";
+
+  function element(tag, attributes, children) {
+    var node = document.createElement(tag);
+    Object.keys(attributes || {}).forEach(function (key) {
+      if (key === "text") node.textContent = attributes[key];
+      else node.setAttribute(key, attributes[key]);
+    });
+    (children || []).forEach(function (child) { if (child) node.appendChild(child); });
+    return node;
+  }
+
+  function legendRow(swatch, text) {
+    return element("div", {}, [element("i", { class: swatch }), element("span", { text: text })]);
+  }
+
+  function legend() {
+    return element("div", { id: "legend" }, [
+      legendRow("swatch-declared", "declared inertia: equivalent box, ● COM"),
+      legendRow("swatch-geometry", "geometry's inertia: equivalent box (dashed), ● centroid"),
+      legendRow("swatch-visual", "visual geometry"),
+      legendRow("swatch-error", "link with an error"),
+    ]);
+  }
+
+  function number(value, unit) {
+    if (value === null || value === undefined) return "—";
+    var big = Math.abs(value) >= 1e4 || (value !== 0 && Math.abs(value) < 1e-3);
+    var text = big ? value.toExponential(3) : value.toPrecision(4);
+    return unit ? text + " " + unit : text;
+  }
+
+  function row(label, value, kind) {
+    return element("tr", {}, [element("td", { text: label }), element("td", { text: value, class: kind || "" })]);
+  }
+
+  function inertiaRows(inertia, kind) {
+    if (!inertia) return [row(kind, "none", kind)];
+    var rows = [
+      row(kind + " mass", number(inertia.mass, "kg"), kind),
+      row(kind + " moments", inertia.moments.map(function (m) { return number(m); }).join(", ") + " kg·m²", kind),
+    ];
+    if (inertia.box) rows.push(row(kind + " box", inertia.box.map(function (s) { return number(s); }).join(" × ") + " m", kind));
+    if (inertia.problem) rows.push(row(kind + " box", inertia.problem, "problem"));
+    if (kind === "geometry" && inertia.basis) rows.push(row("basis", inertia.basis, kind));
+    return rows;
+  }
+
+  function findingItem(finding) {
+    var where = finding.file
+      ? finding.file + (finding.line ? ":" + finding.line : "") + (finding.column ? ":" + finding.column : "")
+      : "";
+    return element("li", {}, [
+      element("span", { class: "code " + finding.severity, text: finding.code + " " }),
+      element("span", { text: finding.message }),
+      where ? element("div", { class: "where", text: where }) : null,
+    ]);
+  }
+
+  function card(record, onClick) {
+    var heading = element("h2", {}, [element("span", { text: record.name })]);
+    if (record.worst) heading.appendChild(element("span", { class: "badge " + record.worst, text: record.worst }));
+    var table = element("table", {}, [].concat(
+      inertiaRows(record.declared, "declared"),
+      inertiaRows(record.geometry, "geometry"),
+      [row("implied density", number(record.implied_density, "kg/m³"))],
+      record.shown === "collision" ? [row("drawn", "collision geometry (no visual)")] : []
+    ));
+    var findings = element("ul", { class: "findings" }, (record.findings || []).map(findingItem));
+    var classes = "link" + (record.worst ? " worst-" + record.worst : "");
+    var node = element("div", { class: classes, "data-link": record.name }, [heading, table, findings]);
+    node.addEventListener("click", function () { onClick(record.name); });
+    return node;
+  }
+
+  // the panel's content; returns each link's card by name (onClick(name) when one is clicked)
+  function fill(panel, scene, onClick) {
+    panel.appendChild(element("h1", { text: scene.robot + ": inertia review" }));
+    panel.appendChild(element("div", { class: "file", text: scene.file }));
+    if (scene.budget && scene.budget.decimated) {
+      panel.appendChild(element("div", {
+        class: "file",
+        text: "meshes decimated for display to " + scene.budget.triangles + " triangles (mass properties use the originals)",
+      }));
+    }
+    if ((scene.findings_elsewhere || []).length) {
+      panel.appendChild(element("div", { class: "link" }, [
+        element("h2", { text: "robot and joints" }),
+        element("ul", { class: "findings" }, scene.findings_elsewhere.map(findingItem)),
+      ]));
+    }
+    var cards = {};
+    scene.links.forEach(function (record) {
+      cards[record.name] = card(record, onClick);
+      panel.appendChild(cards[record.name]);
+    });
+    return cards;
+  }
+
+  return { element: element, legend: legend, fill: fill };
+})();
