@@ -9,4 +9,9 @@ At the level of ``fill``: it may use lint, report and every layer below; ``cli``
 - ``pose``: each link's world frame in the zero pose.
 - ``display_meshes``: each shape as a triangle mesh in its own frame, distinct meshes carried
   once, decimated for display over a triangle budget.
+- ``page``: ``render_page(scene)``, the one self-contained HTML file (a strict CSP, the scene as
+  JSON, the vendored three.js and our scripts inline: ``assets/``, re-vendored by
+  ``scripts/vendor_three.py``).
+- ``screenshot``: the page in headless Chromium over the DevTools pipe: a PNG (``--png``), and
+  for the tests its errors, its box positions and every URL it asked for.
 """

@@ -7,21 +7,14 @@ Skipped until inertia_kit.view.scene (the scene builder) is installed.
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import re
 
-import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
 from kit.browser import open_page
 
 from inertia_kit.cli import main
-
-pytestmark = pytest.mark.skipif(
-    importlib.util.find_spec("inertia_kit.view.scene") is None,
-    reason="inertia_kit.view.scene (the scene builder) is not merged yet",
-)
 
 MRM = EXAMPLES / "mrm_description/urdf/mrm.xacro"
 PAN_TILT = EXAMPLES / "pan_tilt_description/urdf/pan_tilt.urdf"
@@ -60,6 +53,11 @@ def test_mrm_boxes_differ_and_its_findings_are_in_the_panel(tmp_path):
     assert codes
     for code in codes:
         assert code in loaded.panel
+    # what to do, as inertia-lint's help line says it, next to each finding that has one
+    helps = [f["help"] for link in scene["links"] for f in link["findings"] if f.get("help")]
+    assert helps
+    for text in helps:
+        assert "help: " + text[:60] in loaded.panel
     for link in scene["links"]:
         assert link["name"] in loaded.panel
 

@@ -57,6 +57,8 @@ var InertiaKitPanel = (function () {
     return element("li", {}, [
       element("span", { class: "code " + finding.severity, text: finding.code + " " }),
       element("span", { text: finding.message }),
+      // what to do, as inertia-lint's `help:` line says it
+      finding.help ? element("div", { class: "help", text: "help: " + finding.help }) : null,
       where ? element("div", { class: "where", text: where }) : null,
     ]);
   }
