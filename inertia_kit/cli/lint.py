@@ -14,6 +14,7 @@ from inertia_kit.cli.options import (
     UsageError,
     jobs_option,
     package_path_option,
+    parse_codes,
     parse_xacro_args,
     parse_xacro_limits,
     xacro_arg_option,
@@ -28,11 +29,6 @@ if TYPE_CHECKING:
 OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
 #: formats printed file by file as the files are linted (json and sarif are one document)
 STREAMED = ("full", "concise", "github")
-
-
-def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
-    """``--select IN01,IN020 --select IN002`` → ``("IN01", "IN020", "IN002")``."""
-    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
 
 
 def _colour() -> bool | None:
@@ -266,8 +262,8 @@ def lint(
         return lint_paths(
             paths,
             config=config_path,
-            select=_codes(select),
-            ignore=_codes(ignore),
+            select=parse_codes(select),
+            ignore=parse_codes(ignore),
             engines=engines or None,
             fail_on=None if fail_on is None else Severity.parse(fail_on),
             xacro_args=parse_xacro_args(xacro_args),

@@ -86,6 +86,11 @@ xacro_limit_option = click.option(
 )
 
 
+def parse_codes(values: tuple[str, ...]) -> tuple[str, ...]:
+    """``--select IN01,IN020 --select IN002`` → ``("IN01", "IN020", "IN002")``."""
+    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
+
+
 def parse_xacro_limits(values: tuple[str, ...]) -> dict[str, float]:
     """``--xacro-limit timeout=60,memory=2048`` as ``{"timeout": 60.0, "memory": 2048}``."""
     from inertia_kit.description.xacro_limits import parse_limits

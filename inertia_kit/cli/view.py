@@ -12,6 +12,7 @@ from inertia_kit.cli.options import (
     HELP,
     UsageError,
     package_path_option,
+    parse_codes,
     parse_xacro_args,
     parse_xacro_limits,
     xacro_arg_option,
@@ -27,10 +28,6 @@ def _size(value: str) -> tuple[int, int]:
     if not match or not (16 <= int(match[1]) <= 8192 and 16 <= int(match[2]) <= 8192):
         raise UsageError(f"--png-size takes WIDTHxHEIGHT in pixels, 16 to 8192 each, got {value!r}")
     return int(match[1]), int(match[2])
-
-
-def _codes(values: tuple[str, ...]) -> tuple[str, ...]:
-    return tuple(code.strip() for value in values for code in value.split(",") if code.strip())
 
 
 @click.command("view", cls=GuardedCommand, context_settings=HELP)
@@ -128,9 +125,9 @@ def view(
 
     try:
         size = _size(png_size) if png else None
-        rules = {"select": _codes(select)} if select else {}
+        rules = {"select": parse_codes(select)} if select else {}
         if ignore:
-            rules["ignore"] = _codes(ignore)
+            rules["ignore"] = parse_codes(ignore)
         scene = build_scene(
             robot,
             package_paths=package_paths,
