@@ -6,9 +6,7 @@ every format and mode; bad values are usage errors; the mesh cache is shared saf
 from __future__ import annotations
 
 import json
-import os
 import shutil
-import sysconfig
 import time
 import zlib
 from pathlib import Path
@@ -16,6 +14,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 from kit import EXAMPLES
+from test_real_robots import PACKAGES
 
 from inertia_kit.cli.lint import lint_command
 from inertia_kit.physics.mesh_cache import RACY_SECONDS
@@ -113,24 +112,10 @@ def test_many_workers_fill_a_cold_mesh_cache_with_whole_entries(tmp_path, monkey
     assert lint("-j", "8", "--output-format", "json", "pan_tilt") == runs["1"]  # warm
 
 
-ROBOT_PACKAGES = {
-    "pybullet_data": lambda: __import__("pybullet_data").getDataPath(),
-    "rtbdata": lambda: os.path.dirname(__import__("rtbdata").__file__),
-    "example-robot-data": lambda: os.path.join(
-        sysconfig.get_paths()["purelib"], "cmeel.prefix", "share", "example-robot-data"
-    ),
-}
-
-
 @pytest.mark.slow
-@pytest.mark.parametrize("package", sorted(ROBOT_PACKAGES))
+@pytest.mark.parametrize("package", sorted(PACKAGES))
 def test_two_jobs_print_what_one_prints_on_installed_robot_packages(package, tmp_path, monkeypatch):
-    try:
-        folder = ROBOT_PACKAGES[package]()
-    except ImportError:
-        pytest.skip(f"{package} is not installed")
-    if not os.path.isdir(folder):
-        pytest.skip(f"{package} is not installed")
+    folder = str(PACKAGES[package]())  # skips when the package is not installed
     monkeypatch.setenv("INERTIA_KIT_CACHE_DIR", str(tmp_path / "cache"))
     for mode in (("--output-format", "concise"), ("--output-format", "json")):
         one = lint("-j", "1", *mode, "--package-path", folder, folder)
