@@ -206,17 +206,13 @@ def _joint_record(joint: model.Joint) -> dict[str, Any]:
     }
 
 
+#: what the panel shows of a finding: the keys of its JSON (inertia-lint --output-format json)
+_FINDING_KEYS = ("code", "name", "severity", "message", "help", "file", "line", "column")
+
+
 def _finding_record(finding: Finding) -> dict[str, Any]:
-    return {
-        "code": finding.code,
-        "name": finding.name,
-        "severity": str(finding.severity),
-        "message": finding.message,
-        "help": finding.help,
-        "file": finding.path,
-        "line": finding.line,
-        "column": finding.column,
-    }
+    data = finding.to_json()
+    return {key: data[key] for key in _FINDING_KEYS}
 
 
 def _finite(value: Any) -> float | None:

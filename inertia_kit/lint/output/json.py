@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
-from inertia_kit.lint.findings import Finding
+from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.output.common import UNLINTED, dumps, finite, unlinted_name
 
 if TYPE_CHECKING:
@@ -24,20 +24,14 @@ def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalEr
 
 
 def _unlinted(error: InputError | InternalError) -> dict[str, Any]:
-    # the keys of a finding, so that a reader of findings reads these too
-    return {
-        "code": UNLINTED,
-        "name": unlinted_name(error),
-        "severity": "error",
-        "message": error.message,
-        "file": error.path,
-        "line": error.line,
-        "column": error.column,
-        "link": None,
-        "joint": None,
-        "expected": None,
-        "help": None,
-        "fix": None,
-        "unfixable": None,
-        "macro": None,
-    }
+    # a finding's JSON, so that a reader of findings reads these too
+    unlinted = Finding(
+        path=error.path,  # type: ignore[arg-type]  # null when the error names no file
+        line=error.line,
+        column=error.column,
+        code=UNLINTED,
+        name=unlinted_name(error),
+        severity=Severity.ERROR,
+        message=error.message,
+    )
+    return finite(unlinted.to_json())
