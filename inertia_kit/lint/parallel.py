@@ -10,7 +10,9 @@ worker turns into an exit through ``finally`` blocks, so that a xacro expansion'
 
 A worker that dies (a crash in C, out of memory) breaks the pool; the files not yet done are
 then tried again one at a time, each in a pool of its own, so that only the file that kills
-its worker gets the error.
+its worker gets the error. Where worker processes cannot be started at all (no POSIX
+semaphores, as in some containers and serverless sandboxes: ``OSError`` "Function not
+implemented"), the files are worked on in this process, with the same results.
 """
 
 from __future__ import annotations
@@ -82,7 +84,10 @@ def run_ordered(
         for index in pending:
             finish(index, _guarded(work, items[index], failed))
         return [results[i] for i in range(len(items))]
-    broken = _pooled(work, items, pending, jobs, failed, finish)
+    try:
+        broken = _pooled(work, items, pending, jobs, failed, finish)
+    except _NoWorkers:
+        return run_ordered(work, items, 1, failed=failed, told=told, done=done)
     for index in broken:  # one at a time: the file that kills its worker is the one told
         if _pooled(work, items, [index], 1, failed, finish):
             finish(index, failed(items[index], WorkerDied("its worker process died")))
@@ -110,11 +115,18 @@ def _pooled(
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
 
-    pool = ProcessPoolExecutor(
-        jobs, mp_context=_context(), initializer=_worker_started, initargs=(dict(os.environ),)
-    )
+    try:
+        pool = ProcessPoolExecutor(
+            jobs, mp_context=_context(), initializer=_worker_started, initargs=(dict(os.environ),)
+        )
+    except (OSError, ImportError, NotImplementedError) as error:
+        raise _NoWorkers from error
     try:
         futures = {pool.submit(_call, work, items[i]): i for i in indices}
+    except OSError as error:  # the worker processes could not be started (nothing ran yet)
+        _terminate(pool)
+        raise _NoWorkers from error
+    try:
         left = set(futures)
         broken = False
         while left:
@@ -138,6 +150,10 @@ def _pooled(
     except BaseException:  # Ctrl-C: end the workers (and their xacro children), then exit
         _terminate(pool)
         raise
+
+
+class _NoWorkers(Exception):
+    """This system cannot start worker processes (the pool's locks or processes)."""
 
 
 def _context() -> Any:

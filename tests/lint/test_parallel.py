@@ -74,3 +74,38 @@ def test_worker_count(monkeypatch):
 def test_usable_cores_are_this_process_affinity():
     expected = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else None
     assert parallel.usable_cores() == (expected or os.cpu_count() or 1)
+
+
+def in_this_process(item: int) -> tuple[int, int]:
+    return item, os.getpid()
+
+
+def test_without_posix_semaphores_the_items_are_worked_on_in_this_process(monkeypatch):
+    """Some containers and serverless sandboxes have no sem_open: the run must not fail."""
+    import multiprocessing.synchronize
+
+    def unavailable(*args, **kwargs):
+        raise OSError(38, "Function not implemented")
+
+    monkeypatch.setattr(multiprocessing.synchronize.SemLock, "__init__", unavailable)
+    told = []
+    results = parallel.run_ordered(
+        in_this_process, [0, 1, 2], 2, failed=failed, told=lambda i, r: told.append(i)
+    )
+    assert results == [(0, os.getpid()), (1, os.getpid()), (2, os.getpid())]
+    assert told == [0, 1, 2]
+
+
+def test_when_worker_processes_cannot_start_the_items_are_worked_on_in_this_process(
+    monkeypatch,
+):
+    import multiprocessing.context
+
+    def cannot_start(self):
+        raise OSError(11, "Resource temporarily unavailable")
+
+    for name in ("ForkServerProcess", "SpawnProcess"):
+        if hasattr(multiprocessing.context, name):
+            monkeypatch.setattr(getattr(multiprocessing.context, name), "start", cannot_start)
+    results = parallel.run_ordered(in_this_process, [0, 1, 2], 2, failed=failed)
+    assert results == [(0, os.getpid()), (1, os.getpid()), (2, os.getpid())]
