@@ -337,7 +337,7 @@ def test_explain_unknown_or_undocumented(monkeypatch, tmp_path):
     assert run("--explain", "IN0") == (
         2,
         "",
-        "error: --explain: `IN0` is no rule code or name\n",
+        "error: --explain: `IN0` is no rule code or name (did you mean `IN000`?)\n",
     )
     assert run("--explain", "non-positive-mas") == (
         2,

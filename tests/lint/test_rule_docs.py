@@ -1,6 +1,8 @@
 """
 Every rule document in rules/ runs: its `fail` example triggers that rule and nothing else,
 its `fixed` example triggers nothing. The index lists every rule, and every rule has a document.
+IN000 (a file that could not be linted, not a rule) has one too: its `fail` example is reported
+as IN000 alone, through the command.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import pytest
 from kit import REPO
 
 from inertia_kit.lint import catalog
+from inertia_kit.lint.output.common import UNLINTED
 from inertia_kit.lint.runner import Selection, lint_file
 
 RULES_DIR = REPO / "rules"
@@ -46,7 +49,8 @@ def meshes(doc: Path) -> list[tuple[str, str]]:
 def engines_of(doc: Path) -> tuple[str, ...]:
     """An engine rule's document is linted with its engine chosen (`--engine`); others with none."""
     code = doc.stem.split("-", 1)[0]
-    engine = catalog.engine(catalog.find(code))
+    rule = catalog.find(code)
+    engine = None if rule is None else catalog.engine(rule)
     return () if engine is None else (engine,)
 
 
@@ -85,10 +89,32 @@ def test_document_shape(doc):
 @pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
 def test_fail_example_triggers_only_its_rule(doc, tmp_path):
     code = doc.stem.split("-", 1)[0]
+    if code == UNLINTED:
+        return unlinted_example(doc, tmp_path)
     for name, text in examples(doc)["fail"]:
         findings = lint_example(tmp_path, name, text, meshes(doc), engines_of(doc))
         codes = {f.code for f in findings}
         assert codes == {code}, [str((f.code, f.message)) for f in findings]
+
+
+def unlinted_example(doc: Path, tmp_path: Path) -> None:
+    """The IN000 document's failing example, through `inertia-lint --output-format json`."""
+    import json
+
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import lint_main
+
+    for name, text in examples(doc)["fail"]:
+        path = tmp_path / name
+        path.write_text(text)
+        result = CliRunner().invoke(lint_main, ["--output-format", "json", str(path)])
+        assert result.exit_code == 2, result.output
+        entries = json.loads(result.stdout)
+        assert [(e["code"], e["name"], e["file"]) for e in entries] == [
+            (UNLINTED, "unreadable-file", str(path))
+        ]
+        assert entries[0]["line"] is not None
 
 
 @pytest.mark.parametrize("doc", DOCS, ids=[d.stem for d in DOCS])
