@@ -7,7 +7,9 @@ Exit codes are only 0, 1 (findings, changes), 2 (bad input, usage, or an interna
 - an exception inertia-kit did not foresee becomes ``error: FILE: internal error: ...`` with
   the file being processed (:func:`processing`) and a request to report it, and exit 2;
 - Ctrl-C (``KeyboardInterrupt``) becomes ``interrupted`` and exit 130, without a traceback;
-- click's own exits, usage errors and a closed pipe pass through unchanged.
+- click's own exits, usage errors and a closed pipe pass through unchanged;
+- a full disk under stdout is ``error: cannot write: No space left on device``, exit 2 (no
+  bug report asked for).
 
 Commands that work file by file (lint, fill) go on with the other files after an internal
 error in one (:func:`internal`), and still exit 2. ``INERTIA_KIT_TRACEBACK=1`` prints the
@@ -18,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import contextvars
+import errno
 import os
 import sys
 from collections.abc import Iterator
@@ -69,6 +72,15 @@ def _tolerant_streams() -> None:
             stream.reconfigure(errors="backslashreplace")
 
 
+#: write errors that say the disk is full, not that inertia-kit went wrong
+_FULL = frozenset(getattr(errno, name) for name in ("ENOSPC", "EDQUOT") if hasattr(errno, name))
+
+
+def _echo_if_possible(message: str) -> None:
+    with contextlib.suppress(OSError):
+        click.echo(message, err=True)
+
+
 class _Guard:
     """The mixin: :meth:`invoke` turns the unforeseen into exit 2 and Ctrl-C into exit 130."""
 
@@ -85,7 +97,11 @@ class _Guard:
         except BrokenPipeError:
             raise  # the reader went away (`| head`): click exits quietly
         except Exception as error:
-            click.echo(f"error: {internal(error, _processing.get())}", err=True)
+            if isinstance(error, OSError) and error.errno in _FULL:
+                # the disk stdout (or a report) is written to is full: the machine's state
+                _echo_if_possible(f"error: cannot write: {error.strerror}")
+            else:
+                click.echo(f"error: {internal(error, _processing.get())}", err=True)
             raise click.exceptions.Exit(2) from None
 
 

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 from click.testing import CliRunner
-from kit import write
+from kit import REPO, write
 from kit.in_process import lint_in_process
 from kit.urdf import box, collision, inertial, joint, link, robot
 
@@ -215,3 +215,18 @@ def test_a_terminal_that_cannot_show_a_character_gets_it_escaped(tmp_path):
     assert done.returncode == 1, done.stderr
     assert b"d d\\u1d40" in done.stdout
     assert b"internal error" not in done.stderr and b"Traceback" not in done.stderr
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full on this system")
+def test_a_full_disk_under_stdout_is_no_bug():
+    with open("/dev/full", "w") as full:
+        done = subprocess.run(
+            [sys.executable, "-m", "inertia_kit", "lint", "examples/mrm_description"],
+            stdout=full,
+            stderr=subprocess.PIPE,
+            text=True,
+            cwd=REPO,
+        )
+    assert done.returncode == 2
+    assert done.stderr.endswith("error: cannot write: No space left on device\n"), done.stderr
+    assert "bug" not in done.stderr and "Traceback" not in done.stderr
