@@ -9,6 +9,7 @@ from __future__ import annotations
 import ast
 import importlib.util
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -108,7 +109,28 @@ def test_meshed_robot_on_a_warm_cache_imports_no_mesh_library(
 
 def test_xacro_lint_imports_no_web_modules(tmp_path: Path) -> None:
     """Writing the expanded tree escapes text as xml.sax.saxutils does, without importing it:
-    saxutils pulls in urllib.request, http.client, email and ssl on every expansion."""
-    xacro = ROOT / "examples" / "mrm_description" / "urdf" / "mrm.xacro"
+    saxutils pulls in urllib.request, http.client, email and ssl on every expansion.
+
+    The package is linted from a copy outside any git repository: a ``.gitignore`` on the walk
+    brings in pathspec, which with typing_extensions before 4.16 imports asyncio and so ssl,
+    a chain of the environment's, not of writing the tree."""
+    package = shutil.copytree(ROOT / "examples" / "mrm_description", tmp_path / "mrm_description")
+    xacro = package / "urdf" / "mrm.xacro"
     web = ("urllib.request", "http.client", "email", "ssl", "xml.sax.saxutils")
     assert lint_and_list([xacro], ("xacro", *web), environment(tmp_path / "cache")) == ["xacro"]
+
+
+def test_ignore_files_without_patterns_need_no_pathspec(tmp_path: Path) -> None:
+    """git's template ``.git/info/exclude`` and a ``.gitignore`` of comments ignore nothing:
+    the walk reads them without importing pathspec (5 to 20 ms, more with asyncio)."""
+    (tmp_path / ".git" / "info").mkdir(parents=True)
+    (tmp_path / ".git" / "info" / "exclude").write_text(
+        "# git ls-files --others --exclude-from=.git/info/exclude\n# *.[oa]\n# *~\n"
+    )
+    (tmp_path / ".gitignore").write_text("# nothing ignored yet\n\n   \n")
+    size = (0.1, 0.2, 0.3)
+    write(tmp_path / "arm.urdf", robot(link("base", box_inertial(1.0, size)), link("arm")))
+    env = environment(tmp_path / "cache")
+    assert lint_and_list([tmp_path], ("pathspec",), env) == []
+    (tmp_path / ".gitignore").write_text("# a pattern now\n\\#scratch.urdf\n")
+    assert lint_and_list([tmp_path], ("pathspec",), env) == ["pathspec"]
