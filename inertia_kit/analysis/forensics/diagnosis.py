@@ -146,12 +146,13 @@ def diagnose(
         return None
     frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
     case = Case(declared, expected, frame, metric, geometry)
-    # in this order: among equally simple fits, the first found wins
+    # in this order: among equally simple fits, the first found wins. The searches that make
+    # many candidates drop those above the tolerance, which _choose would drop
     candidates: list[Candidate] = [
-        *unit_slip.search(case, volume),
+        *unit_slip.search(case, volume, tolerance),
         *flipped_signs.search(case),
         *other_point.search(case, points, hull),
-        *other_axes.search(case, rotations),
+        *other_axes.search(case, rotations, tolerance),
         *transposed.search(case, tolerance),
     ]
     chosen = _choose(candidates, tolerance)

@@ -11,6 +11,7 @@ tensor from a CAD report without its rotation).
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import ClassVar
@@ -33,6 +34,8 @@ _PERMUTATIONS = tuple(
     if np.linalg.det(matrix := np.eye(3)[list(order)] * np.array(signs)[:, None]) > 0
     and not np.array_equal(matrix, np.eye(3))
 )
+#: the same, stacked (23, 3, 3): the declared tensor turned by every one in one product
+_PERMUTATION_STACK = np.array(_PERMUTATIONS)
 
 
 def rpy_text(rpy: Iterable[float]) -> str:
@@ -102,27 +105,47 @@ class OtherAxes(Candidate):
         return Wording(summary, detail, help, data)
 
 
-def _turned(case: Case, rotation: NDArray[np.float64], rank: int, label: str) -> OtherAxes:
-    declared = case.declared
-    inertia = rotation @ declared.inertia @ rotation.T
-    corrected = MassProperties(declared.mass, declared.com, inertia)
-    return OtherAxes(rank, corrected, float(case.metric(inertia)), rotation, label)
-
-
-def search(case: Case, rotations: Sequence[tuple[str, ArrayLike]]) -> list[OtherAxes]:
-    """The tensor turned from each named frame's axes, each axis permutation and the
-    geometry's principal axes into link axes."""
-    found = [_turned(case, np.asarray(r, dtype=np.float64), 3, label) for label, r in rotations]
-    found += [_turned(case, p, 4, "") for p in _PERMUTATIONS]
-    # the principal axes: declared values written in the geometry's principal frame (a diagonal
-    # tensor from a CAD report without its rotation)
-    declared = case.declared
-    moments, declared_axes = np.linalg.eigh(symmetric(declared.inertia))
+def _principal_axes(case: Case) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """
+    The declared principal moments laid along the geometry's principal axes (a diagonal tensor
+    from a CAD report written without its rotation), and the rotation that takes one set of axes
+    to the other: the tensor in link axes, (3, 3) kg·m², and the rotation, (3, 3).
+    """
+    moments, declared_axes = np.linalg.eigh(symmetric(case.declared.inertia))
     _, geometry_axes = np.linalg.eigh(symmetric(case.expected.inertia))
     rotation = geometry_axes @ declared_axes.T
     if np.linalg.det(rotation) < 0:
         rotation = geometry_axes @ np.diag([1.0, 1.0, -1.0]) @ declared_axes.T
-    inertia = geometry_axes @ np.diag(moments) @ geometry_axes.T
-    corrected = MassProperties(declared.mass, declared.com, inertia)
-    found.append(OtherAxes(7, corrected, float(case.metric(inertia)), rotation, ""))
+    return geometry_axes @ np.diag(moments) @ geometry_axes.T, rotation
+
+
+def search(
+    case: Case, rotations: Sequence[tuple[str, ArrayLike]], tolerance: float = math.inf
+) -> list[OtherAxes]:
+    """
+    The tensor turned from each named frame's axes, each axis permutation and the geometry's
+    principal axes into link axes: those whose deviation from the geometry's is not above
+    ``tolerance`` (the others cannot be chosen), in that order.
+    """
+    declared = case.declared
+    named = [np.asarray(r, dtype=np.float64) for _, r in rotations]
+    # each named frame on its own (any layout), the permutations all at once: the same
+    # products either way, each tensor's own
+    turned = [r @ declared.inertia @ r.T for r in named]
+    permuted = _PERMUTATION_STACK @ declared.inertia @ _PERMUTATION_STACK.swapaxes(-1, -2)
+    principal, principal_rotation = _principal_axes(case)
+    tensors = np.concatenate([np.reshape(turned, (-1, 3, 3)), permuted, principal[None]])
+    # one metric call for every candidate: the deviations of each tensor alone
+    residuals = case.metric(tensors)
+    frames = [
+        *((r, 3, label) for r, (label, _) in zip(named, rotations, strict=True)),
+        *((p, 4, "") for p in _PERMUTATIONS),
+        (principal_rotation, 7, ""),
+    ]
+    found = []
+    for (rotation, rank, label), tensor, residual in zip(frames, tensors, residuals, strict=True):
+        if residual > tolerance:
+            continue
+        corrected = MassProperties(declared.mass, declared.com, tensor)
+        found.append(OtherAxes(rank, corrected, float(residual), rotation, label))
     return found

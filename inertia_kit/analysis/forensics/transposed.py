@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
+from numpy.typing import NDArray
 
 from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
 from inertia_kit.physics.formatting import tensor_text
@@ -59,36 +60,79 @@ class Transposed(Candidate):
         return Wording(summary, detail, f"write {entries(right)}", {"assignment": assignment})
 
 
+#: every order of the six values, in itertools' order (the first of equal reassignments wins)
+ORDERS = np.array(list(itertools.permutations(range(6))))
+#: base-6 place values: a row of six ranks in 0..5 as one integer, in lexicographic order
+_PLACES = 6 ** np.arange(5, -1, -1)
+
+
+def distinct_orders(values: NDArray[np.float64]) -> NDArray[np.intp]:
+    """
+    The indices into :data:`ORDERS` of the distinct reassignments of ``values``.
+
+    Reassignments that give the same values (rounded to 15 decimals: a tie written twice is one
+    value) count once, by the first order giving them; the result is sorted by the reassigned
+    values, lexicographically. This is ``np.unique(np.round(values[ORDERS], 15), axis=0,
+    return_index=True)[1]``, computed on integers: each value replaced by its rank among the
+    distinct rounded values, each row of ranks read as one base-6 number. Ranks keep the order
+    and the ties of the values (``-0.0`` ties with ``0.0`` in both), so the result is the same,
+    without sorting 720 rows of floats through structured views.
+
+    Parameters
+    ----------
+    values : (6,) float
+      The six written values, in URDF's attribute order.
+
+    Returns
+    -------
+    indices : (k,) int
+      Rows of :data:`ORDERS`, 1 ≤ k ≤ 720.
+    """
+    _, ranks = np.unique(np.round(values, 15), return_inverse=True)
+    codes = ranks.reshape(-1)[ORDERS] @ _PLACES
+    # return_index on a 1-D array sorts stably: the first order of each code
+    return np.unique(codes, return_index=True)[1]
+
+
+def _tensors(rows: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(n, 3, 3) symmetric tensors from (n, 6) values in URDF's attribute order."""
+    tensors = np.empty((len(rows), 3, 3))
+    for k, name in enumerate(TENSOR):
+        i, j = INDEX[name]
+        tensors[:, i, j] = tensors[:, j, i] = rows[:, k]
+    return tensors
+
+
 def search(case: Case, tolerance: float) -> list[Transposed]:
     """Every reassignment of the six written values that fits within ``tolerance`` and is not a
     rotation."""
     written = case.written
     values = np.array([written[INDEX[name]] for name in TENSOR])
-    orders = np.array(list(itertools.permutations(range(6))))
-    candidates = values[orders]  # (720, 6)
-    _, unique = np.unique(np.round(candidates, 15), axis=0, return_index=True)
-    orders, candidates = orders[unique], candidates[unique]
+    orders = ORDERS[distinct_orders(values)]
+    candidates = values[orders]  # (k, 6)
     keep = ~np.all(candidates == values, axis=1)
     orders, candidates = orders[keep], candidates[keep]
     if not len(orders):
         return []
-    tensors = np.empty((len(orders), 3, 3))
-    for k, name in enumerate(TENSOR):
-        i, j = INDEX[name]
-        tensors[:, i, j] = tensors[:, j, i] = candidates[:, k]
+    in_link = case.axes @ _tensors(candidates) @ case.axes.T
+    residuals = case.metric(in_link)
+    # only the fits can be chosen: the rest need no eigenvalues nor a MassProperties ("not
+    # above", as the choice reads it: a NaN residual is kept, and never chosen)
+    fits = np.flatnonzero(~(residuals > tolerance))
+    if not len(fits):
+        return []
     # a permutation with the declared eigenvalues is a rotation in disguise: IN062's
     own = np.linalg.eigvalsh(written)
     scale = np.abs(own).max()
-    rotation_like = np.abs(np.linalg.eigvalsh(tensors) - own).max(axis=1) <= 1e-9 * scale
-    in_link = case.axes @ tensors @ case.axes.T
-    residuals = case.metric(in_link)
+    moments = np.linalg.eigvalsh(_tensors(candidates[fits]))
+    rotation_like = np.abs(moments - own).max(axis=1) <= 1e-9 * scale
     found = []
-    for order, tensor, residual, skip in zip(
-        orders, in_link, residuals, rotation_like, strict=True
-    ):
-        if skip or residual > tolerance:
+    for index, skip in zip(fits, rotation_like, strict=True):
+        if skip:
             continue
+        order = orders[index]
         moved = sum(1 for k in range(6) if values[order[k]] != values[k])
-        corrected = MassProperties(case.declared.mass, case.declared.com, tensor)
-        found.append(Transposed(5, corrected, float(residual), tuple(int(k) for k in order), moved))
+        corrected = MassProperties(case.declared.mass, case.declared.com, in_link[index])
+        residual = float(residuals[index])
+        found.append(Transposed(5, corrected, residual, tuple(int(k) for k in order), moved))
     return found

@@ -88,8 +88,11 @@ def _round(value: float) -> bool:
     return abs(mantissa - round(mantissa)) <= 1e-9 * mantissa
 
 
-def search(case: Case, volume: float | None) -> list[UnitSlip]:
-    """Every unit conversion of the tensor (and of the mass, when its density says grams)."""
+def search(case: Case, volume: float | None, tolerance: float = math.inf) -> list[UnitSlip]:
+    """
+    Every unit conversion of the tensor (and of the mass, when its density says grams) whose
+    deviation from the geometry's is not above ``tolerance``.
+    """
     declared = case.declared
     moments = np.linalg.eigvalsh(symmetric(declared.inertia))
     if moments[-1] - moments[0] <= 1e-9 * moments[-1] and _round(float(moments[-1])):
@@ -107,11 +110,17 @@ def search(case: Case, volume: float | None) -> list[UnitSlip]:
     found = []
     for mass_factor in mass_factors:
         mass = declared.mass / mass_factor
-        metric = Metric(case.expected.inertia / mass_factor)
+        # the case's metric is the one for the declared mass (x / 1.0 is x, bit for bit)
+        metric = case.metric if mass_factor == 1.0 else Metric(case.expected.inertia / mass_factor)
         options = [(1.0, "kg·m²")] if mass_factor != 1.0 else []
         options += [(f, u) for f, u in UNITS] + [(1.0 / f, u) for f, u in UNITS]
-        for factor, unit in options:
-            inertia = declared.inertia / factor
+        factors = np.array([factor for factor, _ in options])
+        # every conversion at once, each the declared tensor divided by its factor
+        tensors = declared.inertia / factors[:, None, None]
+        residuals = metric(tensors)
+        for (factor, unit), inertia, residual in zip(options, tensors, residuals, strict=True):
+            if residual > tolerance:
+                continue  # cannot be chosen
             corrected = MassProperties(mass, declared.com, inertia)
-            found.append(UnitSlip(0, corrected, float(metric(inertia)), factor, unit, mass_factor))
+            found.append(UnitSlip(0, corrected, float(residual), factor, unit, mass_factor))
     return found
