@@ -50,7 +50,16 @@ def _snapped(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
-    """Reference points (link origin, child joints, mesh origins) and shape frames of a link."""
+    """
+    Reference points (link origin, child joints, mesh origins) and shape frames of a link;
+    cached per link (each basis, strict and loose, asks for them).
+    """
+    if link not in _FRAMES:
+        _FRAMES[link] = _find_named_frames(link)
+    return _FRAMES[link]
+
+
+def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
     points: list[tuple[str, ArrayLike]] = [("the link origin", (0.0, 0.0, 0.0))]
     for joint in link.children:
         xyz = joint.origin.xyz
@@ -75,6 +84,10 @@ def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
 _CACHE: weakref.WeakKeyDictionary[LinkAnalysis, dict[tuple, Diagnosis | None]] = (
     weakref.WeakKeyDictionary()
 )
+#: the key of :func:`diagnose_link`'s result in a link's :data:`_CACHE` (the others are a basis's
+#: kind and ``loose``)
+_EITHER_BASIS = ("either basis",)
+_FRAMES: weakref.WeakKeyDictionary[LinkAnalysis, tuple[list, list]] = weakref.WeakKeyDictionary()
 
 
 def diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool = False) -> Diagnosis | None:
@@ -124,8 +137,16 @@ def diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     The diagnosis of a link's declared tensor, or ``None``: no declared value, no usable
     geometry, a tensor that agrees with the collision or the visual geometry (within
     :data:`MIN_MISMATCH`), or nothing that explains it. The collision geometry's diagnosis is
-    preferred. ``inertia-fill --fix invalid`` writes its ``corrected`` values.
+    preferred. ``inertia-fill --fix invalid`` writes its ``corrected`` values. Cached per link:
+    each IN06x rule asks.
     """
+    cache = _CACHE.setdefault(link, {})
+    if _EITHER_BASIS not in cache:
+        cache[_EITHER_BASIS] = _diagnose_link(link)
+    return cache[_EITHER_BASIS]
+
+
+def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return None
