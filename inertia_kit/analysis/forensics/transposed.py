@@ -8,6 +8,7 @@ the principal moments is a rotation in disguise and left to IN062.
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass
 from typing import ClassVar
@@ -74,9 +75,9 @@ def distinct_orders(values: NDArray[np.float64]) -> NDArray[np.intp]:
     value) count once, by the first order giving them; the result is sorted by the reassigned
     values, lexicographically. This is ``np.unique(np.round(values[ORDERS], 15), axis=0,
     return_index=True)[1]``, computed on integers: each value replaced by its rank among the
-    distinct rounded values, each row of ranks read as one base-6 number. Ranks keep the order
-    and the ties of the values (``-0.0`` ties with ``0.0`` in both), so the result is the same,
-    without sorting 720 rows of floats through structured views.
+    distinct rounded values. Ranks keep the order and the ties of the values (``-0.0`` ties
+    with ``0.0`` in both), so the result depends on the ranks alone, and is computed once for
+    each pattern of ranks (at most 4683 for six values: most tensors have a few).
 
     Parameters
     ----------
@@ -85,13 +86,22 @@ def distinct_orders(values: NDArray[np.float64]) -> NDArray[np.intp]:
 
     Returns
     -------
-    indices : (k,) int
+    indices : (k,) int, read-only
       Rows of :data:`ORDERS`, 1 ≤ k ≤ 720.
     """
     _, ranks = np.unique(np.round(values, 15), return_inverse=True)
-    codes = ranks.reshape(-1)[ORDERS] @ _PLACES
+    return _distinct_orders_of_ranks(tuple(int(r) for r in ranks.reshape(-1)))
+
+
+@functools.cache
+def _distinct_orders_of_ranks(ranks: tuple[int, ...]) -> NDArray[np.intp]:
+    """:func:`distinct_orders` of values with these ranks (0 the least), one per value."""
+    # each row of ranks read as one base-6 number: integers in the rows' lexicographic order
+    codes = np.array(ranks)[ORDERS] @ _PLACES
     # return_index on a 1-D array sorts stably: the first order of each code
-    return np.unique(codes, return_index=True)[1]
+    first = np.unique(codes, return_index=True)[1]
+    first.flags.writeable = False  # shared by every call with these ranks
+    return first
 
 
 def _tensors(rows: NDArray[np.float64]) -> NDArray[np.float64]:

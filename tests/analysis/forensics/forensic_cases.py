@@ -61,3 +61,17 @@ def box_case(tensor, com=(0.0, 0.0, 0.0), rotation=EYE, **kw):
     kw.setdefault("volume", VOLUME)
     kw.setdefault("points", [("the link origin", (0.0, 0.0, 0.0))])
     return diagnose(props(MASS, tensor, com), expected, **kw)
+
+
+def case_of(declared, expected, axes=EYE):
+    """The :class:`Case` ``diagnose`` tests (for the searches alone)."""
+    from inertia_kit.analysis.forensics.candidate import Case
+    from inertia_kit.analysis.forensics.measure import Metric
+
+    return Case(declared, expected, np.asarray(axes), Metric(expected.inertia), "box")
+
+
+def slightly_off(tensor, seed):
+    """``tensor`` with each value off by up to 0.2 % (symmetric), as a declared value may be."""
+    noise = np.random.default_rng(seed).uniform(-0.002, 0.002, (3, 3))
+    return tensor * (1 + 0.5 * (noise + noise.T))

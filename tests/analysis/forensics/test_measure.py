@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
-from inertia_kit.analysis.forensics.measure import deviation
+from inertia_kit.analysis.forensics.measure import Metric, deviation
 
 
 def test_deviation_is_relative_per_axis_with_a_floor():
@@ -16,3 +18,17 @@ def test_deviation_is_relative_per_axis_with_a_floor():
     # a rounding error of a large entry counts against the floor, not a thin axis's moment
     thin = np.diag([1.0, 1.0, 0.001])
     assert deviation(thin + np.diag([0, 0, 0.001]), thin) < 0.05
+
+
+_ENTRY = st.floats(-10.0, 10.0, allow_nan=False, width=64)
+_MATRIX = st.lists(_ENTRY, min_size=9, max_size=9).map(lambda v: np.reshape(v, (3, 3)))
+
+
+@given(_MATRIX, st.lists(_MATRIX, min_size=1, max_size=30))
+def test_one_call_on_stacked_tensors_gives_each_deviation_to_the_bit(root, tensors):
+    """The searches score their candidates in one call: each result is the single call's."""
+    reference = root @ root.T + 1e-3 * np.eye(3)  # positive definite
+    stacked = Metric(reference)(np.array(tensors))
+    assert stacked.shape == (len(tensors),)
+    for tensor, value in zip(tensors, stacked, strict=True):
+        assert value == deviation(tensor, reference)

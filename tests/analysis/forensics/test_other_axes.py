@@ -3,8 +3,20 @@
 from __future__ import annotations
 
 import numpy as np
-from forensic_cases import BOX, MASS, box_case, box_tensor, cylinder_tensor, props, rounded
+import pytest
+from forensic_cases import (
+    BOX,
+    MASS,
+    box_case,
+    box_tensor,
+    case_of,
+    cylinder_tensor,
+    props,
+    rounded,
+    slightly_off,
+)
 
+from inertia_kit.analysis.forensics import other_axes
 from inertia_kit.analysis.forensics.diagnosis import diagnose
 from inertia_kit.physics.frames import rpy_matrix
 
@@ -37,3 +49,29 @@ def test_principal_moments_written_without_their_rotation():
     np.testing.assert_allclose(
         found.corrected.inertia, box_tensor(MASS, *BOX, turned), rtol=0, atol=1e-5
     )
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_search_scores_each_frame_as_alone_and_keeps_the_fits(seed):
+    """Turned and scored all at once, each candidate is what turning it alone gives, bit for bit;
+    with a tolerance, the same candidates less those above it."""
+    rotation = rpy_matrix(np.random.default_rng(seed).uniform(-3, 3, 3))
+    right = box_tensor(MASS, *BOX, rotation)
+    swap = other_axes._PERMUTATIONS[seed]
+    declared = props(MASS, slightly_off(swap.T @ right @ swap, seed))
+    case = case_of(declared, props(MASS, right))
+    named = [("a shape's own axes", rotation), ("another", rpy_matrix([0.0, 0.0, 0.5]))]
+    found = other_axes.search(case, named)
+    assert len(found) == len(named) + 23 + 1
+    for candidate in found[:-1]:  # the principal axes' tensor is built, not turned
+        turn = candidate.rotation
+        alone = turn @ declared.inertia @ turn.T
+        assert np.array_equal(candidate.corrected.inertia, alone)
+        assert candidate.residual == float(case.metric(alone))
+    assert [c.rank for c in found] == [3, 3, *[4] * 23, 7]
+    assert found[-1].residual == float(case.metric(found[-1].corrected.inertia))
+    fits = other_axes.search(case, named, tolerance=0.02)
+    assert [(c.rank, c.residual) for c in fits] == [
+        (c.rank, c.residual) for c in found if c.residual <= 0.02
+    ]
+    assert any(np.array_equal(c.rotation, swap) for c in fits)  # the one that undoes the swap

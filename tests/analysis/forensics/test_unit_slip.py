@@ -4,9 +4,21 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from forensic_cases import BOX, MASS, VOLUME, box_case, box_tensor, props, rounded
+from forensic_cases import (
+    BOX,
+    MASS,
+    VOLUME,
+    box_case,
+    box_tensor,
+    case_of,
+    props,
+    rounded,
+    slightly_off,
+)
 
+from inertia_kit.analysis.forensics import unit_slip
 from inertia_kit.analysis.forensics.diagnosis import diagnose
+from inertia_kit.analysis.forensics.measure import Metric
 
 
 @pytest.mark.parametrize(
@@ -52,3 +64,25 @@ def test_no_unit_slip_when_the_geometry_scale_is_in_doubt_or_the_value_is_a_plac
     volume = 4 / 3 * np.pi * 0.005**3
     expected = props(0.1, sphere * 1e3)
     assert diagnose(props(0.1, np.eye(3)), expected, volume=volume) is None
+
+
+@pytest.mark.parametrize(("mass", "factor"), [(MASS, 1e6), (MASS, 1e-4), (1000 * MASS, 1.0)])
+def test_search_scores_each_conversion_as_alone_and_keeps_the_fits(mass, factor):
+    """Converted and scored all at once, each candidate is what converting it alone gives, bit
+    for bit (the declared mass's metric is the case's); with a tolerance, those not above it."""
+    right = box_tensor(MASS, *BOX)
+    declared = props(mass, slightly_off(right * factor, 7))
+    case = case_of(declared, props(mass, box_tensor(mass, *BOX)))
+    found = unit_slip.search(case, VOLUME)
+    assert len(found) == (15 if mass != MASS else 14)
+    for candidate in found:
+        alone = declared.inertia / candidate.factor
+        metric = Metric(case.expected.inertia / candidate.mass_factor)
+        assert np.array_equal(candidate.corrected.inertia, alone)
+        assert candidate.corrected.mass == declared.mass / candidate.mass_factor
+        assert candidate.residual == float(metric(alone))
+    fits = unit_slip.search(case, VOLUME, tolerance=0.02)
+    assert [(c.factor, c.unit, c.residual) for c in fits] == [
+        (c.factor, c.unit, c.residual) for c in found if c.residual <= 0.02
+    ]
+    assert len(fits) == 1
