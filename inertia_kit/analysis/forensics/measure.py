@@ -27,6 +27,11 @@ MIN_MISMATCH = 0.1
 FLOOR = 0.05
 #: a candidate within this much of the best fit wins over it when it is a simpler explanation
 SLACK = 0.005
+#: below this, the entries of ``inverse @ difference @ inverse.T`` are finite (with room to spare)
+_SAFE = 1e300
+#: a lower bound above the tolerance by this much more says the deviation is: far more than
+#: the ~1e-13 the computed deviation may fall short of the bound
+BOUND_MARGIN = 1e-6
 
 
 def symmetric(tensor: ArrayLike) -> NDArray[np.float64]:
@@ -41,13 +46,47 @@ class Metric:
     def __init__(self, reference: ArrayLike):
         self.reference = symmetric(reference)
         floor = FLOOR * float(np.linalg.eigvalsh(self.reference).max())
-        self.inverse = np.linalg.inv(np.linalg.cholesky(self.reference + floor * np.eye(3)))
+        # the denominator's tensor: nᵀ R n + FLOOR λmax(R) = nᵀ (R + FLOOR λmax(R) E) n
+        self.denominator = self.reference + floor * np.eye(3)
+        self.inverse = np.linalg.inv(np.linalg.cholesky(self.denominator))
 
     def __call__(self, tensors: ArrayLike) -> NDArray[np.float64]:
         difference = symmetric(tensors) - self.reference
         scaled = self.inverse @ difference @ self.inverse.T
         # eigvalsh: symmetric input; the extreme eigenvalues are the extreme ratios over axes
         return np.abs(np.linalg.eigvalsh(scaled)).max(axis=-1)
+
+    def lower_bound(self, tensors: ArrayLike) -> NDArray[np.float64]:
+        """
+        A cheap lower bound of each deviation: its ratio about the three link axes alone,
+        ``max_i |T_ii - R_ii| / (R_ii + FLOOR λmax(R))`` (the deviation is the largest ratio over
+        every axis). Searches use it to skip the eigenvalues of candidates that cannot fit.
+
+        It bounds the deviation as computed, not only the exact one: the inverse factor is
+        accurate to ~1e-15 relative (the denominator's condition number is at most
+        (1 + FLOOR) / FLOOR = 21), so the computed deviation is at least the bound less ~1e-13
+        of it. Where the deviation's own arithmetic could overflow (a value ~1e150 or beyond,
+        where eigvalsh may fail), the bound is 0: nothing is skipped, nothing changes.
+
+        Parameters
+        ----------
+        tensors : (n, 3, 3) float
+          Candidate tensors, in the reference's axes, kg·m².
+
+        Returns
+        -------
+        bound : (n,) float
+          At most each :meth:`__call__` value, less ~1e-13 of it.
+        """
+        tensors = np.asarray(tensors, dtype=np.float64)
+        # every entry of inverse @ difference @ inverse.T is at most 9 |inverse|² |difference|
+        # (NaN entries fail the test too)
+        largest = np.abs(tensors).max(initial=0.0) + np.abs(self.reference).max()
+        if not largest * 9.0 * np.abs(self.inverse).max() ** 2 < _SAFE:
+            return np.zeros(len(tensors))
+        # the diagonal of symmetric(tensors) is the tensors' own: 0.5 (t + t) is t
+        difference = np.diagonal(tensors, axis1=-2, axis2=-1) - np.diagonal(self.reference)
+        return (np.abs(difference) / np.diagonal(self.denominator)).max(axis=-1)
 
 
 def deviation(tensor: ArrayLike, reference: ArrayLike) -> float:

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
+from inertia_kit.analysis.forensics.measure import BOUND_MARGIN
 from inertia_kit.physics.formatting import tensor_text
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.tensor_names import INDEX, TENSOR
@@ -125,10 +126,14 @@ def search(case: Case, tolerance: float) -> list[Transposed]:
     if not len(orders):
         return []
     in_link = case.axes @ _tensors(candidates) @ case.axes.T
-    residuals = case.metric(in_link)
-    # only the fits can be chosen: the rest need no eigenvalues nor a MassProperties ("not
-    # above", as the choice reads it: a NaN residual is kept, and never chosen)
-    fits = np.flatnonzero(~(residuals > tolerance))
+    # only the fits can be chosen: the rest need no eigenvalues nor a MassProperties. Most
+    # reassignments put a wrong value on the diagonal, which the cheap bound catches ("not
+    # above", as the choice reads it: a NaN is kept, and never chosen)
+    bounds = case.metric.lower_bound(in_link)
+    maybe = np.flatnonzero(~(bounds > tolerance * (1.0 + BOUND_MARGIN)))
+    scored = case.metric(in_link[maybe])
+    within = ~(scored > tolerance)
+    fits, residuals = maybe[within], scored[within]
     if not len(fits):
         return []
     # a permutation with the declared eigenvalues is a rotation in disguise: IN062's
@@ -137,12 +142,11 @@ def search(case: Case, tolerance: float) -> list[Transposed]:
     moments = np.linalg.eigvalsh(_tensors(candidates[fits]))
     rotation_like = np.abs(moments - own).max(axis=1) <= 1e-9 * scale
     found = []
-    for index, skip in zip(fits, rotation_like, strict=True):
+    for index, residual, skip in zip(fits, residuals, rotation_like, strict=True):
         if skip:
             continue
         order = orders[index]
         moved = sum(1 for k in range(6) if values[order[k]] != values[k])
         corrected = MassProperties(case.declared.mass, case.declared.com, in_link[index])
-        residual = float(residuals[index])
-        found.append(Transposed(5, corrected, residual, tuple(int(k) for k in order), moved))
+        found.append(Transposed(5, corrected, float(residual), tuple(int(k) for k in order), moved))
     return found

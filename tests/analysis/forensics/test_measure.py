@@ -32,3 +32,31 @@ def test_one_call_on_stacked_tensors_gives_each_deviation_to_the_bit(root, tenso
     assert stacked.shape == (len(tensors),)
     for tensor, value in zip(tensors, stacked, strict=True):
         assert value == deviation(tensor, reference)
+
+
+@given(_MATRIX, st.lists(_MATRIX, min_size=1, max_size=30), st.floats(1e-12, 1e12))
+def test_lower_bound_is_at_most_each_deviation_as_computed(root, tensors, unit):
+    """The searches skip the candidates whose bound is above the tolerance: it must never be
+    above the deviation itself (less the ~1e-13 of rounding that BOUND_MARGIN covers)."""
+    reference = (root @ root.T + 1e-3 * np.eye(3)) * unit
+    metric = Metric(reference)
+    stacked = np.array(tensors) * unit
+    bounds = metric.lower_bound(stacked)
+    assert np.all(bounds <= metric(stacked) * (1 + 1e-12))
+
+
+def test_lower_bound_is_the_ratio_about_the_link_axes():
+    reference = np.diag([1.0, 2.0, 4.0])
+    # about z: 2 / (4 + 5 % of 4)
+    assert Metric(reference).lower_bound(np.diag([1.0, 2.0, 6.0])[None]) == [2.0 / 4.2]
+    # diagonal tensors: the bound is the deviation
+    tensor = np.diag([1.5, 2.0, 3.0])
+    assert Metric(reference).lower_bound(tensor[None])[0] == pytest.approx(
+        deviation(tensor, reference)
+    )
+
+
+def test_lower_bound_skips_nothing_where_the_deviation_could_overflow():
+    metric = Metric(np.eye(3))
+    assert metric.lower_bound(np.diag([1e301, 1.0, 1.0])[None]).tolist() == [0.0]
+    assert metric.lower_bound(np.diag([np.nan, 1.0, 1.0])[None]).tolist() == [0.0]
