@@ -29,8 +29,8 @@ FLOOR = 0.05
 SLACK = 0.005
 #: below this, the entries of ``inverse @ difference @ inverse.T`` are finite (with room to spare)
 _SAFE = 1e300
-#: a lower bound above the tolerance by this much more says the deviation is: far more than
-#: the ~1e-13 the computed deviation may fall short of the bound
+#: a candidate is skipped when its lower bound exceeds the tolerance by this fraction: far more
+#: than the ~1e-13 by which the computed deviation may fall short of the bound
 BOUND_MARGIN = 1e-6
 
 
