@@ -404,6 +404,25 @@ def test_a_placeholder_a_robot_includes_is_linted_through_it_not_refused(repo, m
     assert code == 1 and "IN040" not in out and "IN002 link `a`" in out
 
 
+def test_fill_on_a_placeholder_fills_through_its_robot_and_leaves_it_as_it_is(repo, monkeypatch):
+    monkeypatch.delenv("ARM_URDF_EXTRAS", raising=False)
+    package = project(
+        repo,
+        {
+            "urdf/leaf.xacro": LEAF,
+            "urdf/arm.urdf.xacro": extras_robot(),
+            "urdf/empty.urdf": PLACEHOLDER,
+        },
+    )
+    code, out, err = run(fill_main, "arm_description/urdf/empty.urdf")
+    assert code == 0, err
+    assert (
+        "note: arm_description/urdf/empty.urdf: filled through the robots that include it: "
+        "arm_description/urdf/arm.urdf.xacro"
+    ) in err + out
+    assert (package / "urdf" / "empty.urdf").read_text() == PLACEHOLDER
+
+
 def test_a_placeholder_no_robot_includes_is_a_robot_with_no_link(repo):
     project(repo, {"urdf/empty.urdf": PLACEHOLDER})
     code, out, _ = run(lint_main, "--output-format", "concise", "arm_description/urdf/empty.urdf")
