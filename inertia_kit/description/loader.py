@@ -76,8 +76,9 @@ def load(
     Returns
     -------
     robot : Robot
-      A fragment (a xacro file of macros and properties only) loads as a robot with no links
-      and ``fragment=True``.
+      A fragment (a xacro file, by name or content, with no ``<link>`` and no ``<joint>``
+      once expanded: macros, properties, materials, ``<gazebo>`` blocks) loads as a robot with
+      no links and ``fragment=True``.
 
     Raises
     ------
@@ -89,7 +90,7 @@ def load(
       (``Mesh.problem``, ``Robot.invalid``).
     """
     from inertia_kit.description.packages import PackageResolver
-    from inertia_kit.description.xacro_detect import is_xacro
+    from inertia_kit.description.xacro_detect import is_fragment, is_xacro
 
     path = Path(path)
     data = read_bounded(path)
@@ -108,8 +109,8 @@ def load(
         )
 
     root = parse_xml(data, path)
-    if xacro and not any(isinstance(child.tag, str) for child in root):
-        return _fragment(path, (str(path),))  # as expand() classes an empty xacro file
+    if (xacro or path.name.lower().endswith(".xacro")) and is_fragment(root):
+        return _fragment(path, (str(path),))  # as expand() classes a xacro file without links
     position = element_locator(data, root)
 
     def source_of(element: etree._Element) -> model.Source:

@@ -186,10 +186,12 @@ def _expanded(result: Expansion) -> Expanded:
     """The expansion handed over (from the child) as the lxml tree and its source map."""
     from lxml import etree
 
+    from inertia_kit.description.xacro_detect import is_fragment
+
     if result.text is None or result.sources is None:
         return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
     root, sources = to_lxml(result.text, result.sources, Source(result.path))
-    if result.maybe_fragment and not any(child.tag in ("link", "joint") for child in root):
+    if is_fragment(root):
         return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
     return Expanded(result.path, root, result.files, False, result.warnings, sources)
 
@@ -226,4 +228,4 @@ def _expand(
             raise input_error(
                 error, session.path, session.display, limits.out_of_memory()
             ) from None
-        return session.result(doc.documentElement, maybe_fragment=top <= FRAGMENT_TAGS)
+        return session.result(doc.documentElement)

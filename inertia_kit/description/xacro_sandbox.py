@@ -51,7 +51,6 @@ class Expansion:
     warnings: tuple[str, ...]
     text: str | None = None  # the expanded robot, serialised (None: a fragment)
     sources: list[Source] | None = None  # the stamp of each element of ``text``
-    maybe_fragment: bool = False  # only macros, properties, args and includes at the top
     resolver_state: dict[str, Any] | None = None  # the child's package resolver's attributes
 
 

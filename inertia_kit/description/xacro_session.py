@@ -167,7 +167,7 @@ class Session:
             first if not rest else f"{first} ({'; '.join(rest)})" for first, *rest in entries
         )
 
-    def result(self, root, *, maybe_fragment: bool = False) -> Expansion:
+    def result(self, root) -> Expansion:
         """What the expansion gives: the robot ``root`` (``None``: a fragment) serialised."""
         import xacro
 
@@ -179,9 +179,7 @@ class Session:
         if root is None:
             return Expansion(self.path, tuple(files), True, self.warnings())
         text, sources = serialise(root, Source(self.path))
-        return Expansion(
-            self.path, tuple(files), False, self.warnings(), text, sources, maybe_fragment
-        )
+        return Expansion(self.path, tuple(files), False, self.warnings(), text, sources)
 
 
 @contextlib.contextmanager

@@ -75,6 +75,9 @@ def cut(
             package_paths=package_paths,
             xacro_limits=xacro_limits,
         )
+    if not plan.links and chosen.read_by_robots(target):
+        # a placeholder its robots include (no link of its own): filled through them only
+        plan = dataclasses.replace(plan, fragment=True, notes=())
     note = chosen.note(target.robot, plan.fragment, "fill")
     if note is None:
         return plan

@@ -2,13 +2,13 @@
 Changed fragments, as a hook hands them over: which robots to lint (or fill) for the files
 given, and which of their findings to report.
 
-A file given is linted as itself. When it is xacro (by name or content) and robots of its
-repository include it, directly or through other includes (:mod:`.include_graph`), those
-robots are linted too, and only their findings
-located in the given files are reported, each saying which robot produced it (``via``). A
-robot that is itself given is linted as itself only: its findings already hold everything it
-takes from the fragment. :func:`targets` is the one mapping ``inertia-lint`` and
-``inertia-fill`` share.
+A file given is linted as itself. When it is xacro (by name or content), or has no link (a
+placeholder a robot includes by default), and robots of its repository include it, directly
+or through other includes (:mod:`.include_graph`), those robots are linted too, and only
+their findings located in the given files are reported, each saying which robot produced it
+(``via``). A robot that is itself given is linted as itself only: its findings already hold
+everything it takes from the fragment. :func:`targets` is the one mapping ``inertia-lint``
+and ``inertia-fill`` share.
 
 The repository
   The git top level (a folder holding ``.git``) above the file, else the folder of the nearest
@@ -125,7 +125,7 @@ def targets(
     graphs: dict[Path, IncludeGraph] = {}
     through: dict[str, list[str]] = {}  # robot (real path) -> given files it is linted for
     result = Targets([Target(file) for file in files])
-    for file in filter(_xacro, files):
+    for file in filter(_includable, files):
         root, why = repository_root(file)
         if root not in graphs:
             graphs[root] = include_graph(
@@ -149,18 +149,29 @@ def targets(
     return result
 
 
-def _xacro(file: str) -> bool:
-    """Whether ``file`` may be included by a robot: xacro by name or by content. A plain URDF
-    is included by none in practice, and is linted as itself without scanning the repository."""
+def _includable(file: str) -> bool:
+    """
+    Whether ``file`` may be included by a robot: xacro by name or by content, or a file without
+    links (a placeholder such as husky's ``empty.urdf``, which ``$(arg urdf_extras)`` names by
+    default). A plain URDF with links is included by none in practice, and is linted as itself
+    without scanning the repository.
+    """
     from inertia_kit.description.xacro_detect import is_xacro
 
     if file.lower().endswith(".xacro"):
         return True
     try:
         with open(file, "rb") as stream:
-            return is_xacro(stream.read())
+            data = stream.read()
     except OSError:
         return False
+    return is_xacro(data) or _linkless(data)
+
+
+def _linkless(data: bytes) -> bool:
+    """Whether a file's bytes hold no ``<link``: cheap, and only decides whether robots that
+    may include the file are looked for (its own result says whether it describes links)."""
+    return b"<link" not in data
 
 
 def shown(path: str | Path) -> str:

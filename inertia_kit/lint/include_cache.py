@@ -6,7 +6,7 @@ Location
   Beside the mesh cache (:func:`~inertia_kit.physics.mesh_cache.cache_location`:
   ``$INERTIA_KIT_CACHE_DIR``, ``$XDG_CACHE_HOME/inertia-kit`` or ``~/.cache/inertia-kit``;
   ``INERTIA_KIT_NO_CACHE=1`` turns it off), one file per repository and expansion options:
-  ``includes-v1/<folder name>-<64-bit hash>.json``.
+  ``includes-v2/<folder name>-<64-bit hash>.json``.
 Key
   The file holds the repository's real path, the ``--xacro-arg`` values and package paths the
   robots were expanded with, and a code key (this format, the package version, the size and
@@ -33,7 +33,7 @@ from typing import Any, NamedTuple
 from inertia_kit.version import __version__
 
 #: Version of the file layout; part of the folder name and of every file.
-FORMAT = 1
+FORMAT = 2  # 2: a xacro file without links or joints is a fragment, whatever tags its top holds
 #: A cache file larger than this is not one of ours (some 100 000 robot files).
 MAX_BYTES = 64 << 20
 KINDS = ("plain", "robot", "fragment", "error")

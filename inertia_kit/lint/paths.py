@@ -56,8 +56,8 @@ def lint_paths(
 
     A given xacro file that robots of its repository include is also linted through them (each
     robot with its own configuration), keeping their findings located in the given files
-    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, or unreadable on its
-    own, gives no result of its own but a note.
+    (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, unreadable on its
+    own, or without links and joints, gives no result of its own but a note.
 
     Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
     configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
@@ -284,8 +284,9 @@ def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
     """
     The results with the given files robots include linted through them: a robot's findings
     kept where they land in those files (saying `via` which robot), the given file's own
-    result dropped when it is a fragment or unreadable on its own (its robots read it), and a
-    note for each given file, saying which robots were linted for it or that none includes it.
+    result dropped when it is a fragment, unreadable on its own, or has no link and no joint (a
+    placeholder; its robots read it), and a note for each given file, saying which robots were
+    linted for it or that none includes it.
     """
     from inertia_kit.lint.fragments import located
 
@@ -293,7 +294,7 @@ def _through_robots(results: list[FileResult], chosen: Any) -> list[FileResult]:
     for result, target in zip(results, chosen.targets, strict=True):
         if target.changed:
             result.findings = located(result.findings, target.robot, target.changed)
-        elif chosen.read_by_robots(target) and (result.fragment or result.error):
+        elif chosen.read_by_robots(target) and (result.fragment or result.error or result.empty):
             result = FileResult(result.path, fragment=True, fail_on=result.fail_on)
         if not target.changed:
             note = chosen.note(result.path, result.fragment)

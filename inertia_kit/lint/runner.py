@@ -192,6 +192,7 @@ class FileResult:
     fixed: int = 0  # findings whose fix ``--fix`` applied
     diff: str = ""  # ``--diff``: the unified diff of the fixes
     unsafe_fixes: bool = False  # whether unsafe fixes are applicable here
+    empty: bool = False  # no link and no joint: a placeholder, or a piece of other robots
 
     @property
     def failing(self) -> list[Finding]:
@@ -252,7 +253,8 @@ def lint_file(
     kept += unused.report(uses, selection, path)
     if fixes != "none" and any(f.wants is not None for f in kept):
         kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
-    return FileResult(str(path), kept, notes=notes, uses=uses, selection=selection)
+    empty = not robot.links and not robot.joints
+    return FileResult(str(path), kept, notes=notes, uses=uses, selection=selection, empty=empty)
 
 
 def _with_fixes(

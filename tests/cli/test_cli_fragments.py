@@ -16,8 +16,10 @@ import pytest
 from click.testing import CliRunner
 from kit.urdf import link_lines, robot_lines
 from kit.xacro_projects import (
+    HEAD,
     LEAF,
     LEAF_MASS_LINE,
+    XACRO,
     age,
     middle,
     project,
@@ -251,12 +253,12 @@ def test_no_cache_when_turned_off(repo, monkeypatch, tmp_path_factory):
     monkeypatch.setenv("INERTIA_KIT_CACHE_DIR", str(cache))
     _layered(repo)
     lint("arm_description/urdf/leaf.xacro")
-    assert list((cache / "includes-v1").glob("*.json"))
+    assert list((cache / "includes-v2").glob("*.json"))
     monkeypatch.setenv("INERTIA_KIT_NO_CACHE", "1")
-    for entry in (cache / "includes-v1").glob("*.json"):
+    for entry in (cache / "includes-v2").glob("*.json"):
         os.unlink(entry)
     assert lint("arm_description/urdf/leaf.xacro")[0] == 1
-    assert not list((cache / "includes-v1").glob("*.json"))
+    assert not list((cache / "includes-v2").glob("*.json"))
 
 
 # --- fill -------------------------------------------------------------------------------------
@@ -361,3 +363,82 @@ def test_fill_on_a_fragment_tells_the_refusals_of_its_links_only(repo):
     assert code == 1
     refused = [line.split("`")[1] for line in err.splitlines() if "not filled" in line]
     assert refused == ["base", "from_macro", "literal"]
+
+
+# --- files without links: placeholders and property files ---------------------------------------
+
+#: husky_description's empty.urdf: plain URDF, no link, what `$(arg urdf_extras)` names by default
+PLACEHOLDER = "<robot>\n  <!-- set HUSKY_URDF_EXTRAS to the file to include instead -->\n</robot>\n"
+
+
+def extras_robot() -> str:
+    """A robot that includes `$(arg urdf_extras)`, the placeholder by default (husky's way)."""
+    return (
+        f'{HEAD}<robot name="arm" {XACRO}>\n'
+        '  <xacro:arg name="urdf_extras" default="$(optenv ARM_URDF_EXTRAS empty.urdf)"/>\n'
+        '  <xacro:include filename="leaf.xacro"/>\n  <link name="base"/>\n'
+        '  <xacro:arm_link name="a" mass="-2"/>\n'
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="a"/></joint>\n'
+        '  <xacro:include filename="$(arg urdf_extras)"/>\n</robot>\n'
+    )
+
+
+def test_a_placeholder_a_robot_includes_is_linted_through_it_not_refused(repo, monkeypatch):
+    monkeypatch.delenv("ARM_URDF_EXTRAS", raising=False)
+    project(
+        repo,
+        {
+            "urdf/leaf.xacro": LEAF,
+            "urdf/arm.urdf.xacro": extras_robot(),
+            "urdf/empty.urdf": PLACEHOLDER,
+        },
+    )
+    code, out, err = run(lint_main, "--output-format", "concise", "arm_description/urdf/empty.urdf")
+    assert (code, out) == (0, "")
+    assert err == (
+        "note: arm_description/urdf/empty.urdf: linted through the robots that include it: "
+        "arm_description/urdf/arm.urdf.xacro\nNo findings in 1 file.\n"
+    )
+    # the whole repository: the robot's finding, and still no IN040 for the placeholder
+    code, out, _ = run(lint_main, "--output-format", "concise", ".")
+    assert code == 1 and "IN040" not in out and "IN002 link `a`" in out
+
+
+def test_fill_on_a_placeholder_fills_through_its_robot_and_leaves_it_as_it_is(repo, monkeypatch):
+    monkeypatch.delenv("ARM_URDF_EXTRAS", raising=False)
+    package = project(
+        repo,
+        {
+            "urdf/leaf.xacro": LEAF,
+            "urdf/arm.urdf.xacro": extras_robot(),
+            "urdf/empty.urdf": PLACEHOLDER,
+        },
+    )
+    code, out, err = run(fill_main, "arm_description/urdf/empty.urdf")
+    assert code == 0, err
+    assert (
+        "note: arm_description/urdf/empty.urdf: filled through the robots that include it: "
+        "arm_description/urdf/arm.urdf.xacro"
+    ) in err + out
+    assert (package / "urdf" / "empty.urdf").read_text() == PLACEHOLDER
+
+
+def test_a_placeholder_no_robot_includes_is_a_robot_with_no_link(repo):
+    project(repo, {"urdf/empty.urdf": PLACEHOLDER})
+    code, out, _ = run(lint_main, "--output-format", "concise", "arm_description/urdf/empty.urdf")
+    assert code == 1 and "IN040 the robot has no <link>" in out
+
+
+def test_a_materials_file_declaring_xacro_is_a_fragment_not_a_broken_robot(repo):
+    """turtlebot3's common_properties.urdf: materials only, the xacro namespace declared."""
+    materials = (
+        f'{HEAD}<robot name="xacro_properties" {XACRO}>\n'
+        '  <material name="blue"><color rgba="0 0 0.8 1"/></material>\n</robot>\n'
+    )
+    project(repo, {"urdf/common_properties.urdf": materials})
+    assert run(lint_main, "arm_description/urdf/common_properties.urdf") == (
+        0,
+        "",
+        f"note: arm_description/urdf/common_properties.urdf: a xacro fragment no robot in {repo} "
+        "(the git top level) includes; nothing to lint\nNo findings in 0 files.\n",
+    )

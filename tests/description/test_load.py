@@ -410,6 +410,38 @@ def test_empty_robot_declaring_the_xacro_namespace_is_a_fragment(tmp_path):
     assert not robot.fragment and robot.links == () and robot.name == "r"
 
 
+@pytest.mark.parametrize(
+    ("name", "body"),
+    [
+        # turtlebot3's common_properties.urdf: the namespace declared, materials only
+        ("common_properties.urdf", '<material name="blue"><color rgba="0 0 0.8 1"/></material>'),
+        # a robot's Gazebo settings kept apart, xacro by name
+        ("robot.gazebo.xacro", '<gazebo reference="base"><mu1>0.5</mu1></gazebo>'),
+        # everything behind a condition that is off by default
+        (
+            "extras.urdf.xacro",
+            '<xacro:arg name="on" default="false"/>'
+            '<xacro:if value="$(arg on)"><link name="x"/></xacro:if>',
+        ),
+    ],
+)
+def test_a_xacro_file_without_links_or_joints_is_a_fragment(tmp_path, name, body):
+    robot = load(write(tmp_path / name, f'<robot name="parts" {NS}>\n  {body}\n</robot>\n'))
+    assert robot.fragment and (robot.links, robot.joints) == ((), ())
+
+
+def test_a_plain_file_without_links_is_a_robot_for_the_rules_and_other_roots_are_refused(
+    tmp_path,
+):
+    robot = load(write(tmp_path / "colours.urdf", '<robot name="r"><material name="m"/></robot>'))
+    assert not robot.fragment and robot.links == ()
+    # joints and no links: not a fragment either (IN040 names the missing links)
+    text = f'<robot name="r" {NS}><joint name="j" type="fixed"><parent link="a"/>'
+    text += '<child link="b"/></joint></robot>'
+    assert not load(write(tmp_path / "joints.urdf.xacro", text)).fragment
+    raises_input_error(write(tmp_path / "l.xacro", f"<launch {NS}><arg name='x'/></launch>"))
+
+
 # --- meshes ------------------------------------------------------------------------------------
 
 

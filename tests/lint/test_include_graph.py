@@ -76,7 +76,7 @@ def test_files_that_include_nothing_are_not_expanded(tmp_path, cache, monkeypatc
 def test_the_cache_serves_a_second_scan_and_survives_corruption(tmp_path, cache):
     urdf = _repository(tmp_path / "repo")
     first = include_graph.include_graph(tmp_path / "repo")
-    (stored,) = (cache / "includes-v1").glob("repo-*.json")
+    (stored,) = (cache / "includes-v2").glob("repo-*.json")
     second = include_graph.include_graph(tmp_path / "repo")
     assert (second.scanned, second.reused) == (0, 4)
     assert second.robots == first.robots
@@ -95,7 +95,7 @@ def test_other_xacro_arguments_are_another_cache(tmp_path, cache):
     include_graph.include_graph(tmp_path / "repo")
     other = include_graph.include_graph(tmp_path / "repo", xacro_args={"x": "1"})
     assert other.scanned == 4
-    assert len(list((cache / "includes-v1").glob("repo-*.json"))) == 2
+    assert len(list((cache / "includes-v2").glob("repo-*.json"))) == 2
 
 
 def test_recently_changed_files_are_not_stored(tmp_path, cache):

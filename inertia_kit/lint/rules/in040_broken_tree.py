@@ -53,10 +53,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
 
 
 def _names(urdf: model.Robot, ctx: RuleContext) -> Iterator[Finding]:
-    # a xacro file without links or joints is a library of macros the expansion did not
-    # recognise as one (old-style <property> elements survive it), not a robot
-    library = not urdf.joints and any(f.endswith(".xacro") for f in urdf.files[:1])
-    if not urdf.links and not library:
+    # a xacro file without links or joints never gets here: it loads as a fragment
+    if not urdf.links:
         yield ctx.finding(
             'the robot has no <link>: urdfdom refuses it ("No link elements found in urdf file")',
             urdf.source,
