@@ -17,6 +17,7 @@ implemented"), the files are worked on in this process, with the same results.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import signal
@@ -112,7 +113,7 @@ def _pooled(
     finish: Callable[[int, Result], None],
 ) -> list[int]:
     """Run ``indices`` in a pool of ``jobs``; the indices left undone when the pool broke."""
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
     try:
@@ -127,24 +128,18 @@ def _pooled(
         _terminate(pool)
         raise _NoWorkers from error
     try:
-        left = set(futures)
-        broken = False
-        while left:
-            finished, left = wait(left, return_when=FIRST_COMPLETED)
-            for future in sorted(finished, key=futures.__getitem__):
-                index = futures[future]
-                try:
-                    kind, value = future.result()
-                except BrokenProcessPool:
-                    broken = True
-                    continue
-                finish(index, value if kind == "ok" else failed(items[index], value))
-            if broken:
+        # as_completed waits on every future once; wait(FIRST_COMPLETED) in a loop installs a
+        # waiter on each future left at every turn, quadratic in the number of files
+        finished = set()
+        for future in as_completed(futures):
+            index = futures[future]
+            try:
+                kind, value = future.result()
+            except BrokenProcessPool:
                 pool.shutdown()
-                undone = sorted(futures[f] for f in left) + sorted(
-                    futures[f] for f in finished if f.exception() is not None
-                )
-                return sorted(undone)
+                return sorted(futures[f] for f in futures if f not in finished)
+            finished.add(future)
+            finish(index, value if kind == "ok" else failed(items[index], value))
         pool.shutdown()
         return []
     except BaseException:  # Ctrl-C: end the workers (and their xacro children), then exit
@@ -154,6 +149,21 @@ def _pooled(
 
 class _NoWorkers(Exception):
     """This system cannot start worker processes (the pool's locks or processes)."""
+
+
+def start_early() -> None:
+    """
+    Start the forkserver now, where this system has one: it imports the linter while the caller
+    finds the files, instead of after (about a third of a second off a parallel run). Nothing
+    is started where workers cannot be; the pool then falls back as it would have.
+    """
+    context = _context()
+    if context.get_start_method() != "forkserver":
+        return
+    from multiprocessing import forkserver
+
+    with contextlib.suppress(OSError, ImportError, NotImplementedError):
+        forkserver.ensure_running()
 
 
 def _context() -> Any:

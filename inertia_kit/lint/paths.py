@@ -103,6 +103,11 @@ def lint_paths(
     finder = ConfigFinder(config)
     if discovery is not None and discovery.config is None:
         discovery.config = finder  # one configuration read for the walk and the linting
+    paths = list(paths)
+    if _parallel_likely(paths, jobs, fix, diff, load_mesh):
+        from inertia_kit.lint import parallel
+
+        parallel.start_early()
     chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
@@ -222,6 +227,19 @@ def _run(
     serial = any(task.fixing and not task.diff for task in tasks) or not _picklable(tasks)
     workers = 1 if serial else parallel.worker_count(jobs, len(tasks))
     return parallel.run_ordered(_lint_task, tasks, workers, failed=failed, told=tell, done=done)
+
+
+def _parallel_likely(
+    paths: list[str | Path], jobs: int | None, fix: bool | None, diff: bool, load_mesh: Any
+) -> bool:
+    """Whether this run will most likely lint in worker processes (:func:`_run` decides): more
+    than one core asked for, a folder or several files, no ``--fix`` asked, no loader of
+    meshes given (the API's, which may not reach a worker)."""
+    from inertia_kit.lint import parallel
+
+    if parallel.worker_count(jobs, 2) < 2 or (fix and not diff) or load_mesh is not None:
+        return False
+    return len(paths) > 1 or any(Path(path).is_dir() for path in paths)
 
 
 def _picklable(tasks: list[_Task]) -> bool:

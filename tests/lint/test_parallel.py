@@ -109,3 +109,34 @@ def test_when_worker_processes_cannot_start_the_items_are_worked_on_in_this_proc
             monkeypatch.setattr(getattr(multiprocessing.context, name), "start", cannot_start)
     results = parallel.run_ordered(in_this_process, [0, 1, 2], 2, failed=failed)
     assert results == [(0, os.getpid()), (1, os.getpid()), (2, os.getpid())]
+
+
+def test_a_forkserver_started_early_serves_the_pool_and_one_that_cannot_start_is_no_error(
+    monkeypatch,
+):
+    from multiprocessing import forkserver
+
+    parallel.start_early()  # the server the pool then uses: same results
+    assert parallel.run_ordered(slow_square, [3, 4], 2, failed=failed) == [9, 16]
+
+    def refused():
+        raise OSError(38, "Function not implemented")
+
+    monkeypatch.setattr(forkserver, "ensure_running", refused)
+    parallel.start_early()  # says nothing: the pool falls back later as it would have
+
+
+def test_the_forkserver_is_started_early_only_for_a_run_likely_to_use_it(monkeypatch, tmp_path):
+    from inertia_kit.lint.paths import _parallel_likely
+
+    monkeypatch.setattr(parallel, "usable_cores", lambda: 2)
+    one, two = tmp_path / "a.urdf", tmp_path / "b.urdf"
+    assert _parallel_likely([tmp_path], None, None, False, None)
+    assert _parallel_likely([one, two], 2, None, False, None)
+    assert not _parallel_likely([one], None, None, False, None)  # one file: one process
+    assert not _parallel_likely([tmp_path], 1, None, False, None)  # -j 1
+    assert not _parallel_likely([tmp_path], None, True, False, None)  # --fix runs here
+    assert _parallel_likely([tmp_path], None, True, True, None)  # --diff does not
+    assert not _parallel_likely([tmp_path], None, None, False, object())  # the API's loader
+    monkeypatch.setattr(parallel, "usable_cores", lambda: 1)
+    assert not _parallel_likely([tmp_path], None, None, False, None)  # one core
