@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -111,16 +111,20 @@ def targets(
     xacro_limits: XacroLimits | None = None,
     cache_dir: str | Path | None = None,
     discovery: Discovery | None = None,
+    found: Callable[[list[str]], None] | None = None,
 ) -> Targets:
     """
     The robots to lint (or fill) for ``paths`` (files and folders, walked as the linter walks
-    them, ``discovery`` saying what the walk leaves out): each file as itself, and each robot
+    them, ``discovery`` saying what the walk leaves out; ``found(files)`` told the files the
+    walk gave): each file as itself, and each robot
     of the repository that includes a given file (and is not given itself) for the given
     files it includes.
     """
     from inertia_kit.lint.discovery import expand_paths
 
     files = [str(file) for file in expand_paths(paths, discovery)]
+    if found is not None:  # told before the repositories are scanned for includers
+        found(files)
     given = {real(file) for file in files}
     graphs: dict[Path, IncludeGraph] = {}
     through: dict[str, list[str]] = {}  # robot (real path) -> given files it is linted for

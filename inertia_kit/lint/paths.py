@@ -103,12 +103,14 @@ def lint_paths(
     finder = ConfigFinder(config)
     if discovery is not None and discovery.config is None:
         discovery.config = finder  # one configuration read for the walk and the linting
-    paths = list(paths)
-    if _parallel_likely(paths, jobs, fix, diff, load_mesh):
-        from inertia_kit.lint import parallel
 
-        parallel.start_early()
-    chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery)
+    def found(files: list[str]) -> None:
+        if _parallel_likely(len(files), jobs, fix, diff, load_mesh):
+            from inertia_kit.lint import parallel
+
+            parallel.start_early()  # it imports the linter while repositories are scanned
+
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery, found)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     tasks = []
@@ -230,16 +232,16 @@ def _run(
 
 
 def _parallel_likely(
-    paths: list[str | Path], jobs: int | None, fix: bool | None, diff: bool, load_mesh: Any
+    files: int, jobs: int | None, fix: bool | None, diff: bool, load_mesh: Any
 ) -> bool:
-    """Whether this run will most likely lint in worker processes (:func:`_run` decides): more
-    than one core asked for, a folder or several files, no ``--fix`` asked, no loader of
-    meshes given (the API's, which may not reach a worker)."""
+    """Whether a run over ``files`` files will most likely lint in worker processes
+    (:func:`_run` decides): several files, more than one core asked for, no ``--fix`` asked, no
+    loader of meshes given (the API's, which may not reach a worker)."""
     from inertia_kit.lint import parallel
 
-    if parallel.worker_count(jobs, 2) < 2 or (fix and not diff) or load_mesh is not None:
+    if (fix and not diff) or load_mesh is not None:
         return False
-    return len(paths) > 1 or any(Path(path).is_dir() for path in paths)
+    return parallel.worker_count(jobs, files) > 1
 
 
 def _picklable(tasks: list[_Task]) -> bool:
@@ -285,6 +287,7 @@ def _targets(
     package_paths: Sequence[str | Path],
     xacro_limits: Mapping[str, float] | None,
     discovery: Any = None,
+    found: Callable[[list[str]], None] | None = None,
 ) -> Any:
     """The files to lint for ``paths``: :func:`~inertia_kit.lint.fragments.targets`."""
     from inertia_kit.lint.fragments import targets
@@ -295,6 +298,7 @@ def _targets(
         package_paths=package_paths,
         xacro_limits=XacroLimits.resolve(None, xacro_limits),
         discovery=discovery,
+        found=found,
     )
 
 

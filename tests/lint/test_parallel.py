@@ -126,17 +126,16 @@ def test_a_forkserver_started_early_serves_the_pool_and_one_that_cannot_start_is
     parallel.start_early()  # says nothing: the pool falls back later as it would have
 
 
-def test_the_forkserver_is_started_early_only_for_a_run_likely_to_use_it(monkeypatch, tmp_path):
+def test_the_forkserver_is_started_early_only_for_a_run_likely_to_use_it(monkeypatch):
     from inertia_kit.lint.paths import _parallel_likely
 
     monkeypatch.setattr(parallel, "usable_cores", lambda: 2)
-    one, two = tmp_path / "a.urdf", tmp_path / "b.urdf"
-    assert _parallel_likely([tmp_path], None, None, False, None)
-    assert _parallel_likely([one, two], 2, None, False, None)
-    assert not _parallel_likely([one], None, None, False, None)  # one file: one process
-    assert not _parallel_likely([tmp_path], 1, None, False, None)  # -j 1
-    assert not _parallel_likely([tmp_path], None, True, False, None)  # --fix runs here
-    assert _parallel_likely([tmp_path], None, True, True, None)  # --diff does not
-    assert not _parallel_likely([tmp_path], None, None, False, object())  # the API's loader
+    assert _parallel_likely(600, None, None, False, None)
+    assert _parallel_likely(2, 2, None, False, None)
+    assert not _parallel_likely(1, None, None, False, None)  # one file: one process
+    assert not _parallel_likely(600, 1, None, False, None)  # -j 1
+    assert not _parallel_likely(600, None, True, False, None)  # --fix runs here
+    assert _parallel_likely(600, None, True, True, None)  # --diff does not
+    assert not _parallel_likely(600, None, None, False, object())  # the API's loader
     monkeypatch.setattr(parallel, "usable_cores", lambda: 1)
-    assert not _parallel_likely([tmp_path], None, None, False, None)  # one core
+    assert not _parallel_likely(600, None, None, False, None)  # one core
