@@ -12,7 +12,8 @@ A worker that dies (a crash in C, out of memory) breaks the pool; the files not 
 then tried again one at a time, each in a pool of its own, so that only the file that kills
 its worker gets the error. Where worker processes cannot be started at all (no POSIX
 semaphores, as in some containers and serverless sandboxes: ``OSError`` "Function not
-implemented"), the files are worked on in this process, with the same results.
+implemented"), or could not import the caller's main module (a script read from standard
+input), the files are worked on in this process, with the same results.
 """
 
 from __future__ import annotations
@@ -81,7 +82,7 @@ def run_ordered(
         if done is not None:
             done(len(results), next_told)
 
-    if jobs <= 1:
+    if jobs <= 1 or not _main_importable():
         for index in pending:
             finish(index, _guarded(work, items[index], failed))
         return [results[i] for i in range(len(items))]
@@ -145,6 +146,20 @@ def _pooled(
     except BaseException:  # Ctrl-C: end the workers (and their xacro children), then exit
         _terminate(pool)
         raise
+
+
+def _main_importable() -> bool:
+    """
+    Whether a worker can prepare itself as multiprocessing does, by importing the caller's
+    ``__main__`` by name or from its file: not a script read from standard input
+    (``python - <<EOF``, whose ``__main__.__file__`` is ``<stdin>``), where every worker would
+    die at start.
+    """
+    main = sys.modules.get("__main__")
+    if getattr(getattr(main, "__spec__", None), "name", None) is not None:
+        return True
+    path = getattr(main, "__file__", None)
+    return path is None or os.path.isfile(path)
 
 
 class _NoWorkers(Exception):

@@ -139,3 +139,20 @@ def test_the_forkserver_is_started_early_only_for_a_run_likely_to_use_it(monkeyp
     assert not _parallel_likely(600, None, None, False, object())  # the API's loader
     monkeypatch.setattr(parallel, "usable_cores", lambda: 1)
     assert not _parallel_likely(600, None, None, False, None)  # one core
+
+
+def test_a_script_read_from_stdin_is_worked_on_in_this_process(tmp_path):
+    """Workers import the caller's __main__ from its file: `python -` has none (`<stdin>`)."""
+    import subprocess
+    import sys
+
+    script = (
+        "from inertia_kit.lint import parallel\n"
+        "def failed(item, error):\n"
+        "    return repr(error)\n"
+        "print(parallel.run_ordered(abs, [-1, -2, -3], 2, failed=failed))\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-"], input=script, capture_output=True, text=True, cwd=tmp_path
+    )
+    assert (done.returncode, done.stdout) == (0, "[1, 2, 3]\n"), done.stderr
