@@ -202,8 +202,12 @@ def _child(
     work: Callable[[], Any], fd: int, timeout: float, memory_mb: int
 ) -> None:  # pragma: no cover - runs in the forked child
     try:
+        import gc
         import signal
 
+        # what the parent made is out of this child's collections (moving the collector's lists
+        # touches no object): walking it would copy the parent's heap page by page
+        gc.freeze()
         signal.signal(signal.SIGINT, signal.SIG_IGN)
         _limit_resources(timeout, memory_mb)
         try:

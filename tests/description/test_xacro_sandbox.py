@@ -103,3 +103,13 @@ def test_no_fork_possible_says_so(monkeypatch):
         run(lambda: 1)
     if before is not None:
         assert len(os.listdir("/proc/self/fd")) == before  # the pipe was closed
+
+
+def test_the_child_leaves_the_parents_objects_out_of_its_collections():
+    """Frozen in the child: its collections do not walk (and copy) the parent's heap; the
+    parent itself is left as it was."""
+    import gc
+
+    before = gc.get_freeze_count()
+    assert run(gc.get_freeze_count) > before
+    assert gc.get_freeze_count() == before
