@@ -245,7 +245,7 @@ class Robot:
     source: Source
     files: tuple[str, ...] = ()
     invalid: tuple[Invalid, ...] = field(default=())
-    fragment: bool = False  # a xacro file of macros and properties only, meant to be included
+    fragment: bool = False  # a xacro file with no link or joint (macros, properties): included
     extensions: tuple[Extension, ...] = ()  # <gazebo> elements, in document order
 
     def link(self, name: str) -> Link | None:

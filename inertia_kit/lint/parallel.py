@@ -169,8 +169,9 @@ class _NoWorkers(Exception):
 def start_early() -> None:
     """
     Start the forkserver now, where this system has one: it imports the linter while the caller
-    finds the files, instead of after (about a third of a second off a parallel run). Nothing
-    is started where workers cannot be; the pool then falls back as it would have.
+    goes on (looking for the robots that include the files found), instead of once the pool is
+    made (about a third of a second off a parallel run). Nothing is started where workers
+    cannot be; the pool then falls back as it would have.
     """
     context = _context()
     if context.get_start_method() != "forkserver":

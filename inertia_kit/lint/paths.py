@@ -104,13 +104,13 @@ def lint_paths(
     if discovery is not None and discovery.config is None:
         discovery.config = finder  # one configuration read for the walk and the linting
 
-    def found(files: list[str]) -> None:
+    def walked(files: list[str]) -> None:
         if _parallel_likely(len(files), jobs, fix, diff, load_mesh):
             from inertia_kit.lint import parallel
 
             parallel.start_early()  # it imports the linter while repositories are scanned
 
-    chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery, found)
+    chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery, walked)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
     tasks = []
