@@ -63,14 +63,44 @@ def as_manifold(points: NDArray[np.float64], faces: NDArray[np.int64]) -> manifo
     return solid
 
 
-def manifold_moments(solid: manifold3d.Manifold, origin: NDArray[np.float64]) -> VolumeMoments:
-    """The volume integrals of a manifold3d solid about ``origin`` (3,) m; zero for no solid."""
-    mesh = solid.to_mesh64()
+def manifold_moments(
+    solid: manifold3d.Manifold, origin: NDArray[np.float64] | None = None
+) -> VolumeMoments:
+    """
+    The volume integrals of a manifold3d solid about ``origin`` (3,) m (default: near its
+    surface, as :func:`~inertia_kit.physics.polyhedra.integrate` picks); zero for no solid.
+    Its triangles are summed in :func:`canonical_triangles`' order.
+    """
+    # to_mesh64 (manifold3d ≥ 3) keeps the input's float64 vertices; to_mesh rounds to float32
+    mesh = getattr(solid, "to_mesh64", solid.to_mesh)()
     points = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    faces = np.asarray(mesh.tri_verts, dtype=np.int64)
+    faces = np.asarray(mesh.tri_verts, dtype=np.intp)
     if len(faces) == 0:
-        return VolumeMoments(0.0, np.zeros(3), np.zeros((3, 3)), origin)
-    return integrate(points[faces], origin).moments
+        return VolumeMoments(
+            0.0, np.zeros(3), np.zeros((3, 3)), np.zeros(3) if origin is None else origin
+        )
+    return integrate(canonical_triangles(points, faces), origin).moments
+
+
+def canonical_triangles(vertices: NDArray, faces: NDArray) -> NDArray:
+    """
+    The (n, 3, 3) triangles of a mesh in one order, whatever order its vertices and faces came
+    in: manifold3d works in parallel (a convex hull of the same points comes back as the same
+    triangles in an order that changes from run to run), and summing them in another order
+    changes the last bits of the volume and moments (and so of what lint reports and fill
+    writes). Vertices sorted by
+    (x, y, z), each face turned to start at its lowest vertex (its winding kept), faces sorted.
+    """
+    if not len(faces):
+        return vertices[faces]
+    order = np.lexsort(vertices.T[::-1])
+    rank = np.empty(len(order), dtype=np.intp)
+    rank[order] = np.arange(len(order))
+    faces = rank[faces]
+    turn = (np.argmin(faces, axis=1)[:, None] + np.arange(3)) % 3
+    faces = np.take_along_axis(faces, turn, axis=1)
+    faces = faces[np.lexsort(faces.T[::-1])]
+    return vertices[order][faces]
 
 
 def _indexed(

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.manifolds import manifold_moments
 from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.volume_moments import VolumeMoments
 
@@ -111,40 +112,14 @@ def _oriented(path: Path, integrator: SurfaceIntegrator, method: Method) -> Clas
 def _convex_hull(path: Path, triangles: NDArray, integrator: SurfaceIntegrator) -> Classification:
     import manifold3d
 
-    hull = manifold3d.Manifold.hull_points(triangles.reshape(-1, 3))
-    # to_mesh64 (manifold3d ≥ 3) keeps the input's float64 vertices; to_mesh rounds to float32
-    shell = getattr(hull, "to_mesh64", hull.to_mesh)()
-    vertices = np.asarray(shell.vert_properties, dtype=np.float64)[:, :3]
-    hull_triangles = canonical_triangles(vertices, np.asarray(shell.tri_verts, dtype=np.intp))
-    moments = integrate(hull_triangles).moments if len(hull_triangles) else None
-    volume = 0.0 if moments is None else moments.volume
+    moments = manifold_moments(manifold3d.Manifold.hull_points(triangles.reshape(-1, 3)))
+    volume = moments.volume
     _check_volume(path, volume, integrator.bounds, "the mesh is open and its convex hull")
-    assert moments is not None
     if volume < 0:
         moments = moments.negated()
     open_volume = integrate(triangles, origin=moments.centroid).moments.volume
     error = abs(moments.volume - abs(open_volume)) / moments.volume
     return Classification(moments, "convex-hull", closed=False, volume_error=error)
-
-
-def canonical_triangles(vertices: NDArray, faces: NDArray) -> NDArray:
-    """
-    The (n, 3, 3) triangles of a mesh in one order, whatever order its vertices and faces came
-    in: manifold3d builds a hull in parallel, so the same points give the same triangles in an
-    order that changes from run to run, and summing them in another order changes the last bits
-    of the volume and moments (and so of what lint reports and fill writes). Vertices sorted by
-    (x, y, z), each face turned to start at its lowest vertex (its winding kept), faces sorted.
-    """
-    if not len(faces):
-        return vertices[faces]
-    order = np.lexsort(vertices.T[::-1])
-    rank = np.empty(len(order), dtype=np.intp)
-    rank[order] = np.arange(len(order))
-    faces = rank[faces]
-    turn = (np.argmin(faces, axis=1)[:, None] + np.arange(3)) % 3
-    faces = np.take_along_axis(faces, turn, axis=1)
-    faces = faces[np.lexsort(faces.T[::-1])]
-    return vertices[order][faces]
 
 
 def _check_volume(path: Path, volume: float, bounds: NDArray, what: str) -> None:

@@ -1,7 +1,8 @@
 """
 The convex hull an open mesh is integrated as gives the same bits whatever order manifold3d
 hands its vertices and faces in (it builds hulls in parallel, and the order changes from run to
-run): :func:`~inertia_kit.physics.mesh_closure.canonical_triangles`.
+run): :func:`~inertia_kit.physics.manifolds.canonical_triangles`, which every solid from
+manifold3d is integrated through.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from inertia_kit.physics.mesh_closure import canonical_triangles
+from inertia_kit.physics.manifolds import canonical_triangles
 from inertia_kit.physics.polyhedra import integrate
 
 
