@@ -10,21 +10,12 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from kit.urdf import inertial, joint, link, robot
+from kit.urdf import NEGATIVE_MASS_ARM
 
 from inertia_kit.cli import fill_main, lint_main
 
-#: one finding: IN002 (a negative mass) on `arm`; `base` is welded to the world
-ROBOT = robot(
-    link("world"),
-    joint("world", "base", "fixed"),
-    link("base", inertial(1, 0.01)),
-    joint("base", "arm"),
-    link("arm", inertial(-1, 0.01)),
-)
 
-
-def write(root: Path, *names: str, text: str = ROBOT) -> None:
+def write(root: Path, *names: str, text: str = NEGATIVE_MASS_ARM) -> None:
     for name in names:
         (root / name).parent.mkdir(parents=True, exist_ok=True)
         (root / name).write_text(text)

@@ -16,18 +16,10 @@ import pytest
 from click.testing import CliRunner
 from console_scripts import console_script
 from kit.meshes import box_triangles, write_binary_stl
-from kit.urdf import box, collision, inertial, joint, link, mesh, robot
+from kit.urdf import NEGATIVE_MASS_ARM, box, collision, inertial, joint, link, mesh, robot
 
 from inertia_kit.cli import fill_main, lint_main
 
-#: IN002 (a negative mass) on `arm`, line 1
-NEGATIVE = robot(
-    link("world"),
-    joint("world", "base", "fixed"),
-    link("base", inertial(1, 0.01)),
-    joint("base", "arm"),
-    link("arm", inertial(-1, 0.01)),
-)
 #: `arm` has a collision box and no <inertial>: fill (and lint's unsafe fix) write one
 MISSING = robot(
     link("world"), joint("world", "arm"), link("arm", collision(box(0.1, 0.1, 0.4))), sep="\n"
@@ -51,7 +43,7 @@ def left_behind(folder: Path) -> list[str]:
 
 
 def test_locations_say_dash_without_stdin_filename(here):
-    result = run(lint_main, NEGATIVE, "--output-format", "concise", "-")
+    result = run(lint_main, NEGATIVE_MASS_ARM, "--output-format", "concise", "-")
     assert result.exit_code == 1
     assert result.stdout.startswith("-:1:")
     assert "IN002" in result.stdout
@@ -60,7 +52,12 @@ def test_locations_say_dash_without_stdin_filename(here):
 
 def test_stdin_filename_is_the_location_and_picks_the_configuration(here):
     result = run(
-        lint_main, NEGATIVE, "--output-format", "json", "--stdin-filename", "pkg/urdf/r.urdf"
+        lint_main,
+        NEGATIVE_MASS_ARM,
+        "--output-format",
+        "json",
+        "--stdin-filename",
+        "pkg/urdf/r.urdf",
     )
     assert result.exit_code == 1
     assert {f["file"] for f in json.loads(result.stdout)} == {"pkg/urdf/r.urdf"}
@@ -68,9 +65,11 @@ def test_stdin_filename_is_the_location_and_picks_the_configuration(here):
     (here / "pkg" / "pyproject.toml").write_text(
         '[tool.inertia-kit.per-file-ignores]\n"urdf/r.urdf" = ["IN002"]\n'
     )
-    result = run(lint_main, NEGATIVE, "--stdin-filename", "pkg/urdf/r.urdf", "-")
+    result = run(lint_main, NEGATIVE_MASS_ARM, "--stdin-filename", "pkg/urdf/r.urdf", "-")
     assert result.exit_code == 0, result.output
-    assert run(lint_main, NEGATIVE, "-").exit_code == 1  # the current folder: no configuration
+    assert (
+        run(lint_main, NEGATIVE_MASS_ARM, "-").exit_code == 1
+    )  # the current folder: no configuration
     assert left_behind(here) == []
 
 
@@ -134,7 +133,7 @@ def test_inertia_fill_prints_the_filled_text(here):
 
 def test_force_exclude_of_the_stdin_filename(here):
     args = ("--force-exclude", "--extend-exclude", "pkg", "--stdin-filename", "pkg/urdf/r.urdf")
-    linted = run(lint_main, NEGATIVE, *args)
+    linted = run(lint_main, NEGATIVE_MASS_ARM, *args)
     assert (linted.exit_code, linted.stdout) == (0, "")
     filled = run(fill_main, MISSING, *args)
     assert (filled.exit_code, filled.stdout) == (0, MISSING)  # printed back unchanged
@@ -149,10 +148,10 @@ def test_unreadable_input_is_exit_2(here, data):
 
 
 def test_dash_with_other_paths_or_add_noqa_is_a_usage_error(here):
-    (here / "r.urdf").write_text(NEGATIVE)
-    mixed = run(lint_main, NEGATIVE, "-", "r.urdf")
+    (here / "r.urdf").write_text(NEGATIVE_MASS_ARM)
+    mixed = run(lint_main, NEGATIVE_MASS_ARM, "-", "r.urdf")
     assert mixed.exit_code == 2 and "`-` (stdin) is the only path" in mixed.stderr
-    noqa = run(lint_main, NEGATIVE, "--add-noqa", "-")
+    noqa = run(lint_main, NEGATIVE_MASS_ARM, "--add-noqa", "-")
     assert noqa.exit_code == 2 and "--add-noqa" in noqa.stderr
 
 

@@ -171,3 +171,14 @@ def filled_inertial(values, com=(0, 0, 0), indent="  ", unit="  ", nl="\n", firs
         "</inertial>",
     ]
     return nl.join((indent if first or i else "") + line for i, line in enumerate(lines))
+
+
+#: one finding, IN002 (a negative mass) on `arm`, on the robot's one line; `base` is welded to
+#: the world
+NEGATIVE_MASS_ARM = robot(
+    link("world"),
+    joint("world", "base", "fixed"),
+    link("base", inertial(1, 0.01)),
+    joint("base", "arm"),
+    link("arm", inertial(-1, 0.01)),
+)
