@@ -17,13 +17,15 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.output.common import UNLINTED, message, unlinted_name
+from inertia_kit.printable import UNPRINTABLE_ABOVE_C0, escape
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
 
 PACKAGE = "org.inertia-kit"
 CLEAN = "no findings"
-# characters XML 1.0 cannot hold, even escaped (ElementTree writes them as they are)
+# characters XML 1.0 cannot hold, even escaped (ElementTree writes them as they are): shown as
+# escapes (``\x1b``), the nearest to the exact name XML allows
 _NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff\ud800-\udfff]")
 
 
@@ -47,7 +49,12 @@ def render(
     for count in ("tests", "failures", "errors"):
         report.set(count, str(sum(int(suite.get(count, 0)) for suite in report)))
     ET.indent(report, space="    ")
-    text = _NOT_XML.sub("\ufffd", ET.tostring(report, "unicode"))
+    text = _NOT_XML.sub(lambda match: escape(match.group()), ET.tostring(report, "unicode"))
+    # a raw CR left is in text content (attributes have it as &#13;): a reader would turn it into
+    # a line feed; a reference keeps it. C1 controls, line separators and bidirectional
+    # controls as references too, so that the report is safe to print in a CI log
+    text = text.replace("\r", "&#13;")
+    text = UNPRINTABLE_ABOVE_C0.sub(lambda match: f"&#x{ord(match.group()):x};", text)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
 
 
