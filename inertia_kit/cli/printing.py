@@ -89,9 +89,14 @@ def show(
     """
     A report the formats rendered (and escaped), redacted; ``machine``: a machine-read format,
     whose values were redacted before it was rendered (a pass over its text could cut its
-    syntax: a value that is also one of its keys).
+    syntax: a value that is also one of its keys), written byte for byte (click would strip
+    what reads as a colour code from a file name in ``github``'s ``file=``, which then names
+    another file).
     """
-    click.echo(text if machine else _redaction.get().text(text), err=err, nl=nl, **options)
+    if machine:
+        click.echo(text, err=err, nl=nl, **{**options, "color": True})
+    else:
+        click.echo(_redaction.get().text(text), err=err, nl=nl, **options)
 
 
 def report_text(text: str) -> str:
