@@ -50,7 +50,10 @@ def _colour() -> bool | None:
     type=click.Choice(OUTPUT_FORMATS),
     default="full",
     show_default=True,
-    help="How findings are printed (to stdout).",
+    help="How findings are printed (to stdout). full and concise show control characters in "
+    "names, paths and values as escapes (\\n, \\x1b, \\u202e), so that a name cannot start "
+    "a line (a CI workflow command); the others carry them exactly. full shows 120 characters "
+    "of a longer source line, around the element.",
 )
 @click.option(
     "-q",
