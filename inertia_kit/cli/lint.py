@@ -367,7 +367,8 @@ def _write_report(path: str, output: str) -> bool:
     from inertia_kit.errors import InputError
 
     try:
-        write_atomic(path, output.encode(), create=True)
+        # a file name that is no UTF-8 (github's file=) is written as its own bytes, as stdout does
+        write_atomic(path, output.encode("utf-8", "surrogateescape"), create=True)
     except InputError as error:
         say(f"error: --output-file: {error}")
         return False

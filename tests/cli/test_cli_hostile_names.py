@@ -12,6 +12,7 @@ file with any text, and a terminal reads ``ESC [`` (or its one-byte form, U+009B
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import xml.etree.ElementTree as ET
@@ -280,3 +281,33 @@ def test_a_folder_given_and_a_fragment_note(robots):
     _, out, err = run("lint", "--output-format", "concise", ".")
     safe(out), safe(err)
     assert shown(str(fragment)) in err  # the fragment's note
+
+
+# --- a file name that is no UTF-8 --------------------------------------------------------------
+
+UNDECODABLE = os.fsdecode(b"robot\xff.urdf")  # Python's name for it: "robot\udcff.urdf"
+
+
+@pytest.mark.skipif(os.name != "posix", reason="POSIX file names are bytes")
+@pytest.mark.parametrize("output_format", ["full", "concise", "json", "github", "sarif", "junit",
+                                           "gitlab"])  # fmt: skip
+def test_a_file_name_that_is_no_utf8_in_every_format(tmp_path, monkeypatch, output_format):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path / UNDECODABLE, ROBOT.replace(PLANTED, ""))
+    code, _, err = run("lint", "--output-format", output_format, "-o", "report", UNDECODABLE)
+    assert code == 1, err
+    report = Path("report").read_bytes()
+    if output_format == "github":  # file= is the name's own bytes, as GitHub reads the file
+        assert b",file=robot\xff.urdf," in report
+    else:
+        text = report.decode("utf-8")  # no other format holds anything but UTF-8
+        assert "robot\\udcff.urdf" in text or "robot%FF.urdf" in text
+
+
+@pytest.mark.skipif(os.name != "posix", reason="POSIX file names are bytes")
+def test_a_file_name_that_is_no_utf8_in_the_review_page(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    write(tmp_path / UNDECODABLE, ROBOT.replace(PLANTED, ""))
+    code, _, err = run("view", UNDECODABLE, "-o", "page.html")
+    assert code == 0, err
+    assert '"file":"robot\\udcff.urdf"' in Path("page.html").read_text(encoding="utf-8")
