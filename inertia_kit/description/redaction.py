@@ -91,9 +91,33 @@ class Redaction:
         return tuple(sorted(kept, key=lambda form: (-len(form), form)))
 
     @cached_property
-    def _pattern(self) -> re.Pattern[str] | None:
-        forms = self._forms
-        return re.compile("|".join(map(re.escape, forms))) if forms else None
+    def _buckets(self) -> dict[str, tuple[str, ...]]:
+        """The forms by their first :data:`MIN_LENGTH` characters, longest first."""
+        buckets: dict[str, list[str]] = {}
+        for form in self._forms:
+            buckets.setdefault(form[:MIN_LENGTH], []).append(form)
+        return {prefix: tuple(forms) for prefix, forms in buckets.items()}
+
+    @cached_property
+    def _starts(self) -> re.Pattern[str] | None:
+        """Where a form may start: a lookahead for the buckets' prefixes, as a trie (an
+        alternation of thousands of YAML values would cost thousands of tries per character;
+        the trie is :data:`MIN_LENGTH` deep)."""
+        if not self._buckets:
+            return None
+        trie: dict[str, dict] = {}
+        for prefix in self._buckets:
+            node = trie
+            for char in prefix:
+                node = node.setdefault(char, {})
+
+        def pattern(node: dict[str, dict]) -> str:
+            branches = [re.escape(char) + pattern(child) for char, child in sorted(node.items())]
+            if len(branches) <= 1:
+                return "".join(branches)
+            return "(?:" + "|".join(branches) + ")"
+
+        return re.compile(f"(?={pattern(trie)})")
 
     @cached_property
     def _numbers(self) -> frozenset[float]:
@@ -106,10 +130,20 @@ class Redaction:
 
     def text(self, text: str) -> str:
         """``text`` with every value (and its printed forms) replaced by :data:`MARK`."""
-        pattern = self._pattern
-        if pattern is None or not text:
+        starts = self._starts
+        if starts is None or len(text) < MIN_LENGTH:
             return text
-        return pattern.sub(MARK, text)
+        pieces, done = [], 0
+        for match in starts.finditer(text):
+            at = match.start()
+            if at < done:  # inside a value already replaced
+                continue
+            for form in self._buckets[text[at : at + MIN_LENGTH]]:
+                if text.startswith(form, at):  # the longest at the leftmost place
+                    pieces += [text[done:at], MARK]
+                    done = at + len(form)
+                    break
+        return "".join(pieces) + text[done:] if pieces else text
 
     def apply(self, value: Any) -> Any:
         """
