@@ -119,8 +119,12 @@ def _told(text: str, path: str, shown: str) -> str:
     ``text`` with the stand-in told as ``shown``: its unique name replaced by the name it
     stands for (in any spelling of its folder), or, for ``-``, its whole path.
     """
+    from inertia_kit.printable import printable
+
     name = os.path.basename(path)
     if shown != "-":
+        # as the text formats escape it too (a name given with a newline)
+        text = text.replace(printable(name), printable(os.path.basename(shown)))
         return text.replace(name, os.path.basename(shown))
     import json  # only for a run that reads stdin
 

@@ -67,12 +67,12 @@ def robots(tmp_path, monkeypatch):
     return tmp_path
 
 
-def run(*args: str) -> tuple[int, str, str]:
+def run(*args: str, input: str | None = None) -> tuple[int, str, str]:
     try:
         runner = CliRunner(mix_stderr=False)  # click < 8.2
     except TypeError:
         runner = CliRunner()
-    result = runner.invoke(main, list(args), catch_exceptions=False)
+    result = runner.invoke(main, list(args), input=input, catch_exceptions=False)
     return result.exit_code, result.stdout, result.stderr
 
 
@@ -311,3 +311,11 @@ def test_a_file_name_that_is_no_utf8_in_the_review_page(tmp_path, monkeypatch):
     code, _, err = run("view", UNDECODABLE, "-o", "page.html")
     assert code == 0, err
     assert '"file":"robot\\udcff.urdf"' in Path("page.html").read_text(encoding="utf-8")
+
+
+def test_a_robot_read_from_stdin_is_told_by_its_name_escaped(robots):
+    name = f"{FOLDER}/stdin{EXACT}.urdf"
+    options = ("--output-format", "concise", "--stdin-filename", name, "-")
+    code, out, err = run("lint", *options, input=ROBOT)
+    assert code == 1 and safe(out).startswith(f"{shown(name)}:3:3: IN001")
+    safe(err)
