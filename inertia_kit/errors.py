@@ -14,7 +14,11 @@ class InputError(InertiaKitError):
     A file we cannot read as a robot description: the command exits 2.
 
     ``str(error)`` is ``path:line:column: message`` with as much of the location as is known.
+    ``environment_values``: what the environment gave the xacro expansion that failed
+    (``--redact-env`` keeps them out of the message as printed).
     """
+
+    environment_values: tuple[str, ...] = ()
 
     def __init__(
         self,

@@ -4,7 +4,8 @@ Command-line entry points: ``inertia-kit`` (this group of commands), and ``inert
 command, each thin: parse the options, call the layer below, map the outcome to an exit code.
 The CLI is the only layer that knows exit codes: 0 success, 1 findings (lint) or changes (fill),
 2 bad input, usage or an internal error, 130 Ctrl-C (:mod:`.guard`, the last resort of every
-command).
+command). Whatever a command prints goes through :mod:`.printing` (escaped, and redacted under
+``--redact-env``).
 """
 
 from __future__ import annotations

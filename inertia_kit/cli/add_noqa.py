@@ -10,7 +10,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import click
+from inertia_kit.cli.printing import say
 
 if TYPE_CHECKING:
     from inertia_kit.lint.runner import FileResult
@@ -63,32 +63,31 @@ def add_noqa(
     try:
         write_all_atomic(writes)
     except InputError as error:
-        click.echo(f"error: {error}", err=True)  # it says what was left as it was
+        say(f"error: {error}")  # it says what was left as it was
         return 2
     total = sum(planned.added.values())
     where = "" if not total else f" in {_count(len(planned.added), 'file')}"
     extended = "" if not planned.extended else f" ({planned.extended} already there, given codes)"
     if not quiet:
-        click.echo(f"Added {_count(total, 'suppression comment')}{extended}{where}.", err=True)
+        say(f"Added {_count(total, 'suppression comment')}{extended}{where}.")
         for path, count in planned.added.items():
-            click.echo(f"  {os.path.relpath(path)}: {count}", err=True)
+            say(f"  {os.path.relpath(path)}: {count}")
         for finding, why in planned.skipped:
             line = "" if finding.line is None else f":{finding.line}"
-            note = f"{finding.path}{line}: {finding.code} not suppressed: {why}"
-            click.echo(f"note: {note}", err=True)
+            say(f"note: {finding.path}{line}: {finding.code} not suppressed: {why}")
     relint_results = relint() if writes else list(results)
     after = merge(relint_results)
     for level, text in after.messages:
         if not (quiet and level == "note"):
-            click.echo(f"{level}: {text}", err=True)
+            say(f"{level}: {text}")
     if after.errors:
         return 2
     if after.failing:
         left = [f for f in after.findings if any(f in r.failing for r in relint_results)]
         for finding in left:
             line = "" if finding.line is None else f":{finding.line}"
-            click.echo(f"  {finding.path}{line}: {finding.code} {finding.name}", err=True)
-        click.echo(f"{_count(len(left), 'finding')} still fail `inertia-lint`", err=True)
+            say(f"  {finding.path}{line}: {finding.code} {finding.name}")
+        say(f"{_count(len(left), 'finding')} still fail `inertia-lint`")
         return 1
     return 0
 

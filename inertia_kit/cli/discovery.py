@@ -85,8 +85,9 @@ def discovery(options: dict[str, Any], finder: Any = None) -> Any:
 
 def show_files(paths: Sequence[str], found: Any) -> int:
     """``--show-files``: the files ``found`` (a ``Discovery``) for ``paths``, one a line."""
+    from inertia_kit.cli.printing import say
     from inertia_kit.lint.discovery import expand_paths
 
     for file in expand_paths(paths, found):
-        click.echo(str(file))
+        say(str(file), err=False)  # a file name may hold a newline: one line each, escaped
     return 0

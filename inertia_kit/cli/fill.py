@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import textwrap
 from pathlib import Path
 from typing import Any
 
@@ -21,6 +20,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.printing import keep_out, redact_env_option, redacting, say, show
 from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.fill.materials import materials_text
 from inertia_kit.version import __version__
@@ -104,6 +104,7 @@ from inertia_kit.version import __version__
 @xacro_limit_option
 @discovery_options
 @stdin_filename_option
+@redact_env_option
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -166,6 +167,7 @@ def fill(
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
     jobs: int | None = None,  # accepted, unused: see the option's help
+    redact_env: bool | None = None,
     **discovery: Any,
 ) -> int:
     """
@@ -199,10 +201,10 @@ def fill(
         if discovery.get("show_files"):
             return show_files(paths, walk)
     except UsageError as error:
-        click.echo(f"error: {error.format_message()}", err=True)
+        say(f"error: {error.format_message()}")
         return 2
     except ConfigError as error:
-        click.echo(f"error: {error}", err=True)
+        say(f"error: {error}")
         return 2
 
     failed = False
@@ -216,7 +218,7 @@ def fill(
     try:
         chosen = fill_targets(paths, output, arguments, package_paths, limits, walk)
     except ConfigError as error:  # a bad configuration found by the walk
-        click.echo(f"error: {error}", err=True)
+        say(f"error: {error}")
         return 2
 
     def plan_target(target: Any) -> Any:
@@ -227,6 +229,7 @@ def fill(
         with processing(path):
             try:
                 found = finder.for_file(path)
+                redacts = redacting(redact_env, found.redact_environment)
                 per_file = per_link(found.links, masses)
                 bounds = XacroLimits.resolve(found.xacro, limits)
                 plan = plan_fill(
@@ -237,15 +240,19 @@ def fill(
                     **options,
                     **per_file,
                 )
+                if redacts:
+                    keep_out(plan.environment_values)
                 return cut(plan, target, chosen, arguments, package_paths, bounds)
             except ConfigError:
                 raise
             except InputError as error:
                 if not chosen.read_by_robots(target):  # else: filled through its robots
-                    click.echo(f"error: {error}", err=True)
+                    if redacts:
+                        keep_out(error.environment_values)
+                    say(f"error: {error}")
                     failed = True
             except Exception as error:  # a bug: reported for this file, the others go on
-                click.echo(f"error: {internal(error, path)}", err=True)
+                say(f"error: {internal(error, path)}")
                 failed = True
         return None
 
@@ -256,7 +263,7 @@ def fill(
             if plan is not None:
                 planned.append((target, plan))
     except ConfigError as error:
-        click.echo(f"error: {error}", err=True)
+        say(f"error: {error}")
         return 2
     # robots that include one fragment and want other values there: none writes it (fill.shared)
     disagree = disagreements([(target.robot, plan) for target, plan in planned])
@@ -264,9 +271,7 @@ def fill(
     plans = [plan for _, plan in planned]
     unknown = unknown_links([*masses, *link_options], plans)
     if unknown:
-        click.echo(
-            f"error: --mass/--link name no link in the files: {', '.join(unknown)}", err=True
-        )
+        say(f"error: --mass/--link name no link in the files: {', '.join(unknown)}")
         return 2
 
     write = not (show_diff or check)
@@ -284,7 +289,7 @@ def fill(
             try:
                 outcome = _finish(plan, write, show_diff, chosen.through(plan.path))
             except Exception as error:  # a bug: reported for this file, the others go on
-                click.echo(f"error: {internal(error, plan.path)}", err=True)
+                say(f"error: {internal(error, plan.path)}")
                 outcome = (False, False, True)
         if write and outcome[0]:
             written.update(Path(name).resolve() for name in written_files(plan))
@@ -295,10 +300,7 @@ def fill(
         )
     if not changed and not refused:
         checked = len(plans)
-        click.echo(
-            f"inertia-fill: {checked} file{'s' if checked != 1 else ''} checked, nothing to change",
-            err=True,
-        )
+        say(f"inertia-fill: {checked} file{'s' if checked != 1 else ''} checked, nothing to change")
     if failed:
         return 2
     return 1 if changed or refused else 0
@@ -314,16 +316,15 @@ def _finish(
 
     changed = failed = False
     for note in plan.notes:
-        click.echo(f"note: {plan.path}: {note}", err=True)
+        say(f"note: {plan.path}: {note}")
     if write:
         for stale in remove_stale(plan):
-            click.echo(
+            say(
                 f"note: removed {stale}, a temporary file left by an inertia-fill that "
-                "was killed while writing",
-                err=True,
+                "was killed while writing"
             )
     if show_diff and plan.changed:
-        click.echo(plan.diff(), nl=False)
+        show(plan.diff(), nl=False)  # the file names in its headers escaped
     filled = plan.changed_links
     if filled or (plan.input_path is not None and write):
         followed = links_followed(plan) if write else []
@@ -331,21 +332,20 @@ def _finish(
             if write:
                 (apply if plan.input_path is None else write_output)(plan)
         except InputError as error:
-            click.echo(f"error: {error}", err=True)
+            say(f"error: {error}")
             failed = True
         else:
             changed = bool(filled)
-            click.echo(_fill_line(plan, write, through), err=True)
+            say(_fill_line(plan, write, through))
             for name, real in followed:
-                click.echo(
+                say(
                     f"note: {name} is a symbolic link: the file it points to, {real}, "
-                    "was written and the link kept",
-                    err=True,
+                    "was written and the link kept"
                 )
     for refusal in plan.refused:
-        click.echo(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}", err=True)
-        if refusal.block is not None:
-            click.echo(textwrap.indent(refusal.block, "    "), err=True)
+        say(f"{plan.path}: link `{refusal.link}` not filled: {refusal.reason}")
+        for line in (refusal.block or "").splitlines():  # the block to paste, line by line
+            say(f"    {line}")
     return changed, bool(plan.refused), failed
 
 

@@ -77,15 +77,20 @@ _FULL = frozenset(getattr(errno, name) for name in ("ENOSPC", "EDQUOT") if hasat
 
 
 def _echo_if_possible(message: str) -> None:
+    from inertia_kit.cli.printing import say
+
     with contextlib.suppress(OSError):
-        click.echo(message, err=True)
+        say(message)
 
 
 class _Guard:
     """The mixin: :meth:`invoke` turns the unforeseen into exit 2 and Ctrl-C into exit 130."""
 
     def invoke(self, ctx: click.Context) -> Any:
+        from inertia_kit.cli import printing
+
         _processing.set(None)
+        printing.start()
         _tolerant_streams()
         try:
             return super().invoke(ctx)  # type: ignore[misc]
@@ -101,7 +106,7 @@ class _Guard:
                 # the disk stdout (or a report) is written to is full: the machine's state
                 _echo_if_possible(f"error: cannot write: {error.strerror}")
             else:
-                click.echo(f"error: {internal(error, _processing.get())}", err=True)
+                printing.say(f"error: {internal(error, _processing.get())}")
             raise click.exceptions.Exit(2) from None
 
 

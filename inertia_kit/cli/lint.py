@@ -20,6 +20,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.printing import redact_env_option, say, show
 from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.version import __version__
 
@@ -27,6 +28,8 @@ if TYPE_CHECKING:
     from pathlib import Path
 
 OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
+#: formats a program reads: their findings are redacted before they are rendered, never after
+MACHINE = ("json", "github", "sarif", "junit", "gitlab")
 #: formats printed file by file as the files are linted (json and sarif are one document)
 STREAMED = ("full", "concise", "github")
 
@@ -47,7 +50,10 @@ def _colour() -> bool | None:
     type=click.Choice(OUTPUT_FORMATS),
     default="full",
     show_default=True,
-    help="How findings are printed (to stdout).",
+    help="How findings are printed (to stdout). full and concise show control characters in "
+    "names, paths and values as escapes (\\n, \\x1b, \\u202e), so that a name cannot start "
+    "a line (a CI workflow command); the others carry them exactly. full shows 120 characters "
+    "of a longer source line, around the element.",
 )
 @click.option(
     "-q",
@@ -148,6 +154,7 @@ def _colour() -> bool | None:
     "--select, --ignore and the configuration), so that only new findings fail; a comment "
     "already there gains the codes. Prints how many were written where.",
 )
+@redact_env_option
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -193,6 +200,7 @@ def lint(
     quiet: bool = False,
     output_file: str | None = None,
     jobs: int | None = None,
+    redact_env: bool | None = None,
     **discovery: Any,
 ) -> int:
     """
@@ -205,13 +213,14 @@ def lint(
         try:
             click.echo(document(explain), nl=False)
         except LookupError as error:
-            click.echo(f"error: --explain: {error}", err=True)
+            say(f"error: --explain: {error}")
             return 2
         return 0
     if not paths:
-        click.echo("error: give files or folders to lint (or --explain CODE)", err=True)
+        say("error: give files or folders to lint (or --explain CODE)")
         return 2
 
+    from inertia_kit.cli import printing
     from inertia_kit.cli.discovery import discovery as discovery_from
     from inertia_kit.cli.discovery import show_files
     from inertia_kit.errors import ConfigError, InternalError
@@ -225,20 +234,25 @@ def lint(
     from inertia_kit.lint.runner import FileResult
 
     if add_noqa and output_file is not None:
-        click.echo(
+        say(
             "error: --output-file: --add-noqa writes comments into the files and prints no "
-            "report to write; drop one of them",
-            err=True,
+            "report to write; drop one of them"
         )
         return 2
     try:
-        walk = discovery_from(discovery, ConfigFinder(config_path))
+        finder = ConfigFinder(config_path)
+        walk = discovery_from(discovery, finder)
         if discovery.get("show_files"):
             return show_files(paths, walk)
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)
-        click.echo(f"error: {message}", err=True)
+        say(f"error: {message}")
         return 2
+
+    def learn(result: FileResult) -> None:
+        """Keep what the environment gave ``result``'s robot out of the output, if asked."""
+        if printing.redacting(redact_env, finder.for_file(result.path).redact_environment):
+            printing.keep_out(result.environment_values)
 
     def crashed(file: Path, error: Exception) -> FileResult:
         # a bug in one file's linting: reported for it (exit 2), the other files are linted
@@ -251,12 +265,18 @@ def lint(
     printed: dict[tuple, None] = {}  # the findings already printed, as merge keys
 
     def told(result: FileResult, settled: list[Finding]) -> None:
+        learn(result)
         fresh = [f for f in settled if _key(f) not in printed]
         if fresh:
             printed.update(dict.fromkeys(map(_key, fresh)))
             progress.clear()
-            text = render(fresh, output_format, style=click.style, unsafe_fixes=result.unsafe_fixes)
-            click.echo(text, nl=False, color=_colour())
+            text = render(
+                printing.redacted(fresh),
+                output_format,
+                style=click.style,
+                unsafe_fixes=result.unsafe_fixes,
+            )
+            show(text, nl=False, color=_colour(), machine=output_format in MACHINE)
 
     def lint_all(**streaming: Any) -> list[FileResult]:
         return lint_paths(
@@ -282,10 +302,12 @@ def lint(
         results = lint_all(told=told if streams else None, progress=progress.update)
     except (ConfigError, UsageError) as error:
         message = error.format_message() if isinstance(error, UsageError) else str(error)
-        click.echo(f"error: {message}", err=True)
+        say(f"error: {message}")
         return 2
     finally:
         progress.clear()  # also on Ctrl-C, before `interrupted`
+    for result in results:
+        learn(result)
 
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
@@ -295,11 +317,9 @@ def lint(
     for level, text in run.messages:
         if quiet and level == "note":
             continue
-        click.echo(f"{level}: {text}", err=True)
+        say(f"{level}: {text}")
     if not results:
-        click.echo(
-            f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}", err=True
-        )
+        say(f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}")
     unsafe = any(result.unsafe_fixes for result in results)
     if show_diff:
         # as ruff: the diff on stdout, instead of the findings
@@ -311,16 +331,19 @@ def lint(
         style = None if output_file else click.style
         rest = [finding for finding in run.findings if _key(finding) not in printed]
         output = render(
-            rest,
+            printing.redacted(rest),
             output_format,
-            errors=run.errors,
+            errors=printing.redacted(run.errors),
             style=style,
             unsafe_fixes=unsafe,
-            linted=run.linted,
+            linted=printing.redacted(run.linted),
         )
+    # the machine-read formats were given redacted findings: a pass over their text could cut
+    # their syntax (a value that is also a key); statistics hold no value from a file
+    machine = output_format in MACHINE and not show_diff
     if output_file is None:
-        click.echo(output, nl=False, color=_colour())
-    elif not _write_report(output_file, output):
+        show(output, nl=False, color=_colour(), machine=machine)
+    elif not _write_report(output_file, output if machine else printing.report_text(output)):
         return 2
     crashes = sum(isinstance(error, InternalError) for error in run.errors)
     fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
@@ -344,9 +367,10 @@ def _write_report(path: str, output: str) -> bool:
     from inertia_kit.errors import InputError
 
     try:
-        write_atomic(path, output.encode(), create=True)
+        # a file name that is no UTF-8 (github's file=) is written as its own bytes, as stdout does
+        write_atomic(path, output.encode("utf-8", "surrogateescape"), create=True)
     except InputError as error:
-        click.echo(f"error: --output-file: {error}", err=True)
+        say(f"error: --output-file: {error}")
         return False
     return True
 

@@ -9,6 +9,7 @@ import click
 
 from inertia_kit.cli.guard import GuardedCommand, GuardedGroup, processing
 from inertia_kit.cli.options import NUMBER, SCALE, UsageError
+from inertia_kit.cli.printing import say
 from inertia_kit.fill.materials import MATERIALS, canonical_material, materials_text
 
 
@@ -157,7 +158,7 @@ def mass_mesh(path: str, scale: str | None, trust_units: bool, **options: Any) -
         warning = _unit_warning(path, part, options.get("mass_kg"))
         withheld = None
         if warning is not None:
-            click.echo(f"warning: {warning}", err=True)
+            say(f"warning: {warning}")
             if scale is None and not trust_units:
                 withheld = "the mesh looks authored in other units than metres (see the warning)"
         _show(part, {**options, "withheld": withheld})

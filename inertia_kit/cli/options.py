@@ -19,7 +19,9 @@ class UsageError(click.ClickException):
     exit_code = 2
 
     def show(self, file: Any = None) -> None:
-        click.echo(f"error: {self.format_message()}", err=True)
+        from inertia_kit.cli.printing import say
+
+        say(f"error: {self.format_message()}")
 
 
 class Number(click.ParamType):

@@ -15,6 +15,8 @@ import sys
 import time
 from typing import TextIO
 
+from inertia_kit.printable import printable
+
 DELAY = 2.0  # seconds before the bar appears
 WIDTH = 20  # characters of the bar itself
 
@@ -44,7 +46,7 @@ class Progress:
         filled = WIDTH * done // max(total, 1)
         line = f"[{'=' * filled}{' ' * (WIDTH - filled)}] {done}/{total}"
         if current:
-            line += f" {current}"
+            line += f" {printable(current)}"  # a file name may hold a CR or an escape
         line = line[: max(columns - 1, 10)]
         self.clear()
         self.stream.write(line)

@@ -13,6 +13,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.printing import redact_env_option
 
 
 @click.command("report", cls=GuardedCommand)
@@ -41,6 +42,7 @@ from inertia_kit.cli.options import (
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@redact_env_option
 def report_command(
     path: str,
     output_format: str,
@@ -49,10 +51,12 @@ def report_command(
     package_paths: tuple[str, ...],
     xacro_args: tuple[str, ...],
     xacro_limits: tuple[str, ...],
+    redact_env: bool | None,
 ) -> None:
     """A table of the robot's links: parent joint, declared mass, COM, principal moments,
     geometry and the source line to edit; and the robot's total mass. With --lumped, the
     bodies each engine simulates."""
+    from inertia_kit.cli import printing
     from inertia_kit.description.loader import load
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.engines.vocabulary import ENGINES, parse_engines
@@ -67,11 +71,13 @@ def report_command(
     except ValueError as error:
         raise UsageError(f"--engine: {error}") from None
 
+    redacts = bool(redact_env)
     with processing(path):
         try:
             # the xacro limits of the nearest configuration, as inertia-lint takes them
-            configured = ConfigFinder().for_file(path).xacro
-            limits = XacroLimits.resolve(configured, parse_xacro_limits(xacro_limits))
+            configured = ConfigFinder().for_file(path)
+            redacts = printing.redacting(redact_env, configured.redact_environment)
+            limits = XacroLimits.resolve(configured.xacro, parse_xacro_limits(xacro_limits))
             robot = load(
                 path,
                 xacro_args=parse_xacro_args(xacro_args),
@@ -79,15 +85,19 @@ def report_command(
                 xacro_limits=limits,
             )
         except (InputError, ConfigError) as error:
+            if redacts and isinstance(error, InputError):
+                printing.keep_out(error.environment_values)
             raise UsageError(str(error)) from None
         if robot.fragment:
-            click.echo(
-                f"{path}: a xacro fragment (macros and properties only, to be included): no links",
-                err=True,
+            printing.say(
+                f"{path}: a xacro fragment (macros and properties only, to be included): no links"
             )
             return
+        if redacts:
+            printing.keep_out(robot.environment_values)
+        redaction = printing.redaction()  # JSON values before they are written; text as text
         if lumped:
-            text = render_lumped(robot, chosen, output_format)
+            text = render_lumped(robot, chosen, output_format, redaction)
         else:
-            text = render(robot, output_format)
-    click.echo(text)
+            text = render(robot, output_format, redaction)
+    printing.show(text, machine=output_format == "json")

@@ -17,6 +17,8 @@ from typing import Any
 
 import click
 
+from inertia_kit.cli.printing import say
+
 stdin_filename_option = click.option(
     "--stdin-filename",
     default=None,
@@ -65,10 +67,9 @@ def on_stdin(
             text = _read(path) if prints_text else None
     except OSError as error:
         folder = os.path.dirname(filename or "") or "."
-        click.echo(
+        say(
             f"error: -: cannot place the robot read from stdin in {folder} (where "
-            f"--stdin-filename says it stands): {error.strerror or error}",
-            err=True,
+            f"--stdin-filename says it stands): {error.strerror or error}"
         )
         return 2
     report, messages = (_told(s.getvalue(), path, shown) for s in (out, err))
@@ -94,7 +95,7 @@ def _stdin() -> bytes | None:
             return stream.read()
         except OSError as error:
             why = error.strerror or str(error)
-    click.echo(f"error: -: cannot read stdin: {why}", err=True)
+    say(f"error: -: cannot read stdin: {why}")
     return None
 
 
@@ -118,8 +119,12 @@ def _told(text: str, path: str, shown: str) -> str:
     ``text`` with the stand-in told as ``shown``: its unique name replaced by the name it
     stands for (in any spelling of its folder), or, for ``-``, its whole path.
     """
+    from inertia_kit.printable import printable
+
     name = os.path.basename(path)
     if shown != "-":
+        # as the text formats escape it too (a name given with a newline)
+        text = text.replace(printable(name), printable(os.path.basename(shown)))
         return text.replace(name, os.path.basename(shown))
     import json  # only for a run that reads stdin
 
@@ -152,7 +157,7 @@ def command_on_stdin(
         walk = discovery(options, finder)
         configured = finder.for_file(filename or "-")
     except ConfigError as error:
-        click.echo(f"error: {error}", err=True)
+        say(f"error: {error}")
         return 2
     if filename is not None and walk.for_path(Path(filename)).excludes_given(filename):
         # --force-exclude: nothing linted; fill prints the robot back unchanged (formatters do)
@@ -163,7 +168,7 @@ def command_on_stdin(
             _write_bytes(data)
         return 0
     if options.get("show_files"):
-        click.echo(filename or "-")
+        say(filename or "-", err=False)
         return 0
     if fills:
         prints_text = not (options.get("show_diff") or options.get("check") or options["output"])

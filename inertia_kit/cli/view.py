@@ -18,6 +18,7 @@ from inertia_kit.cli.options import (
     xacro_arg_option,
     xacro_limit_option,
 )
+from inertia_kit.cli.printing import keep_out, redact_env_option, redacting, say
 
 DEFAULT_BUDGET = 300_000
 
@@ -81,6 +82,7 @@ def _size(value: str) -> tuple[int, int]:
 @package_path_option
 @xacro_arg_option
 @xacro_limit_option
+@redact_env_option
 @click.pass_context
 def view_command(ctx: click.Context, robot: str, **options: Any) -> None:
     """
@@ -116,6 +118,7 @@ def view(
     package_paths: tuple[str, ...] = (),
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
+    redact_env: bool | None = None,
 ) -> int:
     """``inertia-kit view``: write the page (and the PNG); return the exit code."""
     from inertia_kit.description.edits import write_atomic
@@ -136,30 +139,47 @@ def view(
             engines=engines or None,
             xacro_limits=parse_xacro_limits(xacro_limits),
             triangle_budget=triangle_budget,
+            redact_environment=redact_env,
             **rules,
         )
         page = render_page(scene).encode("utf-8")
         write_atomic(output, page, create=True)
     except UsageError as error:
-        click.echo(f"error: {error.format_message()}", err=True)
+        say(f"error: {error.format_message()}")
         return 2
     except InertiaKitError as error:  # unreadable input, configuration, a file we cannot write
-        click.echo(f"error: {error}", err=True)
+        _keep_out_of_error(error, robot, config_path, redact_env)
+        say(f"error: {error}")
         return 2
     findings = sum(len(link["findings"]) for link in scene["links"])
     findings += len(scene.get("findings_elsewhere", ()))
-    click.echo(
-        f"wrote {output}: {len(scene['links'])} links, {findings} findings, "
-        f"{len(page) / 1e6:.1f} MB",
-        err=True,
-    )
+    megabytes = len(page) / 1e6
+    say(f"wrote {output}: {len(scene['links'])} links, {findings} findings, {megabytes:.1f} MB")
     if png and size:
         from inertia_kit.view.screenshot import RendererError, screenshot
 
         try:
             screenshot(output, png, width=size[0], height=size[1])
         except (RendererError, InertiaKitError) as error:
-            click.echo(f"error: --png: {error} (the page {output} is written)", err=True)
+            say(f"error: --png: {error} (the page {output} is written)")
             return 2
-        click.echo(f"wrote {png}: {size[0]}x{size[1]} pixels", err=True)
+        say(f"wrote {png}: {size[0]}x{size[1]} pixels")
     return 0
+
+
+def _keep_out_of_error(
+    error: Exception, robot: str, config: str | None, option: bool | None
+) -> None:
+    """What the environment gave a xacro expansion that failed, kept out of its message."""
+    from inertia_kit.errors import ConfigError
+    from inertia_kit.lint.config_files import ConfigFinder
+
+    values = getattr(error, "environment_values", ())
+    if not values:
+        return
+    try:
+        configured = ConfigFinder(config).for_file(robot).redact_environment
+    except ConfigError:
+        configured = False
+    if redacting(option, configured):
+        keep_out(values)

@@ -14,4 +14,6 @@ and text edits back on the original bytes.
 - ``inertial_xml``: an ``<inertial>`` block as text; ``xmlspan``: where an element stands in the
   original text; ``edits``: text edits on the original bytes, and atomic writes (through
   symbolic links; stale temporary files of killed writes removed).
+- ``redaction``: what the environment gave a xacro expansion, kept out of what is printed
+  (``--redact-env``).
 """

@@ -122,8 +122,11 @@ def unified_diff(changes: Iterable[tuple[str, str, str]]) -> str:
     """
     import difflib
 
+    from inertia_kit.printable import printable
+
     parts = []
     for name, before, after in changes:
+        name = printable(name)  # a header is one line, whatever the file is called
         shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
         lines = difflib.unified_diff(
             before.splitlines(keepends=True), after.splitlines(keepends=True), *shown

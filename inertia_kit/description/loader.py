@@ -9,6 +9,7 @@ else is parsed as XML (:mod:`.xmlparse`); either tree becomes the model in :mod:
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -104,9 +105,10 @@ def load(
         expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
         if expanded.fragment:
             return _fragment(path, expanded.files)
-        return Builder(path, expanded.source_of, resolver, tuple(expanded.files)).robot(
+        robot = Builder(path, expanded.source_of, resolver, tuple(expanded.files)).robot(
             expanded.root
         )
+        return dataclasses.replace(robot, environment_values=expanded.environment_values)
 
     root = parse_xml(data, path)
     if (xacro or path.name.lower().endswith(".xacro")) and is_fragment(root):

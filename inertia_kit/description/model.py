@@ -247,6 +247,9 @@ class Robot:
     invalid: tuple[Invalid, ...] = field(default=())
     fragment: bool = False  # a xacro file with no link or joint (macros, properties): included
     extensions: tuple[Extension, ...] = ()  # <gazebo> elements, in document order
+    # what the environment gave its xacro expansion ($(env), $(optenv), YAML values): kept out
+    # of what is printed by --redact-env (description.redaction)
+    environment_values: tuple[str, ...] = ()
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

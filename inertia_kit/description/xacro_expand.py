@@ -16,6 +16,8 @@ replaced for the duration of the call, by the hooks of :mod:`.xacro_session`:
   so that, as for a mesh, the candidate folder holding that path wins;
 - ``xacro.safe_eval``: expressions run with ``**``, ``*`` and ``<<`` checked
   (:func:`~inertia_kit.description.xacro_limits.guarded_code`).
+- ``$(env)``, ``$(optenv)`` and ``xacro.load_yaml`` are wrapped to record what the environment
+  gives (:attr:`Expanded.environment_values`, for ``--redact-env``: :mod:`.redaction`).
 
 The expansion is bounded (:mod:`.xacro_limits`): it runs in a forked child process under a time
 and a memory limit (:mod:`.xacro_sandbox`), which hands back the expanded tree as text with the
@@ -76,6 +78,9 @@ class Expanded:
       it is meant to be included.
     warnings : tuple of str
       What xacro printed while expanding (``redefining global symbol: pi ...``).
+    environment_values : tuple of str
+      What the environment gave: ``$(env)``, ``$(optenv)``, YAML values
+      (:mod:`~inertia_kit.description.redaction`).
     """
 
     path: str
@@ -84,6 +89,7 @@ class Expanded:
     fragment: bool
     warnings: tuple[str, ...] = ()
     _sources: Mapping[Any, Source] = field(default_factory=dict, repr=False, compare=False)
+    environment_values: tuple[str, ...] = ()
 
     def source_of(self, element: etree._Element) -> Source:
         """
@@ -188,12 +194,13 @@ def _expanded(result: Expansion) -> Expanded:
 
     from inertia_kit.description.xacro_detect import is_fragment
 
+    environment = result.environment_values
     if result.text is None or result.sources is None:
         return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
     root, sources = to_lxml(result.text, result.sources, Source(result.path))
     if is_fragment(root):
         return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
-    return Expanded(result.path, root, result.files, False, result.warnings, sources)
+    return Expanded(result.path, root, result.files, False, result.warnings, sources, environment)
 
 
 def _expand(

@@ -52,6 +52,8 @@ class Expansion:
     text: str | None = None  # the expanded robot, serialised (None: a fragment)
     sources: list[Source] | None = None  # the stamp of each element of ``text``
     resolver_state: dict[str, Any] | None = None  # the child's package resolver's attributes
+    # the values the environment gave ($(env), $(optenv), YAML): description.redaction
+    environment_values: tuple[str, ...] = ()
 
 
 def state_of(resolver: Any) -> dict[str, Any] | None:
@@ -176,7 +178,9 @@ def _outcome(data: bytes, status: int | None) -> Any:
     if kind == "ok":
         return value
     if kind == "input-error":
-        raise InputError(*value)
+        error = InputError(*value[:4])
+        error.environment_values = value[4]
+        raise error
     if kind == "memory":
         raise MemoryError()
     raise RuntimeError(f"xacro expansion failed in its child process:\n{value}")
@@ -213,7 +217,8 @@ def _child(
         try:
             outcome: tuple[str, Any] = ("ok", work())
         except InputError as error:
-            outcome = ("input-error", (error.message, error.path, error.line, error.column))
+            where = (error.message, error.path, error.line, error.column)
+            outcome = ("input-error", (*where, error.environment_values))
         except MemoryError:
             outcome = ("memory", None)
         except BaseException:

@@ -5,8 +5,10 @@ One xacro expansion's state and the hooks it installs in the ``xacro`` package, 
 :class:`Session` holds what one expansion reads and prints (files, captured stderr, the texts
 being evaluated) and the hooks' bodies: the safe, stamping ``parse``, the call-site stamps of
 ``handle_macro_call``, the checked ``safe_eval`` and ``$(find)`` through a
-:class:`~inertia_kit.description.packages.PackageResolver`. :func:`patched` installs them (the
-caller holds the expansion lock) and restores xacro's globals exactly afterwards, also on error.
+:class:`~inertia_kit.description.packages.PackageResolver`; ``$(env)``, ``$(optenv)`` and
+``xacro.load_yaml`` record what the environment gives (:mod:`.redaction`). :func:`patched`
+installs them (the caller holds the expansion lock) and restores xacro's globals exactly
+afterwards, also on error.
 Files are read size-checked and refused if they declare entities (:func:`read_checked`).
 """
 
@@ -35,6 +37,7 @@ from inertia_kit.description.xacro_source_map import (
     serialise,
     stamp_of,
 )
+from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
     from inertia_kit.description.packages import PackageResolver
@@ -52,6 +55,8 @@ class Session:
         self.stderr = io.StringIO()
         self.includes_start = 0
         self.texts: list[str] = []  # the texts xacro is evaluating, innermost last
+        # what the environment gave: $(env), $(optenv) and YAML values (description.redaction)
+        self.environment_values: dict[str, None] = {}
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -146,6 +151,47 @@ class Session:
         # absolute, as ROS gives it: xacro joins a relative include to the including file's folder
         return str(folder.absolute())
 
+    def reads_environment(self, original):
+        """``$(env)`` and ``$(optenv)``: the value, recorded when it is the environment's."""
+
+        def hook(name, *args, **kwargs):
+            value = original(name, *args, **kwargs)
+            if name in os.environ:
+                self.record(value)
+            return value
+
+        return hook
+
+    def loads_yaml(self, original):
+        """``xacro.load_yaml``: what it loads, its scalar values recorded."""
+
+        def hook(*args, **kwargs):
+            loaded = original(*args, **kwargs)
+            self.record_yaml(loaded)
+            return loaded
+
+        return hook
+
+    def record_yaml(self, loaded: Any) -> None:
+        # each node once (anchors share them, and may make cycles); keys are names, not values
+        seen: set[int] = set()
+        stack = [loaded]
+        while stack:
+            node = stack.pop()
+            if isinstance(node, dict | list):
+                if id(node) not in seen:
+                    seen.add(id(node))
+                    stack.extend(dict.values(node) if isinstance(node, dict) else node)
+            else:
+                self.record(node)
+
+    def record(self, value: Any) -> None:
+        from inertia_kit.description.redaction import recordable
+
+        text = recordable(value)
+        if text is not None:
+            self.environment_values[text] = None
+
     # --- results ----------------------------------------------------------------------------
 
     def warnings(self) -> tuple[str, ...]:
@@ -176,10 +222,15 @@ class Session:
             shown = self.display(name)
             if shown not in files and os.path.isfile(name):
                 files.append(shown)
+        environment = tuple(self.environment_values)
         if root is None:
-            return Expansion(self.path, tuple(files), True, self.warnings())
+            return Expansion(
+                self.path, tuple(files), True, self.warnings(), environment_values=environment
+            )
         text, sources = serialise(root, Source(self.path))
-        return Expansion(self.path, tuple(files), False, self.warnings(), text, sources)
+        return Expansion(
+            self.path, tuple(files), False, self.warnings(), text, sources, None, environment
+        )
 
 
 @contextlib.contextmanager
@@ -191,6 +242,10 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
         (substitution_args, "_eval_find", session.find),
         (xacro, "eval_text", session.eval_text(xacro.eval_text)),
     ]
+    entries: list[tuple[dict, str, Any]] = [
+        (substitution_args._eval_dict, "find", session.find),
+        *_environment_entries(xacro, session),  # YAML files, recorded
+    ]
     if stamping:
         patches += [
             (xacro, "parse", session.parse),
@@ -198,8 +253,12 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
             (xacro, "safe_eval", session.safe_eval),
             (_COPY_STAMP, "on_copy", session.meter.add),
         ]
+    patches += [  # $(env) and $(optenv), recorded
+        (substitution_args, name, session.reads_environment(getattr(substitution_args, name)))
+        for name in ("_eval_env", "_eval_optenv")
+    ]
     saved = [(owner, name, getattr(owner, name)) for owner, name, _ in patches]
-    saved_find = substitution_args._eval_dict.get("find")
+    saved_entries = [(owner, key, owner.get(key)) for owner, key, _ in entries]
     saved_state = (
         xacro.filestack,
         xacro.macrostack,
@@ -212,18 +271,34 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
     try:
         for owner, name, value in patches:
             setattr(owner, name, value)
-        substitution_args._eval_dict["find"] = session.find
+        for owner, key, value in entries:
+            owner[key] = value
         yield
+    except InputError as error:  # its message may quote them
+        error.environment_values = tuple(session.environment_values)
+        raise
     finally:
         sys.stderr = stderr
         for owner, name, value in saved:
             setattr(owner, name, value)
-        substitution_args._eval_dict["find"] = saved_find
+        for owner, key, value in saved_entries:
+            owner[key] = value
         xacro.filestack, xacro.macrostack, xacro.verbosity, context = saved_state
         xacro.substitution_args_context.clear()
         xacro.substitution_args_context.update(context)
         # xacro never empties this list: keep it from growing with every expansion.
         del xacro.all_includes[session.includes_start :]
+
+
+def _environment_entries(xacro, session: Session) -> list[tuple[dict, str, Any]]:
+    """``xacro.load_yaml`` (and its deprecated top-level name) in ``${...}``'s symbols, with a
+    hook recording what it loads."""
+    entries = []
+    symbols = getattr(xacro, "_global_symbols", {})
+    for table in (symbols.get("xacro"), symbols):
+        if isinstance(table, dict) and callable(table.get("load_yaml")):
+            entries.append((table, "load_yaml", session.loads_yaml(table["load_yaml"])))
+    return entries
 
 
 class _ThreadRoutedStream:

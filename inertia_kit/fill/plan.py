@@ -82,6 +82,9 @@ class FillPlan:
     # the other files edits go to: xacro files holding macros or included links
     others: tuple[SourceText, ...] = ()
     fragment: bool = False  # a xacro file of macros and properties: no robot, nothing filled
+    # what the environment gave the robot's xacro expansion: kept out of fill's messages by
+    # --redact-env (description.redaction), never out of the files written
+    environment_values: tuple[str, ...] = ()
 
     @property
     def edits(self) -> list[Edit]:
@@ -268,6 +271,7 @@ def plan_robot(
         links=names,
         input_path=input_path,
         others=others,
+        environment_values=robot.environment_values,
     )
 
 

@@ -27,6 +27,8 @@ and the key (the command exits 2).
     extend-exclude = ["*.gen.urdf"]   # added to exclude (and the defaults)
     respect-gitignore = true          # .gitignore files and .git/info/exclude
     force-exclude = false             # exclude files given by name too (pre-commit)
+    redact-environment = false        # keep what xacro read from the environment out of
+                                      # every output (as --redact-env)
     [tool.inertia-kit.per-file-ignores]
     "urdf/legacy/*.xacro" = ["IN02"]  # globs relative to this file's folder; no "/": any folder
     [tool.inertia-kit.rules.IN012]    # a code or a rule name
@@ -75,6 +77,7 @@ KEYS = (
     "extend-exclude",
     "respect-gitignore",
     "force-exclude",
+    "redact-environment",
 )
 LINK_KEYS = ("density", "mass")
 
@@ -141,6 +144,7 @@ class Config:
     extend_exclude: tuple[str, ...] = ()
     respect_gitignore: bool | None = None
     force_exclude: bool | None = None
+    redact_environment: bool = False  # --redact-env (description.redaction)
 
 
 # --- validation -------------------------------------------------------------------------------
@@ -193,6 +197,7 @@ def parse_config(table: Mapping[str, Any], path: str | Path, prefix: str = "") -
         extend_exclude=where.patterns(table.get("extend-exclude", []), "extend-exclude"),
         respect_gitignore=where.flag(table.get("respect-gitignore"), "respect-gitignore"),
         force_exclude=where.flag(table.get("force-exclude"), "force-exclude"),
+        redact_environment=bool(where.flag(table.get("redact-environment"), "redact-environment")),
     )
 
 

@@ -193,6 +193,8 @@ class FileResult:
     diff: str = ""  # ``--diff``: the unified diff of the fixes
     unsafe_fixes: bool = False  # whether unsafe fixes are applicable here
     empty: bool = False  # no link and no joint: a placeholder, or a piece of other robots
+    # what the environment gave its xacro expansion, for --redact-env (description.redaction)
+    environment_values: tuple[str, ...] = ()
 
     @property
     def failing(self) -> list[Finding]:
@@ -228,7 +230,7 @@ def lint_file(
             path, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
         )
     except InputError as error:
-        return FileResult(str(path), error=error)
+        return FileResult(str(path), error=error, environment_values=error.environment_values)
     if robot.fragment:
         return FileResult(str(path), fragment=True)
     notes = [
@@ -254,7 +256,15 @@ def lint_file(
     if fixes != "none" and any(f.wants is not None for f in kept):
         kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
     empty = not robot.links and not robot.joints
-    return FileResult(str(path), kept, notes=notes, uses=uses, selection=selection, empty=empty)
+    return FileResult(
+        str(path),
+        kept,
+        notes=notes,
+        uses=uses,
+        selection=selection,
+        empty=empty,
+        environment_values=robot.environment_values,
+    )
 
 
 def _with_fixes(

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from inertia_kit.physics.formatting import fmt, vector_text
 from inertia_kit.physics.tensor_names import DIAGONAL, INDEX, PRODUCTS
+from inertia_kit.printable import printable
 
 if TYPE_CHECKING:
     from inertia_kit.physics.mass import MassProperties
@@ -156,7 +157,8 @@ def _title(description: dict[str, Any]) -> str:
     """``cylinder radius 0.35 m, length 0.4 m``; ``mesh part.stl scale (0.001, 0.001, 0.001)``."""
     shape = description["shape"]
     if shape == "mesh":
-        return f"{shape} {description['path']} scale {_vector(description['scale'])}"
+        path = printable(description["path"])  # a file name may hold a newline
+        return f"{shape} {path} scale {_vector(description['scale'])}"
     dimensions = ", ".join(
         f"{key} {_vector(value) if isinstance(value, list) else fmt(value)} m"
         for key, value in description.items()

@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from inertia_kit.analysis.declared import declared
 from inertia_kit.analysis.describe import geometry_summary
 from inertia_kit.description import model
 from inertia_kit.physics.formatting import fmt, tensor_text, vector_text
+from inertia_kit.printable import printable
+
+if TYPE_CHECKING:
+    from inertia_kit.description.redaction import Redaction
 
 
 def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
@@ -77,19 +81,24 @@ def total_mass(rows: list[dict[str, Any]]) -> float:
     return sum(row["mass"] for row in rows if row["mass"] is not None)
 
 
-def render(robot: model.Robot, output_format: str = "text") -> str:
-    """The report as ``text`` (aligned columns), ``markdown`` or ``json``."""
+def render(
+    robot: model.Robot, output_format: str = "text", redaction: Redaction | None = None
+) -> str:
+    """
+    The report as ``text`` (aligned columns), ``markdown`` or ``json``. Names, paths and values
+    from the files are escaped in the text formats (:func:`~inertia_kit.printable.printable`);
+    ``redaction`` (``--redact-env``) keeps values out of the JSON (a text format is redacted as
+    text, by the caller).
+    """
     rows = link_rows(robot)
     if output_format == "json":
-        return json.dumps(
-            {
-                "robot": robot.name,
-                "files": list(robot.files),
-                "links": rows,
-                "total_mass": total_mass(rows),
-            },
-            indent=2,
-        )
+        payload = {
+            "robot": robot.name,
+            "files": list(robot.files),
+            "links": rows,
+            "total_mass": total_mass(rows),
+        }
+        return json.dumps(payload if redaction is None else redaction.apply(payload), indent=2)
     header = [
         "link",
         "joint (type)",
@@ -122,7 +131,7 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
             ]
         )
     name = robot.name or "unnamed robot"
-    footer = f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})"
+    footer = printable(f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})")
     if output_format == "markdown":
         return "\n".join([*_markdown_table(table), "", f"**{footer}**"])
     return "\n".join([*_text_table(table), footer])
@@ -130,6 +139,7 @@ def render(robot: model.Robot, output_format: str = "text") -> str:
 
 def _markdown_table(table: list[list[str]]) -> list[str]:
     """The rows of ``table`` (the first is the header) as a Markdown table."""
+    table = [[printable(cell) for cell in row] for row in table]
     return [
         "| " + " | ".join(table[0]) + " |",
         "|" + "---|" * len(table[0]),
@@ -139,6 +149,7 @@ def _markdown_table(table: list[list[str]]) -> list[str]:
 
 def _text_table(table: list[list[str]]) -> list[str]:
     """The rows of ``table`` (the first is the header) in aligned columns, the header ruled."""
+    table = [[printable(cell) for cell in row] for row in table]
     widths = [max(len(r[i]) for r in table) for i in range(len(table[0]))]
     lines = [
         "  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)).rstrip() for r in table
@@ -202,15 +213,22 @@ _REASONS = {
 }
 
 
-def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: str = "text") -> str:
-    """``report --lumped``: per engine, a table of its bodies, then the dropped links."""
+def render_lumped(
+    robot: model.Robot,
+    engines: tuple[str, ...],
+    output_format: str = "text",
+    redaction: Redaction | None = None,
+) -> str:
+    """
+    ``report --lumped``: per engine, a table of its bodies, then the dropped links;
+    ``redaction`` as for :func:`render`.
+    """
     from inertia_kit.engines.vocabulary import TITLES
 
     records = lumped_records(robot, engines)
     if output_format == "json":
-        return json.dumps(
-            {"robot": robot.name, "files": list(robot.files), "engines": records}, indent=2
-        )
+        payload = {"robot": robot.name, "files": list(robot.files), "engines": records}
+        return json.dumps(payload if redaction is None else redaction.apply(payload), indent=2)
     header = ["body", "links", "joint", "mass kg", "COM m", "inertia kg·m²", "principal kg·m²"]
     out: list[str] = []
     for record in records:
@@ -245,12 +263,12 @@ def render_lumped(robot: model.Robot, engines: tuple[str, ...], output_format: s
         )
         if output_format == "markdown":
             lines = [f"## {title}", "", *_markdown_table(table), "", f"**{summary}**"]
-            lines += [f"- note: {n}" for n in notes]
-            lines += [f"- dropped: {d}" for d in dropped]
+            lines += [printable(f"- note: {n}") for n in notes]
+            lines += [printable(f"- dropped: {d}") for d in dropped]
             out.append("\n".join(lines))
             continue
         lines = [f"{title}:", *_text_table(table), summary]
-        lines += [f"note: {n}" for n in notes]
-        lines += [f"dropped: {d}" for d in dropped]
+        lines += [printable(f"note: {n}") for n in notes]
+        lines += [printable(f"dropped: {d}") for d in dropped]
         out.append("\n".join(lines))
     return "\n\n".join(out)

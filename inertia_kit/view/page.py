@@ -63,10 +63,15 @@ def _asset(name: str) -> str:
 def scene_json(scene: dict[str, Any]) -> str:
     """
     ``scene`` as JSON to put inside a ``<script>`` element: every ``<`` escaped as ``\\u003c``
-    (``</script>`` or ``<!--`` in a link name or message cannot end it), NaN refused.
+    (``</script>`` or ``<!--`` in a link name or message cannot end it), NaN refused; C1
+    controls, line separators, bidirectional controls and lone surrogates (a file name that is
+    no UTF-8, which the page could not even be written in) as ``\\uXXXX`` escapes too.
     """
+    from inertia_kit.printable import UNPRINTABLE_ABOVE_C0
+
     text = json.dumps(scene, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
-    return text.replace("<", "\\u003c").replace("\u2028", "\\u2028").replace("\u2029", "\\u2029")
+    text = text.replace("<", "\\u003c")
+    return UNPRINTABLE_ABOVE_C0.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
 
 
 def render_page(scene: dict[str, Any], *, title: str | None = None) -> str:

@@ -43,6 +43,7 @@ def build_scene(
     xacro_limits: Mapping[str, float] | None = None,
     triangle_budget: int = DEFAULT_TRIANGLE_BUDGET,
     read_triangles: TriangleReader | None = None,
+    redact_environment: bool | None = None,
 ) -> dict[str, Any]:
     """
     The scene of the robot file ``path`` for the review page (the contract in the module).
@@ -50,7 +51,9 @@ def build_scene(
     The options are ``inertia-lint``'s (:func:`~inertia_kit.lint.paths.lint_paths`);
     ``triangle_budget`` caps the triangles the page carries (each distinct mesh once), meshes
     over it decimated for display; ``read_triangles`` reads a mesh file for display (default:
-    as the analysis reads it).
+    as the analysis reads it); ``redact_environment`` (``None``: as configured) keeps what the
+    environment gave the xacro expansion out of the scene
+    (:mod:`~inertia_kit.description.redaction`).
 
     Raises ``InputError`` (file and line) for a file that is not a readable robot, as
     ``inertia-lint`` reports it, and ``ConfigError`` for a bad configuration or option.
@@ -107,7 +110,7 @@ def build_scene(
         for link in analysis.links
     ]
     decimated = table.within_budget(triangle_budget)
-    return {
+    scene = {
         "format": FORMAT,
         "robot": robot.name or file.name,
         "file": str(file),
@@ -120,6 +123,26 @@ def build_scene(
             "decimated": decimated,
         },
     }
+    if found.redact_environment if redact_environment is None else redact_environment:
+        scene = _redacted(scene, robot.environment_values)
+    return scene
+
+
+def _redacted(scene: dict[str, Any], values: Sequence[str]) -> dict[str, Any]:
+    """``scene`` with ``values`` kept out of every text and number, but the meshes' triangles
+    (base64 of binary data: any four letters may occur there by chance)."""
+    from inertia_kit.description.redaction import Redaction
+
+    redaction = Redaction().with_values(values)
+    binary = ("positions", "indices")
+    meshes = [
+        {
+            **redaction.apply({k: v for k, v in mesh.items() if k not in binary}),
+            **{k: mesh[k] for k in binary},
+        }
+        for mesh in scene["meshes"]
+    ]
+    return {**redaction.apply({k: v for k, v in scene.items() if k != "meshes"}), "meshes": meshes}
 
 
 def _link_record(

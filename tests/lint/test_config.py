@@ -76,7 +76,8 @@ def test_every_key_of_pyproject(tmp_path):
             "`tool.inertia-kit.selct`: unknown key (did you mean `select`?); known here: "
             "`select`, `extend-select`, `ignore`, `per-file-ignores`, `fail-on`, `engines`, "
             "`rules`, `links`, `xacro`, `fix`, `unsafe-fixes`, `fixable`, `unfixable`, "
-            "`exclude`, `extend-exclude`, `respect-gitignore`, `force-exclude`",
+            "`exclude`, `extend-exclude`, `respect-gitignore`, `force-exclude`, "
+            "`redact-environment`",
         ),
         (
             '[tool.inertia-kit]\nexclude = "build"\n',

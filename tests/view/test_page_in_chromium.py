@@ -9,7 +9,7 @@ import math
 
 import pytest
 from kit.browser import boxes, colour_family, family_at, open_page, pixels
-from kit.scenes import two_box_scene
+from kit.scenes import link, solid_box, translation, two_box_scene
 
 from inertia_kit.view.page import render_page
 
@@ -158,3 +158,96 @@ def test_a_joint_whose_limits_exclude_zero_still_opens_in_the_zero_pose(tmp_path
     read = """(() => { const s = document.querySelector('#joints input[data-joint="shoulder"]');
                        return [s.min, s.max, s.value]; })()"""
     assert open_page(html, then=read).result == ["0", "1", "0"]
+
+
+# --- names that are Object.prototype's keys ---------------------------------------------------
+
+#: names a page that keys plain objects by link or joint names breaks on: its joint sliders threw
+#: a TypeError and the robot no longer posed
+PROTOTYPE_NAMES = ("__proto__", "constructor", "toString", "hasOwnProperty", "valueOf")
+
+
+def prototype_scene() -> dict:
+    """
+    A chain ``__proto__`` -(``constructor``)-> ``toString`` -(``hasOwnProperty``)-> ``valueOf``
+    of revolute joints about z, each link's declared box 0.5 m along x from its frame (so a
+    turn moves it on the screen), and a link ``constructor`` on a joint ``valueOf`` whose type is
+    ``toString`` (no type the page moves: no slider).
+    """
+    size = (0.2, 0.2, 0.2)
+    box = solid_box(2.0, size, (0.5, 0, 0))
+
+    def joint(name, kind="revolute"):
+        axis = [0, 0, 1]
+        return {"name": name, "type": kind, "origin": translation(0, 0, 0.4), "axis": axis,
+                "lower": -1.0, "upper": 1.0}  # fmt: skip
+
+    def record(name, parent=None, joint_record=None, height=0.0):
+        return link(name, parent, joint=joint_record, world=translation(0, 0, height),
+                    size=size, declared=box, geometry=dict(box, density=250.0))  # fmt: skip
+
+    scene = two_box_scene()
+    scene["links"] = [
+        record("__proto__"),
+        record("toString", "__proto__", joint("constructor"), 0.4),
+        record("valueOf", "toString", joint("hasOwnProperty"), 0.8),
+        record("constructor", "__proto__", joint("valueOf", "toString"), 0.4),
+    ]
+    return scene
+
+
+@pytest.fixture(scope="module")
+def prototype_page(tmp_path_factory):
+    html = tmp_path_factory.mktemp("prototype") / "review.html"
+    html.write_text(render_page(prototype_scene()), encoding="utf-8")
+    return html
+
+
+def _turn(joint: str) -> str:
+    return f"""(() => {{
+      const slider = document.querySelector('#joints input[data-joint="{joint}"]');
+      slider.value = "1"; slider.dispatchEvent(new Event("input"));
+      return [...document.querySelectorAll("#joints input")].map(s => s.dataset.joint); }})()"""
+
+
+def _moved(before, after, link: str) -> float:
+    a, b = before[link, "declared"], after[link, "declared"]
+    return math.dist((a["x"], a["y"]), (b["x"], b["y"]))
+
+
+def test_prototype_names_draw_without_error(prototype_page):
+    loaded = open_page(prototype_page)
+    assert loaded.errors == ""
+    assert {link for link, _ in boxes(loaded)} == {
+        "__proto__", "toString", "valueOf", "constructor"
+    }  # fmt: skip
+    assert all(name in loaded.panel for name in PROTOTYPE_NAMES[:3])
+
+
+def test_a_slider_named_constructor_moves_its_child_and_what_follows(prototype_page):
+    before = boxes(open_page(prototype_page))
+    turned = open_page(prototype_page, then=_turn("constructor"))
+    # sliders for the two revolute joints only: `valueOf` is of type `toString`
+    assert turned.errors == "" and turned.result == ["constructor", "hasOwnProperty"]
+    after = boxes(turned)
+    assert _moved(before, after, "toString") > 30 and _moved(before, after, "valueOf") > 30
+    assert _moved(before, after, "__proto__") < 1 and _moved(before, after, "constructor") < 1
+
+
+def test_a_slider_named_has_own_property_moves_its_child_only(prototype_page):
+    before = boxes(open_page(prototype_page))
+    turned = open_page(prototype_page, then=_turn("hasOwnProperty"))
+    assert turned.errors == ""
+    after = boxes(turned)
+    assert _moved(before, after, "valueOf") > 30
+    for still in ("__proto__", "toString", "constructor"):
+        assert _moved(before, after, still) < 1
+
+
+@pytest.mark.parametrize("name", ["__proto__", "constructor"])
+def test_selecting_a_link_named_after_a_prototype_key(prototype_page, name):
+    select = f"""(() => {{
+      document.querySelector('.link[data-link="{name}"]').click();
+      return [...document.querySelectorAll(".link.selected")].map(e => e.dataset.link); }})()"""
+    selected = open_page(prototype_page, then=select)
+    assert selected.errors == "" and selected.result == [name]

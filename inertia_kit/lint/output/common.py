@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.printable import UNPRINTABLE_ABOVE_C0
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
@@ -44,7 +45,16 @@ def message(finding: Finding) -> str:
 
 
 def dumps(value: Any) -> str:
-    return json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False)
+    """
+    JSON as the machine-read formats write it: UTF-8 text, with every character that
+    :func:`~inertia_kit.printable.printable` escapes written as a ``\\uXXXX`` escape (JSON
+    escapes C0 itself): the exact text, and a document that is safe to print in a CI log (no
+    C1 control, line separator or bidirectional control raw in it), which a lone surrogate (an
+    undecodable file name) cannot make unwritable.
+    """
+    text = json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False)
+    # outside strings JSON is ASCII: every such character stands inside a string
+    return UNPRINTABLE_ABOVE_C0.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
 
 
 def finite(value: Any) -> Any:

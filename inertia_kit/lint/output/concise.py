@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.output.common import COLOURS, Style, fix_mark, location, message
+from inertia_kit.printable import printable
 
 
 def render(findings: Sequence[Finding], style: Style, unsafe_fixes: bool = False) -> str:
@@ -13,6 +14,7 @@ def render(findings: Sequence[Finding], style: Style, unsafe_fixes: bool = False
 
 
 def _line(finding: Finding, style: Style, unsafe_fixes: bool) -> str:
-    where = style(location(finding.path, finding.line, finding.column), bold=True)
+    # names, paths and values escaped: the finding stays on its one line
+    where = style(location(printable(finding.path), finding.line, finding.column), bold=True)
     code = style(finding.code, fg=COLOURS[finding.severity], bold=True)
-    return f"{where}: {code} {fix_mark(finding, unsafe_fixes)}{message(finding)}"
+    return f"{where}: {code} {fix_mark(finding, unsafe_fixes)}{printable(message(finding))}"

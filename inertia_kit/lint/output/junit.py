@@ -17,14 +17,20 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.lint.findings import Finding
 from inertia_kit.lint.output.common import UNLINTED, message, unlinted_name
+from inertia_kit.printable import UNPRINTABLE_ABOVE_C0, escape
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
 
 PACKAGE = "org.inertia-kit"
 CLEAN = "no findings"
-# characters XML 1.0 cannot hold, even escaped (ElementTree writes them as they are)
+# characters XML 1.0 cannot hold, even escaped (ElementTree writes them as they are): shown as
+# escapes (``\x1b``), the nearest to the exact name XML allows
 _NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff\ud800-\udfff]")
+# line breaks in a finding's text stand for these (characters _content has replaced) until
+# written as references: ElementTree writes them raw, and a raw line feed in a message starts a
+# line of the report that a CI log reads on its own (a link name "\n::error ..." a command)
+_BREAKS = {"\n": ("\x00", "&#10;"), "\r": ("\x01", "&#13;")}
 
 
 def render(
@@ -46,9 +52,35 @@ def render(
         report.append(_suite(path, cases[path] or [_case(CLEAN, path)]))
     for count in ("tests", "failures", "errors"):
         report.set(count, str(sum(int(suite.get(count, 0)) for suite in report)))
+    _writable(report)
     ET.indent(report, space="    ")
-    text = _NOT_XML.sub("\ufffd", ET.tostring(report, "unicode"))
+    text = ET.tostring(report, "unicode")
+    for stand_in, reference in _BREAKS.values():
+        text = text.replace(stand_in, reference)
+    # C1 controls, line separators and bidirectional controls as references too (the same
+    # text once read), so that the report is safe to print in a CI log
+    text = UNPRINTABLE_ABOVE_C0.sub(lambda match: f"&#x{ord(match.group()):x};", text)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
+
+
+def _held(text: str) -> str:
+    return _NOT_XML.sub(lambda match: escape(match.group()), text)
+
+
+def _content(text: str) -> str:
+    """A finding's text (message, help) for text content: as XML can hold it, its line breaks
+    stand-ins for their references (a break of our own, between message and help, stays)."""
+    text = _held(text)
+    for char, (stand_in, _) in _BREAKS.items():
+        text = text.replace(char, stand_in)
+    return text
+
+
+def _writable(report: ET.Element) -> None:
+    """Every attribute of ``report`` as XML can hold it (ElementTree writes line breaks in
+    attributes as references itself)."""
+    for element in report.iter():
+        element.attrib = {key: _held(value) for key, value in element.attrib.items()}
 
 
 def _suite(path: str, cases: list[ET.Element]) -> ET.Element:
@@ -86,9 +118,9 @@ def _where(line: int | None, column: int | None) -> str:
 def _failure(finding: Finding) -> ET.Element:
     case = _case(f"{finding.code} {finding.name}", finding.path, finding.line, finding.column)
     failure = ET.SubElement(case, "failure", message=message(finding), type=str(finding.severity))
-    failure.text = _where(finding.line, finding.column) + message(finding)
+    failure.text = _where(finding.line, finding.column) + _content(message(finding))
     if finding.help:
-        failure.text += f"\nhelp: {finding.help}"
+        failure.text += f"\nhelp: {_content(finding.help)}"
     return case
 
 
@@ -96,5 +128,5 @@ def _error(error: InputError | InternalError) -> ET.Element:
     name = unlinted_name(error)
     case = _case(f"{UNLINTED} {name}", error.path or "", error.line, error.column)
     failed = ET.SubElement(case, "error", message=error.message, type=name)
-    failed.text = _where(error.line, error.column) + error.message
+    failed.text = _where(error.line, error.column) + _content(error.message)
     return case

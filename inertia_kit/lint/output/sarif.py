@@ -5,6 +5,7 @@ its document as help; unreadable files are the invocation's notifications.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from pathlib import Path
 from types import ModuleType
@@ -31,7 +32,8 @@ def _uri(path: str) -> str:
     """A SARIF artifact URI: relative paths stay relative (GitHub reads them from the root)."""
     if Path(path).is_absolute():
         return Path(path).as_uri()
-    return quote(Path(path).as_posix(), safe="/")
+    # the name's bytes (a name that is no UTF-8 too), percent-encoded as as_uri does
+    return quote(os.fsencode(Path(path).as_posix()), safe="/")
 
 
 def _physical(path: str, line: int | None, column: int | None) -> dict[str, Any]:

@@ -12,7 +12,9 @@
     visual: 0xb4b4b4, // grey: visual geometry
     error: 0xff3b30, // red: links whose worst finding is an error
   };
-  var MOVING = { revolute: true, continuous: true, prismatic: true };
+  // names and types come from the robot file: every table keyed by them is a Map (a name such
+  // as "__proto__" or "constructor" is then a name like any other, never Object.prototype's)
+  var MOVING = new Set(["revolute", "continuous", "prismatic"]);
 
   var scene = JSON.parse(document.getElementById("scene-data").textContent);
 
@@ -73,7 +75,7 @@
 
   // --- links -----------------------------------------------------------------------------------
 
-  var links = {}; // name -> {record, group, visuals: [mesh], boxes: [mesh], card}
+  var links = new Map(); // name -> {record, group, visuals: [mesh], boxes: [mesh], card}
   var pickable = []; // what a click in 3D can hit
 
   function visualMaterial(record, visual) {
@@ -141,7 +143,7 @@
     group.matrix.copy(rowMajor(record.world));
     world.add(group);
     var entry = { record: record, group: group, visuals: [], boxes: [], markers: [] };
-    links[record.name] = entry;
+    links.set(record.name, entry);
     (record.visuals || []).forEach(function (visual) {
       var geometry = geometries[visual.mesh];
       if (!geometry) return;
@@ -160,7 +162,7 @@
   world.updateMatrixWorld(true);
   var robotBounds = new THREE.Box3();
   scene.links.forEach(function (record) {
-    var entry = links[record.name];
+    var entry = links.get(record.name);
     entry.visuals.forEach(function (mesh) { robotBounds.expandByObject(mesh); });
     [record.declared, record.geometry].forEach(function (inertia) {
       if (!inertia) return;
@@ -171,21 +173,21 @@
   if (robotBounds.isEmpty()) robotBounds.set(new THREE.Vector3(-0.5, -0.5, -0.5), new THREE.Vector3(0.5, 0.5, 0.5));
   var extent = Math.max(robotBounds.getSize(new THREE.Vector3()).length(), 1e-3);
   scene.links.forEach(function (record) {
-    var entry = links[record.name];
+    var entry = links.get(record.name);
     addInertia(entry, record.declared, "declared", extent * 0.012);
     addInertia(entry, record.geometry, "geometry", extent * 0.012);
   });
   // Box3.expandByObject reads matrixWorld as it is: bring the new boxes' up to date first
   world.updateMatrixWorld(true);
   scene.links.forEach(function (record) {
-    links[record.name].boxes.forEach(function (box) { robotBounds.expandByObject(box.object); });
+    links.get(record.name).boxes.forEach(function (box) { robotBounds.expandByObject(box.object); });
   });
 
   // --- forward kinematics (joint sliders) ------------------------------------------------------
 
-  var angles = {}; // joint name -> value
-  var byName = {};
-  scene.links.forEach(function (record) { byName[record.name] = record; });
+  var angles = new Map(); // joint name -> value
+  var byName = new Map();
+  scene.links.forEach(function (record) { byName.set(record.name, record); });
 
   function motion(joint, value) {
     var axis = new THREE.Vector3().fromArray(joint.axis || [1, 0, 0]);
@@ -196,28 +198,28 @@
   }
 
   function worldOf(name, memo) {
-    if (memo[name]) return memo[name];
-    var record = byName[name];
+    if (memo.has(name)) return memo.get(name);
+    var record = byName.get(name);
     var result;
-    if (!record.joint || !record.parent || !byName[record.parent]) {
+    if (!record.joint || !record.parent || !byName.has(record.parent)) {
       result = rowMajor(record.world); // a root: its zero-pose frame
     } else {
       result = worldOf(record.parent, memo).clone().multiply(rowMajor(record.joint.origin));
-      if (MOVING[record.joint.type]) result.multiply(motion(record.joint, angles[record.joint.name] || 0));
+      if (MOVING.has(record.joint.type)) result.multiply(motion(record.joint, angles.get(record.joint.name) || 0));
     }
-    memo[name] = result;
+    memo.set(name, result);
     return result;
   }
 
   function pose() {
-    var memo = {};
-    scene.links.forEach(function (record) { links[record.name].group.matrix.copy(worldOf(record.name, memo)); });
+    var memo = new Map();
+    scene.links.forEach(function (record) { links.get(record.name).group.matrix.copy(worldOf(record.name, memo)); });
     world.updateMatrixWorld(true);
     requestRender();
   }
 
   function jointSliders() {
-    var moving = scene.links.filter(function (r) { return r.joint && MOVING[r.joint.type]; });
+    var moving = scene.links.filter(function (r) { return r.joint && MOVING.has(r.joint.type); });
     if (!moving.length) return;
     // open when the sliders do not hide the robot (and the picture --png takes)
     var box = element("details", { id: "joints" }, [element("summary", { text: "joints (" + moving.length + ")" })]);
@@ -231,15 +233,15 @@
       // the page opens in the zero pose: the range takes in 0 even where the limits do not
       lower = Math.min(lower, 0);
       upper = Math.max(upper, 0);
-      angles[joint.name] = 0;
+      angles.set(joint.name, 0);
       var value = element("span", { text: (0).toFixed(3) });
       var slider = element("input", {
         type: "range", min: String(lower), max: String(upper), step: String((upper - lower) / 500),
         value: "0", "data-joint": joint.name,
       });
       slider.addEventListener("input", function () {
-        angles[joint.name] = parseFloat(slider.value);
-        value.textContent = angles[joint.name].toFixed(3);
+        angles.set(joint.name, parseFloat(slider.value));
+        value.textContent = angles.get(joint.name).toFixed(3);
         pose();
       });
       box.appendChild(element("label", { title: joint.name + " (" + joint.type + ")" }, [
@@ -252,14 +254,14 @@
   // --- side panel (panel.js) ------------------------------------------------------------------
 
   var cards = InertiaKitPanel.fill(panel, scene, function (name) { select(name, true); });
-  scene.links.forEach(function (record) { links[record.name].card = cards[record.name]; });
+  scene.links.forEach(function (record) { links.get(record.name).card = cards.get(record.name); });
 
   // --- selection -------------------------------------------------------------------------------
 
   var selected = null;
 
   function highlight(name, on) {
-    var entry = links[name];
+    var entry = links.get(name);
     if (!entry) return;
     entry.card.classList.toggle("selected", on);
     entry.visuals.forEach(function (mesh) {
@@ -272,7 +274,7 @@
     if (selected) highlight(selected, false);
     selected = name;
     highlight(name, true);
-    var entry = links[name];
+    var entry = links.get(name);
     if (focus) {
       var bounds = new THREE.Box3();
       entry.visuals.concat(entry.boxes.map(function (b) { return b.object; })).concat(entry.markers).forEach(function (o) { bounds.expandByObject(o); });
@@ -326,7 +328,7 @@
     function toY(ndc) { return rect.top + ((1 - ndc) / 2) * rect.height; }
     var out = [];
     scene.links.forEach(function (record) {
-      links[record.name].boxes.forEach(function (box) {
+      links.get(record.name).boxes.forEach(function (box) {
         var centre = new THREE.Vector3().setFromMatrixPosition(box.object.matrixWorld).project(camera);
         var screen = new THREE.Box2(); // the box's 8 corners on the screen
         for (var corner = 0; corner < 8; corner++) {

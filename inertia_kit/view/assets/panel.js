@@ -79,7 +79,8 @@ var InertiaKitPanel = (function () {
     return node;
   }
 
-  // the panel's content; returns each link's card by name (onClick(name) when one is clicked)
+  // the panel's content; returns each link's card by name, a Map (onClick(name) when one is
+  // clicked)
   function fill(panel, scene, onClick) {
     panel.appendChild(element("h1", { text: scene.robot + ": inertia review" }));
     panel.appendChild(element("div", { class: "file", text: scene.file }));
@@ -95,10 +96,11 @@ var InertiaKitPanel = (function () {
         element("ul", { class: "findings" }, scene.findings_elsewhere.map(findingItem)),
       ]));
     }
-    var cards = {};
+    var cards = new Map(); // a link named "__proto__" is a name like any other
     scene.links.forEach(function (record) {
-      cards[record.name] = card(record, onClick);
-      panel.appendChild(cards[record.name]);
+      var node = card(record, onClick);
+      cards.set(record.name, node);
+      panel.appendChild(node);
     });
     return cards;
   }

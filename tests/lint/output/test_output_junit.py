@@ -78,12 +78,13 @@ def test_junit_with_no_file_still_is_a_report(tmp_path, monkeypatch):
     assert (code, suite.get("name"), suite[0].get("name")) == (0, "inertia-lint", "no findings")
 
 
-def test_junit_escapes_markup_and_drops_what_xml_cannot_hold():
+def test_junit_escapes_markup_and_shows_what_xml_cannot_hold():
     finding = Finding("a&b.urdf", 3, None, "IN097", "n", Severity.ERROR, 'x <y> "z"\x01 &')
     root = valid(render([finding], "junit", linted=["a&b.urdf"]))
     (case,) = root[0]
     assert (
         case.get("file") == "a&b.urdf" and case.get("line") == "3" and "column" not in case.attrib
     )
-    assert case[0].get("message") == 'x <y> "z"\ufffd &'
-    assert case[0].text == 'line 3, x <y> "z"\ufffd &'
+    # XML 1.0 cannot hold U+0001, even as a reference: shown as its escape
+    assert case[0].get("message") == 'x <y> "z"\\x01 &'
+    assert case[0].text == 'line 3, x <y> "z"\\x01 &'
