@@ -14,6 +14,7 @@ from inertia_kit.cli.options import (
     HELP,
     SCALE,
     UsageError,
+    follow_symlinks_option,
     jobs_option,
     package_path_option,
     parse_xacro_args,
@@ -104,6 +105,7 @@ from inertia_kit.version import __version__
 @xacro_limit_option
 @discovery_options
 @stdin_filename_option
+@follow_symlinks_option("the filled files (and -o OUT)")
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -166,6 +168,7 @@ def fill(
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
     jobs: int | None = None,  # accepted, unused: see the option's help
+    follow_symlinks: bool = False,
     **discovery: Any,
 ) -> int:
     """
@@ -174,6 +177,7 @@ def fill(
     """
     from inertia_kit.cli.discovery import discovery as discovery_from
     from inertia_kit.cli.discovery import show_files
+    from inertia_kit.description.output_paths import refuse_links
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.fragments import cut, fill_targets
@@ -187,6 +191,11 @@ def fill(
             raise UsageError("give URDF files or folders to fill")
         if output is not None and (len(paths) != 1 or Path(paths[0]).is_dir()):
             raise UsageError(f"-o takes exactly one file PATH, got {', '.join(paths)}")
+        if output is not None and not (show_diff or check):
+            try:
+                refuse_links(output, follow_symlinks)
+            except InputError as error:
+                raise UsageError(f"-o: {error}") from None
         arguments = parse_xacro_args(xacro_args)
         limits = parse_xacro_limits(xacro_limits)
         try:
@@ -282,7 +291,9 @@ def fill(
             plan = without(plan, target.robot, disagree)
         with processing(plan.path):
             try:
-                outcome = _finish(plan, write, show_diff, chosen.through(plan.path))
+                outcome = _finish(
+                    plan, write, show_diff, chosen.through(plan.path), follow_symlinks
+                )
             except Exception as error:  # a bug: reported for this file, the others go on
                 click.echo(f"error: {internal(error, plan.path)}", err=True)
                 outcome = (False, False, True)
@@ -305,12 +316,21 @@ def fill(
 
 
 def _finish(
-    plan: Any, write: bool, show_diff: bool, through: tuple[str, ...] = ()
+    plan: Any,
+    write: bool,
+    show_diff: bool,
+    through: tuple[str, ...] = (),
+    follow_symlinks: bool = False,
 ) -> tuple[bool, bool, bool]:
-    """Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed."""
+    """
+    Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed.
+    A file that is a symbolic link out of its repository is not written, unless
+    ``follow_symlinks`` (:mod:`~inertia_kit.lint.repository_links`).
+    """
     from inertia_kit.errors import InputError
     from inertia_kit.fill.output import write_output
-    from inertia_kit.fill.plan import apply, links_followed, remove_stale
+    from inertia_kit.fill.plan import apply, links_followed, remove_stale, written_files
+    from inertia_kit.lint.repository_links import refuse_links_out
 
     changed = failed = False
     for note in plan.notes:
@@ -328,8 +348,11 @@ def _finish(
     if filled or (plan.input_path is not None and write):
         followed = links_followed(plan) if write else []
         try:
-            if write:
-                (apply if plan.input_path is None else write_output)(plan)
+            if write and plan.input_path is None:
+                refuse_links_out(written_files(plan), follow_symlinks)
+                apply(plan)
+            elif write:
+                write_output(plan, follow_symlinks)
         except InputError as error:
             click.echo(f"error: {error}", err=True)
             failed = True

@@ -12,6 +12,7 @@ from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
     UsageError,
+    follow_symlinks_option,
     jobs_option,
     package_path_option,
     parse_codes,
@@ -148,6 +149,7 @@ def _colour() -> bool | None:
     "--select, --ignore and the configuration), so that only new findings fail; a comment "
     "already there gains the codes. Prints how many were written where.",
 )
+@follow_symlinks_option("the report (--output-file) and the fixed files (--fix, --add-noqa)")
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -193,6 +195,7 @@ def lint(
     quiet: bool = False,
     output_file: str | None = None,
     jobs: int | None = None,
+    follow_symlinks: bool = False,
     **discovery: Any,
 ) -> int:
     """
@@ -230,6 +233,8 @@ def lint(
             "report to write; drop one of them",
             err=True,
         )
+        return 2
+    if output_file is not None and not _may_write_report(output_file, follow_symlinks):
         return 2
     try:
         walk = discovery_from(discovery, ConfigFinder(config_path))
@@ -275,6 +280,7 @@ def lint(
             diff=show_diff,
             discovery=walk,
             jobs=jobs,
+            follow_symlinks=follow_symlinks,
             **streaming,
         )
 
@@ -290,7 +296,9 @@ def lint(
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
 
-        return write_suppressions(paths, results, lint_all, quiet=quiet)
+        return write_suppressions(
+            paths, results, lint_all, quiet=quiet, follow_symlinks=follow_symlinks
+        )
     run = merge(results)
     for level, text in run.messages:
         if quiet and level == "note":
@@ -320,7 +328,7 @@ def lint(
         )
     if output_file is None:
         click.echo(output, nl=False, color=_colour())
-    elif not _write_report(output_file, output):
+    elif not _write_report(output_file, output, follow_symlinks):
         return 2
     crashes = sum(isinstance(error, InternalError) for error in run.errors)
     fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
@@ -338,13 +346,29 @@ def _key(finding: Any) -> tuple:
     return (finding.path, finding.line, finding.column, finding.code, finding.message)
 
 
-def _write_report(path: str, output: str) -> bool:
+def _may_write_report(path: str, follow_symlinks: bool) -> bool:
+    """Whether the report may go to ``path`` (no symbolic link on the way, unless
+    ``--follow-symlinks``); if not, say why (the exit is then 2, and nothing is done)."""
+    from inertia_kit.description.output_paths import refuse_links
+    from inertia_kit.errors import InputError
+
+    try:
+        refuse_links(path, follow_symlinks)
+    except InputError as error:
+        click.echo(f"error: --output-file: {error}", err=True)
+        return False
+    return True
+
+
+def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool:
     """Write the report to ``path`` atomically; on failure say why (the exit is then 2)."""
     from inertia_kit.description.edits import write_atomic
     from inertia_kit.errors import InputError
 
+    if not _may_write_report(path, follow_symlinks):
+        return False
     try:
-        write_atomic(path, output.encode(), create=True)
+        write_atomic(path, output.encode(), create=True, follow_symlinks=follow_symlinks)
     except InputError as error:
         click.echo(f"error: --output-file: {error}", err=True)
         return False

@@ -44,6 +44,7 @@ def on_stdin(
     *,
     prints_text: bool,
     output_file: str | None = None,
+    follow_symlinks: bool = False,
 ) -> int:
     """
     Read stdin, stand it in at ``filename`` and ``run`` the command on the stand-in's path; its
@@ -76,7 +77,7 @@ def on_stdin(
     if output_file is not None:
         from inertia_kit.cli.lint import _write_report
 
-        if not _write_report(output_file, report):
+        if not _write_report(output_file, report, follow_symlinks):
             return 2
     else:
         click.echo(report, nl=False, err=prints_text)
@@ -178,4 +179,5 @@ def command_on_stdin(
         filename,
         prints_text=prints_text,
         output_file=output_file,
+        follow_symlinks=bool(options.get("follow_symlinks")),
     )

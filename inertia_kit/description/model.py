@@ -247,6 +247,9 @@ class Robot:
     invalid: tuple[Invalid, ...] = field(default=())
     fragment: bool = False  # a xacro file with no link or joint (macros, properties): included
     extensions: tuple[Extension, ...] = ()  # <gazebo> elements, in document order
+    # (real path, digest of the bytes read) of every file read: what edits are computed on
+    # (description.reads)
+    reads: tuple[tuple[str, str | None], ...] = ()
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

@@ -76,6 +76,8 @@ class Expanded:
       it is meant to be included.
     warnings : tuple of str
       What xacro printed while expanding (``redefining global symbol: pi ...``).
+    reads : mapping of str to str
+      Every file read, by real path: a digest of the bytes read (:mod:`.reads`).
     """
 
     path: str
@@ -84,6 +86,8 @@ class Expanded:
     fragment: bool
     warnings: tuple[str, ...] = ()
     _sources: Mapping[Any, Source] = field(default_factory=dict, repr=False, compare=False)
+    # real path -> digest of the bytes read, of every file read (description.reads)
+    reads: Mapping[str, str | None] = field(default_factory=dict, repr=False, compare=False)
 
     def source_of(self, element: etree._Element) -> Source:
         """
@@ -188,12 +192,17 @@ def _expanded(result: Expansion) -> Expanded:
 
     from inertia_kit.description.xacro_detect import is_fragment
 
+    reads = result.reads or {}
     if result.text is None or result.sources is None:
-        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+        return Expanded(
+            result.path, etree.Element("robot"), result.files, True, result.warnings, reads=reads
+        )
     root, sources = to_lxml(result.text, result.sources, Source(result.path))
     if is_fragment(root):
-        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
-    return Expanded(result.path, root, result.files, False, result.warnings, sources)
+        return Expanded(
+            result.path, etree.Element("robot"), result.files, True, result.warnings, reads=reads
+        )
+    return Expanded(result.path, root, result.files, False, result.warnings, sources, reads)
 
 
 def _expand(

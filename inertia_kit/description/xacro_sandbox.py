@@ -52,6 +52,8 @@ class Expansion:
     text: str | None = None  # the expanded robot, serialised (None: a fragment)
     sources: list[Source] | None = None  # the stamp of each element of ``text``
     resolver_state: dict[str, Any] | None = None  # the child's package resolver's attributes
+    # real path -> digest of the bytes read, of every file read (description.reads)
+    reads: dict[str, str | None] | None = None
 
 
 def state_of(resolver: Any) -> dict[str, Any] | None:

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import safexml
+from inertia_kit.description import reads, safexml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound
 from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
@@ -52,6 +52,7 @@ class Session:
         self.stderr = io.StringIO()
         self.includes_start = 0
         self.texts: list[str] = []  # the texts xacro is evaluating, innermost last
+        self.reads: dict[str, str | None] = {}  # every file read: description.reads
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -61,6 +62,7 @@ class Session:
 
         shown = self.display(filename) if self.files else filename
         data = read_checked(os.path.join(xacro.root_dir, filename), shown)
+        reads.record(self.reads, os.path.join(xacro.root_dir, filename), data)
         if shown not in self.files:
             self.files.append(shown)
         return parse_stamped(data, shown, self.meter.add)
@@ -177,9 +179,11 @@ class Session:
             if shown not in files and os.path.isfile(name):
                 files.append(shown)
         if root is None:
-            return Expansion(self.path, tuple(files), True, self.warnings())
+            return Expansion(self.path, tuple(files), True, self.warnings(), reads=self.reads)
         text, sources = serialise(root, Source(self.path))
-        return Expansion(self.path, tuple(files), False, self.warnings(), text, sources)
+        return Expansion(
+            self.path, tuple(files), False, self.warnings(), text, sources, reads=self.reads
+        )
 
 
 @contextlib.contextmanager
