@@ -177,6 +177,7 @@ def fill(
     """
     from inertia_kit.cli.discovery import discovery as discovery_from
     from inertia_kit.cli.discovery import show_files
+    from inertia_kit.description.edits import ChangedWhileEditing
     from inertia_kit.description.output_paths import refuse_links
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
@@ -250,7 +251,8 @@ def fill(
             except ConfigError:
                 raise
             except InputError as error:
-                if not chosen.read_by_robots(target):  # else: filled through its robots
+                meanwhile = isinstance(error, ChangedWhileEditing)  # told, whoever reads it
+                if meanwhile or not chosen.read_by_robots(target):  # else: through its robots
                     click.echo(f"error: {error}", err=True)
                     failed = True
             except Exception as error:  # a bug: reported for this file, the others go on

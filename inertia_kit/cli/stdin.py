@@ -173,6 +173,10 @@ def command_on_stdin(
         prints_text = not options.get("show_diff") and bool(configured.fix if fix is None else fix)
     output_file = options.get("output_file")
     if output_file is not None:
+        from inertia_kit.cli.lint import _may_write_report
+
+        if not _may_write_report(output_file, bool(options.get("follow_symlinks"))):
+            return 2  # before stdin is read: nothing is done
         options["output_file"] = None
     return on_stdin(
         lambda path: command((path,), **options),

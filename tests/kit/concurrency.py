@@ -175,18 +175,41 @@ ROBOT_XACRO = f"""<?xml version="1.0"?>
 
 @dataclass(frozen=True)
 class Project:
-    """A package to copy: its files (name -> text) and the robot file the writers are given."""
+    """
+    A package to copy: its robot files (name -> text), the robot file the writers are given,
+    and, for a real package, the folder whose other files (meshes, ``package.xml``) are linked
+    into each copy, and options every writer takes (``--package-path``).
+    """
 
     name: str
     files: dict[str, str]
     robot: str
+    assets: Path | None = None
+    options: tuple[str, ...] = ()
+
+    @classmethod
+    def from_folder(cls, folder: Path, robot: str, options: tuple[str, ...] = ()) -> Project:
+        """A real package: its ``.urdf`` and ``.xacro`` files copied, the rest linked."""
+        files = {
+            str(p.relative_to(folder)): p.read_text(encoding="utf-8")
+            for p in sorted(folder.rglob("*"))
+            if p.suffix.lower() in (".urdf", ".xacro") and p.is_file()
+        }
+        return cls(folder.name, files, robot, folder, options)
 
     def copy(self, into: Path) -> Path:
         """The project written into the new folder ``into`` (a package in a git repository)."""
-        write(into / "package.xml", _PACKAGE)
         (into / ".git").mkdir(parents=True)  # the repository a writer stays in
         for name, text in self.files.items():
             write(into / name, text)
+        if self.assets is None:
+            write(into / "package.xml", _PACKAGE)
+            return into
+        for original in self.assets.rglob("*"):
+            copy = into / original.relative_to(self.assets)
+            if original.is_file() and not copy.exists():
+                copy.parent.mkdir(parents=True, exist_ok=True)
+                copy.symlink_to(original.resolve())
         return into
 
 
@@ -222,8 +245,8 @@ def parses(final: State) -> bool:
     return True
 
 
-def command(writer: str, robot: str) -> list[str]:
-    return [sys.executable, "-m", "inertia_kit", *WRITERS[writer], robot]
+def command(writer: str, project: Project) -> list[str]:
+    return [sys.executable, "-m", "inertia_kit", *WRITERS[writer], *project.options, project.robot]
 
 
 def _environment() -> dict[str, str]:
@@ -247,7 +270,7 @@ class Outcome:
 def run_writer(writer: str, root: Path, project: Project, timeout: float = 120) -> Outcome:
     """``writer`` on the project's robot in ``root``, to its end."""
     done = subprocess.run(
-        command(writer, project.robot),
+        command(writer, project),
         cwd=root,
         env=_environment(),
         capture_output=True,
@@ -281,6 +304,18 @@ class References:
 def _put(root: Path, final: State) -> None:
     for name, data in final:
         (root / name).write_bytes(data)
+
+
+def changing(project: Project, writers: Iterable[str], scratch: Path) -> list[str]:
+    """The writers that change ``project`` when run alone (for a real package)."""
+    initial = state(project.copy(scratch / "initial"), project)
+    found = []
+    for number, writer in enumerate(writers):
+        root = project.copy(scratch / f"alone-{number}")
+        run_writer(writer, root, project)
+        if state(root, project) != initial:
+            found.append(writer)
+    return found
 
 
 def references(project: Project, writers: Iterable[str], scratch: Path) -> References:
@@ -330,7 +365,7 @@ class Run:
 
 def _start(writer: str, project: Project, root: Path) -> subprocess.Popen:
     return subprocess.Popen(
-        command(writer, project.robot),
+        command(writer, project),
         cwd=root,
         env=_environment(),
         stdout=subprocess.DEVNULL,
@@ -413,7 +448,7 @@ def pairs(writers: Iterable[str]) -> list[tuple[str, str]]:
 def harness(
     runs: int,
     *,
-    projects: Iterable[str] = tuple(PROJECTS),
+    projects: Iterable[str | Project] = tuple(PROJECTS),
     writers: Iterable[str] = tuple(WRITERS),
     spread: float | None = None,
     scratch: Path | None = None,
@@ -429,8 +464,9 @@ def harness(
     with tempfile.TemporaryDirectory(prefix="inertia-kit-race-") as folder:
         base = Path(folder) if scratch is None else scratch
         count = itertools.count()
-        for name in projects:
-            project = PROJECTS[name]
+        for chosen in projects:
+            project = PROJECTS[chosen] if isinstance(chosen, str) else chosen
+            name = project.name
             refs = references(project, writers, base / f"{name}-refs")
             width = spread if spread is not None else refs.seconds
             for a, b in pairs(writers):
