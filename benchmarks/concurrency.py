@@ -69,7 +69,6 @@ def main() -> int:
     parser.add_argument("--package-path", action="append", default=[], help="for --real")
     args = parser.parse_args()
     print(f"{args.runs} runs per pair; python {sys.version.split()[0]}; {os.cpu_count()} cores")
-    print(HEADER, flush=True)
     started = time.monotonic()
     failed = False
 
@@ -95,6 +94,7 @@ def main() -> int:
             print(f"{real.name}: {robot}, the writers that change it: {', '.join(chosen)}")
             projects.append(real)
         writers = chosen if len(args.real) == 1 else writers
+    print(HEADER, flush=True)
     harness(
         args.runs,
         projects=projects,
