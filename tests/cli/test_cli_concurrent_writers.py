@@ -113,7 +113,7 @@ def test_a_writer_alone_still_writes_after_the_check(tmp_path: Path, monkeypatch
 def test_two_writers_at_once_end_as_one_after_the_other(tmp_path: Path):
     """Every pair of writers (each with itself too), on the URDF robot and on the xacro robot
     with the fragment both edit: two runs per pair, one starting during the other."""
-    reports = harness(2, scratch=tmp_path)
+    reports = harness(2, scratch=tmp_path, in_process_references=True)
     bad = [
         f"{r.project} {r.a} + {r.b}: {run.told()}"
         for r in reports

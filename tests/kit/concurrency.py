@@ -267,8 +267,15 @@ class Outcome:
         return self.code == 2 and CHANGED in self.stderr
 
 
-def run_writer(writer: str, root: Path, project: Project, timeout: float = 120) -> Outcome:
-    """``writer`` on the project's robot in ``root``, to its end."""
+def run_writer(
+    writer: str, root: Path, project: Project, timeout: float = 120, in_process: bool = False
+) -> Outcome:
+    """
+    ``writer`` on the project's robot in ``root``, to its end: a process of its own, or, with
+    ``in_process``, in this one (faster, for the references of a short run).
+    """
+    if in_process:
+        return _in_process(writer, root, project)
     done = subprocess.run(
         command(writer, project),
         cwd=root,
@@ -278,6 +285,22 @@ def run_writer(writer: str, root: Path, project: Project, timeout: float = 120) 
         timeout=timeout,
     )
     return Outcome(done.returncode, done.stderr)
+
+
+def _in_process(writer: str, root: Path, project: Project) -> Outcome:
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import main
+
+    here = os.getcwd()
+    os.chdir(root)
+    try:
+        result = CliRunner().invoke(main, [*WRITERS[writer], *project.options, project.robot])
+    finally:
+        os.chdir(here)
+    if result.exception is not None and not isinstance(result.exception, SystemExit):
+        raise result.exception
+    return Outcome(result.exit_code, result.stderr)
 
 
 @dataclass
@@ -318,7 +341,9 @@ def changing(project: Project, writers: Iterable[str], scratch: Path) -> list[st
     return found
 
 
-def references(project: Project, writers: Iterable[str], scratch: Path) -> References:
+def references(
+    project: Project, writers: Iterable[str], scratch: Path, in_process: bool = False
+) -> References:
     """Every writer alone, then every writer after each (on a copy of its state)."""
     writers = list(writers)
     fresh = itertools.count()
@@ -329,7 +354,7 @@ def references(project: Project, writers: Iterable[str], scratch: Path) -> Refer
         if before is not None:
             _put(root, before)
         started = time.monotonic()
-        outcome = run_writer(writer, root, project)
+        outcome = run_writer(writer, root, project, in_process=in_process)
         runs.append(time.monotonic() - started)
         if outcome.code not in (0, 1):
             raise AssertionError(f"{writer} alone: exit {outcome.code}\n{outcome.stderr}")
@@ -432,10 +457,9 @@ HEADER = (
 
 
 def offsets(runs: int, spread: float, seed: int) -> list[float]:
-    """``runs`` start offsets spread evenly over ``[-spread, spread]``, shuffled."""
-    if runs == 1:
-        return [0.0]
-    chosen = [-spread + 2 * spread * i / (runs - 1) for i in range(runs)]
+    """``runs`` start offsets over ``[-spread, spread]``, each in the middle of its share of
+    it (one run: 0, both at once), shuffled."""
+    chosen = [-spread + spread * (2 * i + 1) / runs for i in range(runs)]
     random.Random(seed).shuffle(chosen)
     return chosen
 
@@ -454,10 +478,12 @@ def harness(
     scratch: Path | None = None,
     told: Callable[[PairReport], None] | None = None,
     seed: int = 19,
+    in_process_references: bool = False,
 ) -> list[PairReport]:
     """
     ``runs`` concurrent runs of every pair of ``writers`` on every project; ``spread``: the
-    largest start offset in seconds (default: about one writer's run, measured).
+    largest start offset in seconds (default: about one writer's run, measured as a process).
+    ``in_process_references``: the reference states computed in this process (faster).
     """
     writers = list(writers)
     reports = []
@@ -467,8 +493,12 @@ def harness(
         for chosen in projects:
             project = PROJECTS[chosen] if isinstance(chosen, str) else chosen
             name = project.name
-            refs = references(project, writers, base / f"{name}-refs")
+            refs = references(project, writers, base / f"{name}-refs", in_process_references)
             width = spread if spread is not None else refs.seconds
+            if spread is None and in_process_references:  # one run as a process
+                started = time.monotonic()
+                run_writer(writers[0], project.copy(base / f"{name}-timed"), project)
+                width = time.monotonic() - started
             for a, b in pairs(writers):
                 report = PairReport(name, a, b)
                 for offset in offsets(runs, width, seed):
