@@ -10,17 +10,29 @@ processed".
 - Two writers as real processes at once on one file (:mod:`kit.concurrency`): every final state
   is one the two run one after the other give, and every file parses. A few runs per pair here;
   ``benchmarks/concurrency.py`` runs 50.
+- A fill killed (SIGKILL) at any moment leaves each file as it was or as the fill writes it.
 """
 
 from __future__ import annotations
 
 import functools
 import shutil
+import signal
+import time
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from kit.concurrency import CHANGED, PROJECTS, WRITERS, harness, parses, state
+from kit.concurrency import (
+    CHANGED,
+    PROJECTS,
+    WRITERS,
+    _start,
+    harness,
+    parses,
+    run_writer,
+    state,
+)
 from kit.in_process import lint_in_process
 
 from inertia_kit.cli import main as umbrella
@@ -123,3 +135,24 @@ def test_two_writers_at_once_end_as_one_after_the_other(tmp_path: Path):
     assert not bad, "\n".join(bad)
     assert len(reports) == len(PROJECTS) * len(WRITERS) * (len(WRITERS) + 1) // 2
     shutil.rmtree(tmp_path, ignore_errors=True)
+
+
+@pytest.mark.parametrize("project", sorted(PROJECTS))
+def test_a_fill_killed_at_any_moment_leaves_the_old_or_the_new_file(tmp_path: Path, project):
+    chosen = PROJECTS[project]
+    initial = state(chosen.copy(tmp_path / "initial"), chosen)
+    done = chosen.copy(tmp_path / "done")
+    started = time.monotonic()
+    run_writer("fill-all", done, chosen)
+    took = time.monotonic() - started
+    filled = state(done, chosen)
+    finals = []
+    for number in range(8):
+        root = chosen.copy(tmp_path / f"killed-{number}")
+        process = _start("fill-all", chosen, root)
+        time.sleep(took * (0.6 + 0.5 * number / 8))  # the write comes at the end of a run
+        process.send_signal(signal.SIGKILL)
+        process.communicate()
+        finals.append(state(root, chosen))
+    assert all(final in (initial, filled) for final in finals)
+    assert all(parses(final) for final in finals)
