@@ -26,13 +26,13 @@ def writable_under(paths: Sequence[str]) -> Callable[[str], bool]:
     installed package or a hidden folder (``.venv``).
     """
     here = Path.cwd().resolve()
-    given = [Path(p).resolve() for p in paths]
+    given = [_standing(p) for p in paths]
     roots = [p if p.is_dir() else p.parent for p in given]
     if all(p.is_relative_to(here) for p in given):
         roots.append(here)
 
     def writable(path: str) -> bool:
-        file = Path(path).resolve()
+        file = _standing(path)
         for root in roots:
             if file.is_relative_to(root):
                 inside = file.relative_to(root).parts[:-1]
@@ -42,25 +42,42 @@ def writable_under(paths: Sequence[str]) -> Callable[[str], bool]:
     return writable
 
 
+def _standing(path: str) -> Path:
+    """
+    Where ``path`` stands: a folder resolved, a file in its resolved folder. A symbolic link
+    counts where it stands, not where it points: one out of its repository is refused for
+    writing (:mod:`~inertia_kit.lint.repository_links`), given or found by a folder walk.
+    """
+    if os.path.isdir(path):
+        return Path(path).resolve()
+    return Path(os.path.realpath(os.path.dirname(os.path.abspath(path)))) / Path(path).name
+
+
 def add_noqa(
     paths: Sequence[str],
     results: Sequence[FileResult],
     relint: Callable[[], list[FileResult]],
     quiet: bool = False,
+    follow_symlinks: bool = False,
 ) -> int:
     """
     Write the comments, lint again to prove them, say what was done (``quiet``: only errors and
-    the findings that still fail); the exit code.
+    the findings that still fail); the exit code. A file that is a symbolic link out of its
+    repository is not written (nor any other), unless ``follow_symlinks``.
     """
     from inertia_kit.description.edits import write_all_atomic
+    from inertia_kit.description.reads import combined
     from inertia_kit.errors import InputError
     from inertia_kit.lint.add_noqa import plan
     from inertia_kit.lint.merge import merge
+    from inertia_kit.lint.repository_links import refuse_links_out
 
     run = merge(results)
-    planned = plan(run.findings, writable_under(paths))
-    writes = [(path, old.encode(new), old.original) for path, (old, new) in planned.texts.items()]
     try:
+        # placed in the text each robot's lint read (else: changed meanwhile, nothing written)
+        planned = plan(run.findings, writable_under(paths), combined(r.reads for r in results))
+        writes = [(p, old.encode(new), old.original) for p, (old, new) in planned.texts.items()]
+        refuse_links_out([path for path, _, _ in writes], follow_symlinks)
         write_all_atomic(writes)
     except InputError as error:
         say(f"error: {error}")  # it says what was left as it was

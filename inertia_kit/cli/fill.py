@@ -13,6 +13,7 @@ from inertia_kit.cli.options import (
     HELP,
     SCALE,
     UsageError,
+    follow_symlinks_option,
     jobs_option,
     package_path_option,
     parse_xacro_args,
@@ -105,6 +106,7 @@ from inertia_kit.version import __version__
 @discovery_options
 @stdin_filename_option
 @redact_env_option
+@follow_symlinks_option("the filled files (and -o OUT)")
 @click.version_option(__version__, prog_name="inertia-fill")
 @click.pass_context
 def fill_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
@@ -168,6 +170,7 @@ def fill(
     xacro_limits: tuple[str, ...] = (),
     jobs: int | None = None,  # accepted, unused: see the option's help
     redact_env: bool | None = None,
+    follow_symlinks: bool = False,
     **discovery: Any,
 ) -> int:
     """
@@ -176,6 +179,8 @@ def fill(
     """
     from inertia_kit.cli.discovery import discovery as discovery_from
     from inertia_kit.cli.discovery import show_files
+    from inertia_kit.description.edits import ChangedWhileEditing
+    from inertia_kit.description.output_paths import refuse_links
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.errors import ConfigError, InputError
     from inertia_kit.fill.fragments import cut, fill_targets
@@ -189,6 +194,11 @@ def fill(
             raise UsageError("give URDF files or folders to fill")
         if output is not None and (len(paths) != 1 or Path(paths[0]).is_dir()):
             raise UsageError(f"-o takes exactly one file PATH, got {', '.join(paths)}")
+        if output is not None and not (show_diff or check):
+            try:
+                refuse_links(output, follow_symlinks)
+            except InputError as error:
+                raise UsageError(f"-o: {error}") from None
         arguments = parse_xacro_args(xacro_args)
         limits = parse_xacro_limits(xacro_limits)
         try:
@@ -246,7 +256,8 @@ def fill(
             except ConfigError:
                 raise
             except InputError as error:
-                if not chosen.read_by_robots(target):  # else: filled through its robots
+                meanwhile = isinstance(error, ChangedWhileEditing)  # told, whoever reads it
+                if meanwhile or not chosen.read_by_robots(target):  # else: through its robots
                     if redacts:
                         keep_out(error.environment_values)
                     say(f"error: {error}")
@@ -287,7 +298,9 @@ def fill(
             plan = without(plan, target.robot, disagree)
         with processing(plan.path):
             try:
-                outcome = _finish(plan, write, show_diff, chosen.through(plan.path))
+                outcome = _finish(
+                    plan, write, show_diff, chosen.through(plan.path), follow_symlinks
+                )
             except Exception as error:  # a bug: reported for this file, the others go on
                 say(f"error: {internal(error, plan.path)}")
                 outcome = (False, False, True)
@@ -307,12 +320,21 @@ def fill(
 
 
 def _finish(
-    plan: Any, write: bool, show_diff: bool, through: tuple[str, ...] = ()
+    plan: Any,
+    write: bool,
+    show_diff: bool,
+    through: tuple[str, ...] = (),
+    follow_symlinks: bool = False,
 ) -> tuple[bool, bool, bool]:
-    """Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed."""
+    """
+    Tell (``--diff``) or write one planned file: whether it changed, refused a link, failed.
+    A file that is a symbolic link out of its repository is not written, unless
+    ``follow_symlinks`` (:mod:`~inertia_kit.lint.repository_links`).
+    """
     from inertia_kit.errors import InputError
     from inertia_kit.fill.output import write_output
-    from inertia_kit.fill.plan import apply, links_followed, remove_stale
+    from inertia_kit.fill.plan import apply, links_followed, remove_stale, written_files
+    from inertia_kit.lint.repository_links import refuse_links_out
 
     changed = failed = False
     for note in plan.notes:
@@ -329,8 +351,11 @@ def _finish(
     if filled or (plan.input_path is not None and write):
         followed = links_followed(plan) if write else []
         try:
-            if write:
-                (apply if plan.input_path is None else write_output)(plan)
+            if write and plan.input_path is None:
+                refuse_links_out(written_files(plan), follow_symlinks)
+                apply(plan)
+            elif write:
+                write_output(plan, follow_symlinks)
         except InputError as error:
             say(f"error: {error}")
             failed = True

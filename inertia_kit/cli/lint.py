@@ -12,6 +12,7 @@ from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
     UsageError,
+    follow_symlinks_option,
     jobs_option,
     package_path_option,
     parse_codes,
@@ -155,6 +156,7 @@ def _colour() -> bool | None:
     "already there gains the codes. Prints how many were written where.",
 )
 @redact_env_option
+@follow_symlinks_option("the report (--output-file) and the fixed files (--fix, --add-noqa)")
 @click.option("--explain", metavar="CODE", default=None, help="Print a rule's document and exit.")
 @click.version_option(__version__, prog_name="inertia-lint")
 @click.pass_context
@@ -201,6 +203,7 @@ def lint(
     output_file: str | None = None,
     jobs: int | None = None,
     redact_env: bool | None = None,
+    follow_symlinks: bool = False,
     **discovery: Any,
 ) -> int:
     """
@@ -238,6 +241,8 @@ def lint(
             "error: --output-file: --add-noqa writes comments into the files and prints no "
             "report to write; drop one of them"
         )
+        return 2
+    if output_file is not None and not _may_write_report(output_file, follow_symlinks):
         return 2
     try:
         finder = ConfigFinder(config_path)
@@ -295,6 +300,7 @@ def lint(
             diff=show_diff,
             discovery=walk,
             jobs=jobs,
+            follow_symlinks=follow_symlinks,
             **streaming,
         )
 
@@ -312,7 +318,9 @@ def lint(
     if add_noqa:
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
 
-        return write_suppressions(paths, results, lint_all, quiet=quiet)
+        return write_suppressions(
+            paths, results, lint_all, quiet=quiet, follow_symlinks=follow_symlinks
+        )
     run = merge(results)
     for level, text in run.messages:
         if quiet and level == "note":
@@ -343,7 +351,9 @@ def lint(
     machine = output_format in MACHINE and not show_diff
     if output_file is None:
         show(output, nl=False, color=_colour(), machine=machine)
-    elif not _write_report(output_file, output if machine else printing.report_text(output)):
+    elif not _write_report(
+        output_file, output if machine else printing.report_text(output), follow_symlinks
+    ):
         return 2
     crashes = sum(isinstance(error, InternalError) for error in run.errors)
     fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
@@ -361,14 +371,31 @@ def _key(finding: Any) -> tuple:
     return (finding.path, finding.line, finding.column, finding.code, finding.message)
 
 
-def _write_report(path: str, output: str) -> bool:
+def _may_write_report(path: str, follow_symlinks: bool) -> bool:
+    """Whether the report may go to ``path`` (no symbolic link on the way, unless
+    ``--follow-symlinks``); if not, say why (the exit is then 2, and nothing is done)."""
+    from inertia_kit.description.output_paths import refuse_links
+    from inertia_kit.errors import InputError
+
+    try:
+        refuse_links(path, follow_symlinks)
+    except InputError as error:
+        say(f"error: --output-file: {error}")
+        return False
+    return True
+
+
+def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool:
     """Write the report to ``path`` atomically; on failure say why (the exit is then 2)."""
     from inertia_kit.description.edits import write_atomic
     from inertia_kit.errors import InputError
 
+    if not _may_write_report(path, follow_symlinks):
+        return False
     try:
         # a file name that is no UTF-8 (github's file=) is written as its own bytes, as stdout does
-        write_atomic(path, output.encode("utf-8", "surrogateescape"), create=True)
+        data = output.encode("utf-8", "surrogateescape")
+        write_atomic(path, data, create=True, follow_symlinks=follow_symlinks)
     except InputError as error:
         say(f"error: --output-file: {error}")
         return False

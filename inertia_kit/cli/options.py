@@ -1,6 +1,6 @@
 """
-What the commands share: usage errors (exit 2), ``-h``, and the options that say how to load a
-robot (``--package-path``, ``--xacro-arg``, ``--xacro-limit``).
+What the commands share: usage errors (exit 2), ``-h``, the options that say how to load a
+robot (``--package-path``, ``--xacro-arg``, ``--xacro-limit``), and ``--follow-symlinks``.
 """
 
 from __future__ import annotations
@@ -57,6 +57,18 @@ def jobs_option(help: str) -> Any:
     """``-j/--jobs N`` (N ≥ 0), with the command's own help."""
     return click.option(
         "-j", "--jobs", type=click.IntRange(min=0), default=None, metavar="N", help=help
+    )
+
+
+def follow_symlinks_option(writes: str) -> Any:
+    """``--follow-symlinks``: write through symbolic links; ``writes`` says what is written."""
+    return click.option(
+        "--follow-symlinks",
+        is_flag=True,
+        help=f"Write {writes} through a symbolic link: without it, an output path that is (or "
+        "passes through) a link, and a robot file that links out of its repository, are "
+        "refused (exit 2, nothing written), so that a link planted in a pull request cannot "
+        "redirect a write.",
     )
 
 

@@ -46,6 +46,7 @@ def on_stdin(
     *,
     prints_text: bool,
     output_file: str | None = None,
+    follow_symlinks: bool = False,
 ) -> int:
     """
     Read stdin, stand it in at ``filename`` and ``run`` the command on the stand-in's path; its
@@ -77,7 +78,7 @@ def on_stdin(
     if output_file is not None:
         from inertia_kit.cli.lint import _write_report
 
-        if not _write_report(output_file, report):
+        if not _write_report(output_file, report, follow_symlinks):
             return 2
     else:
         click.echo(report, nl=False, err=prints_text)
@@ -177,10 +178,15 @@ def command_on_stdin(
         prints_text = not options.get("show_diff") and bool(configured.fix if fix is None else fix)
     output_file = options.get("output_file")
     if output_file is not None:
+        from inertia_kit.cli.lint import _may_write_report
+
+        if not _may_write_report(output_file, bool(options.get("follow_symlinks"))):
+            return 2  # before stdin is read: nothing is done
         options["output_file"] = None
     return on_stdin(
         lambda path: command((path,), **options),
         filename,
         prints_text=prints_text,
         output_file=output_file,
+        follow_symlinks=bool(options.get("follow_symlinks")),
     )

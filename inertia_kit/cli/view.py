@@ -11,6 +11,7 @@ from inertia_kit.cli.guard import GuardedCommand
 from inertia_kit.cli.options import (
     HELP,
     UsageError,
+    follow_symlinks_option,
     package_path_option,
     parse_codes,
     parse_xacro_args,
@@ -83,6 +84,7 @@ def _size(value: str) -> tuple[int, int]:
 @xacro_arg_option
 @xacro_limit_option
 @redact_env_option
+@follow_symlinks_option("the page (-o) and the picture (--png)")
 @click.pass_context
 def view_command(ctx: click.Context, robot: str, **options: Any) -> None:
     """
@@ -119,13 +121,22 @@ def view(
     xacro_args: tuple[str, ...] = (),
     xacro_limits: tuple[str, ...] = (),
     redact_env: bool | None = None,
+    follow_symlinks: bool = False,
 ) -> int:
     """``inertia-kit view``: write the page (and the PNG); return the exit code."""
     from inertia_kit.description.edits import write_atomic
+    from inertia_kit.description.output_paths import refuse_links
     from inertia_kit.errors import InertiaKitError
     from inertia_kit.view.page import render_page
     from inertia_kit.view.scene import build_scene
 
+    for option, path in (("-o", output), ("--png", png)):
+        try:
+            if path is not None:
+                refuse_links(path, follow_symlinks)
+        except InertiaKitError as error:
+            say(f"error: {option}: {error}")
+            return 2
     try:
         size = _size(png_size) if png else None
         rules = {"select": parse_codes(select)} if select else {}
@@ -143,7 +154,7 @@ def view(
             **rules,
         )
         page = render_page(scene).encode("utf-8")
-        write_atomic(output, page, create=True)
+        write_atomic(output, page, create=True, follow_symlinks=follow_symlinks)
     except UsageError as error:
         say(f"error: {error.format_message()}")
         return 2
@@ -159,7 +170,7 @@ def view(
         from inertia_kit.view.screenshot import RendererError, screenshot
 
         try:
-            screenshot(output, png, width=size[0], height=size[1])
+            screenshot(output, png, width=size[0], height=size[1], follow_symlinks=follow_symlinks)
         except (RendererError, InertiaKitError) as error:
             say(f"error: --png: {error} (the page {output} is written)")
             return 2

@@ -13,7 +13,9 @@ and text edits back on the original bytes.
 - ``model``: the frozen dataclasses (Robot, Link, Joint, Inertial, ... each with its ``Source``).
 - ``inertial_xml``: an ``<inertial>`` block as text; ``xmlspan``: where an element stands in the
   original text; ``edits``: text edits on the original bytes, and atomic writes (through
-  symbolic links; stale temporary files of killed writes removed).
+  symbolic links; stale temporary files of killed writes removed; our writers one at a time);
+  ``reads``: what a load read (a digest of each file), so that an edit is written only on the
+  text it was computed on; ``output_paths``: a named output file never through a symbolic link.
 - ``redaction``: what the environment gave a xacro expansion, kept out of what is printed
   (``--redact-env``).
 """

@@ -9,9 +9,10 @@ import codecs
 import contextlib
 import os
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from inertia_kit.errors import InputError
 
@@ -135,6 +136,10 @@ def unified_diff(changes: Iterable[tuple[str, str, str]]) -> str:
     return "".join(parts)
 
 
+#: what a writer says when the file is no longer the text its edits were computed on
+CHANGED = "the file changed while it was being processed; nothing was written"
+
+
 class ChangedWhileEditing(InputError):
     """The file on disk is no longer the one the edits were computed from."""
 
@@ -169,7 +174,12 @@ def real_target(path: str | Path) -> Path:
 
 
 def write_atomic(
-    path: str | Path, data: bytes, *, expected: bytes | None = None, create: bool = False
+    path: str | Path,
+    data: bytes,
+    *,
+    expected: bytes | None = None,
+    create: bool = False,
+    follow_symlinks: bool = True,
 ) -> bool:
     """
     Replace ``path``'s content with ``data`` atomically (temporary file in the same folder,
@@ -178,8 +188,10 @@ def write_atomic(
 
     A symbolic link is followed (through a chain of links) and the file it points to is
     replaced, with the temporary file beside that file; the link itself is left as it is. A
-    link that leads nowhere is an ``InputError``. Temporary files of an earlier write that was
-    killed (:func:`remove_stale_temporaries`) are removed from the folder first.
+    link that leads nowhere is an ``InputError``. Without ``follow_symlinks`` the name itself is
+    replaced: a link there becomes a file, and what it pointed to is not touched. Temporary
+    files of an earlier write that was killed (:func:`remove_stale_temporaries`) are removed
+    from the folder first.
 
     ``expected`` is the content the edits were computed from: if the file no longer holds it
     (someone changed it meanwhile), nothing is written and ``ChangedWhileEditing`` is raised.
@@ -187,10 +199,69 @@ def write_atomic(
 
     Returns whether the file was written.
     """
-    target = real_target(path)
-    current, mode = _state(target, create, path)
-    if not _may_write(target, current, mode, data, expected, path):
-        return False
+    target = real_target(path) if follow_symlinks else Path(path)
+    with _commit_lock([target.parent] if expected is not None else []):
+        return _write_set([(target, path, data, expected)], create)
+
+
+def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
+    """
+    ``(path, data, expected)`` for several files, each written as :func:`write_atomic` does,
+    as one change: every file is checked first (its links lead to a file, still ``expected``,
+    writable), so one that changed or is read-only stops the whole set before any file is
+    written; then every new file is written beside its target, checked once more against
+    ``expected`` and only then all renamed into place. Returns whether any was written.
+
+    Our writers (``--fix``, ``inertia-fill``, ``--add-noqa``, in any process) check and
+    replace one at a time in a folder (:func:`_commit_lock`), so two of them never both see
+    the text they expect and then both replace it: the second finds the first one's bytes
+    and writes nothing.
+    """
+    planned = [(real_target(path), path, data, expected) for path, data, expected in writes]
+    with _commit_lock([target.parent for target, *_ in planned]):
+        return _write_set(planned, create=False)
+
+
+def _write_set(
+    planned: Sequence[tuple[Path, str | Path, bytes, bytes | None]], create: bool
+) -> bool:
+    """Check, write beside, check again, rename: ``(target, name told, data, expected)``."""
+    states = []
+    for target, path, data, expected in planned:
+        current, mode = _state(target, create, path)
+        if _may_write(target, current, mode, data, expected, path):
+            states.append((target, path, data, expected, current, mode))
+    prepared: list[tuple[Path, str | Path, bytes | None, str, Any]] = []
+    try:
+        for target, path, data, expected, current, mode in states:
+            prepared.append((target, path, expected, *_prepare(target, path, data, current, mode)))
+        # a last look: a change between our read and now must not be overwritten
+        for target, path, expected, _, _ in prepared:
+            if expected is not None and target.read_bytes() != expected:
+                raise ChangedWhileEditing(CHANGED, path)
+        for target, path, _, temporary, stream in prepared:
+            try:
+                if os.name == "nt":  # pragma: no cover - Windows renames no open file
+                    stream.close()
+                os.replace(temporary, target)
+            except OSError as error:  # a full disk, a lost network file system, ...
+                raise InputError(
+                    f"cannot write: {error.strerror or error}; the file was left as it was", path
+                ) from None
+    except BaseException:
+        for _, _, _, temporary, _ in prepared:
+            with contextlib.suppress(OSError):
+                os.unlink(temporary)
+        raise
+    finally:
+        for *_, stream in prepared:
+            stream.close()
+    return bool(prepared)
+
+
+def _prepare(target: Path, path: str | Path, data: bytes, current: bytes | None, mode: int):
+    """``data`` in a new temporary file beside ``target``, synced, with ``target``'s mode and
+    owner: its name and the open stream (kept open, and locked, until the rename)."""
     remove_stale_temporaries(target.parent)
     try:
         handle, temporary = _create_temporary(target)
@@ -200,28 +271,18 @@ def write_atomic(
             "nothing was written",
             path,
         ) from None
+    # the descriptor stays open, and locked, until the file has its name: a run that finds
+    # our temporary file meanwhile sees that it is in use (remove_stale_temporaries)
+    stream = os.fdopen(handle, "wb")
     try:
-        # the descriptor stays open, and locked, until the file has its name: a run that finds
-        # our temporary file meanwhile sees that it is in use (remove_stale_temporaries)
-        stream = os.fdopen(handle, "wb")
-        try:
-            stream.write(data)
-            stream.flush()
-            os.fsync(stream.fileno())
-            if current is not None:
-                _keep_owner(stream.fileno(), target)
-            _set_mode(stream.fileno(), temporary, mode)
-            # a last look: a change between our read and now must not be overwritten
-            if expected is not None and target.read_bytes() != expected:
-                raise ChangedWhileEditing(
-                    "the file changed while it was being processed; nothing was written", path
-                )
-            if os.name == "nt":  # pragma: no cover - Windows renames no open file
-                stream.close()
-            os.replace(temporary, target)
-        finally:
-            stream.close()
+        stream.write(data)
+        stream.flush()
+        os.fsync(stream.fileno())
+        if current is not None:
+            _keep_owner(stream.fileno(), target)
+        _set_mode(stream.fileno(), temporary, mode)
     except BaseException as error:
+        stream.close()
         with contextlib.suppress(OSError):
             os.unlink(temporary)
         if isinstance(error, OSError):  # a full disk, a lost network file system, ...
@@ -229,23 +290,46 @@ def write_atomic(
                 f"cannot write: {error.strerror or error}; the file was left as it was", path
             ) from None
         raise
-    return True
+    return temporary, stream
 
 
-def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
+#: How long a writer waits for another one's check-and-replace in a folder (which takes
+#: milliseconds) before it goes on without the lock (its content check still holds).
+COMMIT_WAIT_SECONDS = 10.0
+
+
+@contextlib.contextmanager
+def _commit_lock(folders: Iterable[Path]) -> Iterator[None]:
     """
-    ``(path, data, expected)`` for several files, each written as :func:`write_atomic` does;
-    every file is checked first (its links lead to a file, still ``expected``, writable), so
-    one that changed or is read-only stops the whole set before any file is written. Returns
-    whether any was written.
+    An exclusive ``flock`` on each folder (in one order: no two writers wait for each other)
+    while a set of files is checked and replaced. Where a folder cannot be opened or locked
+    (another system, a file system without locks) the write goes on without it.
     """
-    for path, data, expected in writes:
-        target = real_target(path)
-        _may_write(target, *_state(target, False, path), data, expected, path)
-    written = False
-    for path, data, expected in writes:
-        written = write_atomic(path, data, expected=expected) or written
-    return written
+    import time
+
+    handles = []
+    try:
+        for folder in sorted({os.path.realpath(folder) for folder in folders}):
+            try:
+                handle = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+            except OSError:
+                continue
+            handles.append(handle)
+            deadline = time.monotonic() + COMMIT_WAIT_SECONDS
+            while True:
+                try:
+                    _lock(handle, blocking=False)
+                    break
+                except BlockingIOError:
+                    if time.monotonic() > deadline:
+                        break
+                    time.sleep(0.002)
+                except OSError:  # no locks here
+                    break
+        yield
+    finally:
+        for handle in handles:
+            os.close(handle)
 
 
 # --- temporary files ---------------------------------------------------------------------------
@@ -402,9 +486,7 @@ def _may_write(
 ) -> bool:
     """Whether ``data`` needs writing; ``InputError`` (naming ``shown``) when it must not be."""
     if expected is not None and current != expected:
-        raise ChangedWhileEditing(
-            "the file changed while it was being processed; nothing was written", shown
-        )
+        raise ChangedWhileEditing(CHANGED, shown)
     if current == data:
         return False
     # the permission bits, not os.access: a read-only file says "don't touch", even to root

@@ -19,6 +19,7 @@ from lxml import etree
 
 from inertia_kit.description import model
 from inertia_kit.description.builder import Builder
+from inertia_kit.description.reads import digest, key
 from inertia_kit.description.safexml import read_bounded
 from inertia_kit.description.xmlparse import check_text, element_locator, parse_xml
 
@@ -79,7 +80,8 @@ def load(
     robot : Robot
       A fragment (a xacro file, by name or content, with no ``<link>`` and no ``<joint>``
       once expanded: macros, properties, materials, ``<gazebo>`` blocks) loads as a robot with
-      no links and ``fragment=True``.
+      no links and ``fragment=True``. Its ``reads`` hold a digest of the bytes of every file
+      read (the input, every xacro file included), which edits of them check (:mod:`.reads`).
 
     Raises
     ------
@@ -103,23 +105,33 @@ def load(
         from inertia_kit.description.xacro_expand import expand  # plain URDF: not imported
 
         expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
+        read = tuple(expanded.reads.items())
         if expanded.fragment:
-            return _fragment(path, expanded.files)
+            return _fragment(path, expanded.files, read)
         robot = Builder(path, expanded.source_of, resolver, tuple(expanded.files)).robot(
             expanded.root
         )
-        return dataclasses.replace(robot, environment_values=expanded.environment_values)
+        return dataclasses.replace(
+            robot, environment_values=expanded.environment_values, reads=read
+        )
 
+    read = ((key(path), digest(data)),)
     root = parse_xml(data, path)
     if (xacro or path.name.lower().endswith(".xacro")) and is_fragment(root):
-        return _fragment(path, (str(path),))  # as expand() classes a xacro file without links
+        # as expand() classes a xacro file without links
+        return _fragment(path, (str(path),), read)
     position = element_locator(data, root)
 
     def source_of(element: etree._Element) -> model.Source:
         return model.Source(str(path), *position(element))
 
-    return Builder(path, source_of, resolver, (str(path),)).robot(root)
+    robot = Builder(path, source_of, resolver, (str(path),)).robot(root)
+    return dataclasses.replace(robot, reads=read)
 
 
-def _fragment(path: Path, files: Iterable[str]) -> model.Robot:
-    return model.Robot(None, (), (), (), model.Source(str(path), 1), tuple(files), (), True)
+def _fragment(
+    path: Path, files: Iterable[str], read: tuple[tuple[str, str | None], ...]
+) -> model.Robot:
+    return model.Robot(
+        None, (), (), (), model.Source(str(path), 1), tuple(files), (), True, reads=read
+    )

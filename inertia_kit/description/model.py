@@ -250,6 +250,9 @@ class Robot:
     # what the environment gave its xacro expansion ($(env), $(optenv), YAML values): kept out
     # of what is printed by --redact-env (description.redaction)
     environment_values: tuple[str, ...] = ()
+    # (real path, digest of the bytes read) of every file read: what edits are computed on
+    # (description.reads)
+    reads: tuple[tuple[str, str | None], ...] = ()
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

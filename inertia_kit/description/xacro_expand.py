@@ -81,6 +81,8 @@ class Expanded:
     environment_values : tuple of str
       What the environment gave: ``$(env)``, ``$(optenv)``, YAML values
       (:mod:`~inertia_kit.description.redaction`).
+    reads : mapping of str to str
+      Every file read, by real path: a digest of the bytes read (:mod:`.reads`).
     """
 
     path: str
@@ -90,6 +92,8 @@ class Expanded:
     warnings: tuple[str, ...] = ()
     _sources: Mapping[Any, Source] = field(default_factory=dict, repr=False, compare=False)
     environment_values: tuple[str, ...] = ()
+    # real path -> digest of the bytes read, of every file read (description.reads)
+    reads: Mapping[str, str | None] = field(default_factory=dict, repr=False, compare=False)
 
     def source_of(self, element: etree._Element) -> Source:
         """
@@ -195,12 +199,25 @@ def _expanded(result: Expansion) -> Expanded:
     from inertia_kit.description.xacro_detect import is_fragment
 
     environment = result.environment_values
+    reads = result.reads or {}
     if result.text is None or result.sources is None:
-        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
+        return Expanded(
+            result.path, etree.Element("robot"), result.files, True, result.warnings, reads=reads
+        )
     root, sources = to_lxml(result.text, result.sources, Source(result.path))
     if is_fragment(root):
-        return Expanded(result.path, etree.Element("robot"), result.files, True, result.warnings)
-    return Expanded(result.path, root, result.files, False, result.warnings, sources, environment)
+        return Expanded(
+            result.path,
+            etree.Element("robot"),
+            result.files,
+            True,
+            result.warnings,
+            environment_values=environment,
+            reads=reads,
+        )
+    return Expanded(
+        result.path, root, result.files, False, result.warnings, sources, environment, reads
+    )
 
 
 def _expand(

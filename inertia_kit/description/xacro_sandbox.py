@@ -54,6 +54,8 @@ class Expansion:
     resolver_state: dict[str, Any] | None = None  # the child's package resolver's attributes
     # the values the environment gave ($(env), $(optenv), YAML): description.redaction
     environment_values: tuple[str, ...] = ()
+    # real path -> digest of the bytes read, of every file read (description.reads)
+    reads: dict[str, str | None] | None = None
 
 
 def state_of(resolver: Any) -> dict[str, Any] | None:

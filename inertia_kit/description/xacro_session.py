@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import safexml
+from inertia_kit.description import reads, safexml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound
 from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
@@ -57,6 +57,7 @@ class Session:
         self.texts: list[str] = []  # the texts xacro is evaluating, innermost last
         # what the environment gave: $(env), $(optenv) and YAML values (description.redaction)
         self.environment_values: dict[str, None] = {}
+        self.reads: dict[str, str | None] = {}  # every file read: description.reads
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -66,6 +67,7 @@ class Session:
 
         shown = self.display(filename) if self.files else filename
         data = read_checked(os.path.join(xacro.root_dir, filename), shown)
+        reads.record(self.reads, os.path.join(xacro.root_dir, filename), data)
         if shown not in self.files:
             self.files.append(shown)
         return parse_stamped(data, shown, self.meter.add)
@@ -225,11 +227,24 @@ class Session:
         environment = tuple(self.environment_values)
         if root is None:
             return Expansion(
-                self.path, tuple(files), True, self.warnings(), environment_values=environment
+                self.path,
+                tuple(files),
+                True,
+                self.warnings(),
+                environment_values=environment,
+                reads=self.reads,
             )
         text, sources = serialise(root, Source(self.path))
         return Expansion(
-            self.path, tuple(files), False, self.warnings(), text, sources, None, environment
+            self.path,
+            tuple(files),
+            False,
+            self.warnings(),
+            text,
+            sources,
+            None,
+            environment,
+            self.reads,
         )
 
 

@@ -37,8 +37,9 @@ def output_source(
     Raises ``InputError`` when the file cannot be read, for a xacro fragment (no robot to write),
     and when ``output`` is ``path`` itself.
     """
-    from inertia_kit.description.edits import SourceText, read_source
+    from inertia_kit.description.edits import SourceText
     from inertia_kit.description.loader import load, needs_expansion
+    from inertia_kit.description.reads import as_loaded
     from inertia_kit.description.safexml import read_bounded
 
     if output.exists() and path.exists() and output.resolve() == path.resolve():
@@ -47,25 +48,28 @@ def output_source(
         text, robot = _expanded(path, output, package_paths, xacro_args, xacro_limits)
         return SourceText(str(output), text.encode("utf-8"), text, "utf-8", b""), robot
     # a URDF file: its own bytes, edited (offsets into them), written elsewhere
-    source = read_source(path)
     robot = load(path, package_paths=package_paths, xacro_limits=xacro_limits)
     if robot.fragment:
         raise InputError("a xacro fragment without links: no robot to write", path)
-    return source, robot
+    return as_loaded(path, dict(robot.reads)), robot
 
 
-def write_output(plan: FillPlan) -> bool:
+def write_output(plan: FillPlan, follow_symlinks: bool = False) -> bool:
     """
     Write ``plan``'s filled text to its ``path`` (a plan of ``plan_fill(..., output=...)``),
     atomically, creating the file if need be; an existing file keeps its permission bits and
     is left alone when it already holds these bytes. Returns whether the file was written;
-    ``InputError`` for a folder, a missing folder or a read-only file.
+    ``InputError`` for a folder, a missing folder or a read-only file, and, unless
+    ``follow_symlinks``, for a path that is or passes through a symbolic link
+    (:mod:`~inertia_kit.description.output_paths`).
     """
     from inertia_kit.description.edits import write_atomic
+    from inertia_kit.description.output_paths import refuse_links
 
     if plan.source is None:
         return False
-    return write_atomic(plan.path, plan.new_bytes, create=True)
+    refuse_links(plan.path, follow_symlinks)
+    return write_atomic(plan.path, plan.new_bytes, create=True, follow_symlinks=follow_symlinks)
 
 
 def _expanded(

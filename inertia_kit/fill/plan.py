@@ -191,12 +191,14 @@ def plan_fill(
     ------
     InputError
       The file cannot be read or parsed; with ``output``, also a xacro fragment (no robot to
-      write) and ``output`` being ``path`` itself.
+      write) and ``output`` being ``path`` itself. ``ChangedWhileEditing`` when a file to edit
+      no longer holds the bytes the robot was loaded from.
     ValueError
       Bad ``density``, ``masses``, ``densities``, ``total_mass`` or ``fix``.
     """
-    from inertia_kit.description.edits import read_source
+    from inertia_kit.description.edits import real_target
     from inertia_kit.description.loader import load
+    from inertia_kit.description.reads import as_loaded
 
     check_fix(fix)
     choice = MassChoice.checked(density, masses, densities, total_mass)
@@ -206,10 +208,12 @@ def plan_fill(
         return plan_robot(
             str(output), source, robot, choice, fix=fix, input_path=str(path), asked=links
         )
-    source = read_source(path)
+    real_target(path)  # a link that leads nowhere: said as such
     robot = load(
         path, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
     )
+    # the text the robot was read from, or ChangedWhileEditing
+    source = as_loaded(path, dict(robot.reads))
     return plan_robot(str(path), source, robot, choice, fix=fix, asked=links)
 
 
@@ -239,7 +243,7 @@ def plan_robot(
             input_path=input_path,
         )
     analysis = analyse(robot)
-    files = Files.for_input(source.path)
+    files = Files.for_input(source.path, dict(robot.reads))
     files.add(source)
     fixes = robot_fixes(
         analysis,

@@ -1,13 +1,15 @@
 """
-The files a fill may edit: read once, parsed once, and only inside the input's package (the
-folder holding the nearest ``package.xml``, else the input's folder). Symbolic links count where
-they point: an input that is a link is filled in the file it points to, within that file's
-package; an included file that is a link into another package is not edited.
+The files a fill may edit: read once, parsed once, only inside the input's package (the folder
+holding the nearest ``package.xml``, else the input's folder) and only as the robot's load read
+them (a file changed since is refused: :mod:`inertia_kit.description.reads`). Symbolic links
+count where they point: an input that is a link is filled in the file it points to, within that
+file's package; an included file that is a link into another package is not edited.
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -32,16 +34,20 @@ class Files:
 
     root: Path
     sources: dict[str, SourceText] = field(default_factory=dict)
+    # what the load read (description.reads): a file is edited only as the load read it
+    reads: Mapping[str, str | None] = field(default_factory=dict)
     _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
     _positions: dict[int, tuple[str, int, int]] = field(default_factory=dict)  # id -> where
 
     @classmethod
-    def for_input(cls, path: str | Path) -> Files:
+    def for_input(cls, path: str | Path, reads: Mapping[str, str | None] | None = None) -> Files:
+        """The files a fix of the robot ``path`` may edit; ``reads``: what its load read."""
         path = Path(path).resolve()
+        reads = {} if reads is None else reads
         for folder in path.parents:
             if (folder / "package.xml").is_file():
-                return cls(folder)
-        return cls(path.parent)
+                return cls(folder, reads=reads)
+        return cls(path.parent, reads=reads)
 
     def editable(self, path: str) -> bool:
         """Whether ``path`` is inside ``root``; a symbolic link by the file it points to."""
@@ -54,11 +60,15 @@ class Files:
         return f"outside {self.root}"
 
     def source(self, path: str) -> SourceText:
-        from inertia_kit.description.edits import read_source
+        """
+        The text of ``path``, read once; ``ChangedWhileEditing`` when the load read other bytes
+        there (the robot's lines and columns would point into another text).
+        """
+        from inertia_kit.description.reads import as_loaded
 
         resolved = str(Path(path).resolve())
         if resolved not in self.sources:
-            self.sources[resolved] = read_source(path)
+            self.sources[resolved] = as_loaded(path, self.reads)
         return self.sources[resolved]
 
     def add(self, source: SourceText) -> None:

@@ -5,7 +5,8 @@ lint: rules over the analysed robot, and findings out.
 (the one registry of ``rules/``, one module per rule; the contract is in
 :mod:`inertia_kit.lint.rules`), with their typed ``options``, the ``config`` (and
 ``config_files``) and the ``suppress`` comments, whose use ``unused`` judges (IN090);
-``add_noqa`` writes a comment for every finding (placed by ``markup``); ``merge`` joins the
-results of several files;
+``add_noqa`` writes a comment for every finding (placed by ``markup``); ``repository_links``
+refuses to write a robot file that links out of its repository; ``merge`` joins the results of
+several files;
 ``output/`` prints them, one module per format; ``documents`` finds each rule's document.
 """

@@ -13,10 +13,11 @@ are never suppressed: their fix removes the comment instead.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
-from inertia_kit.description.edits import Edit, SourceText, apply_edits, read_source
+from inertia_kit.description.edits import ChangedWhileEditing, Edit, SourceText, apply_edits
+from inertia_kit.description.reads import as_loaded
 from inertia_kit.errors import InputError
 from inertia_kit.lint import catalog, markup
 from inertia_kit.lint.findings import Finding
@@ -34,10 +35,16 @@ class Plan:
     skipped: list[tuple[Finding, str]] = field(default_factory=list)  # (finding, why)
 
 
-def plan(findings: Iterable[Finding], writable: Callable[[str], bool]) -> Plan:
+def plan(
+    findings: Iterable[Finding],
+    writable: Callable[[str], bool],
+    reads: Mapping[str, str | None] | None = None,
+) -> Plan:
     """
     The comments that suppress ``findings``; a finding in a file ``writable`` refuses (an
-    installed package's macro) is listed in ``skipped`` with the reason.
+    installed package's macro) is listed in ``skipped`` with the reason. Each file is read as
+    the lint's loads read it (``reads``: :mod:`inertia_kit.description.reads`), else
+    ``ChangedWhileEditing``: the findings' lines would point into another text.
     """
     result = Plan()
     by_file: dict[str, list[Finding]] = {}
@@ -59,7 +66,9 @@ def plan(findings: Iterable[Finding], writable: Callable[[str], bool]) -> Plan:
             by_file.setdefault(finding.path, []).append(finding)
     for path, found in by_file.items():
         try:
-            source = read_source(path)
+            source = as_loaded(path, reads or {})
+        except ChangedWhileEditing:
+            raise
         except InputError as error:
             result.skipped.extend((f, f"cannot edit: {error}") for f in found)
             continue

@@ -12,7 +12,7 @@ nothing changes, at most :data:`MAX_PASSES` times; a file that did not settle ge
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -57,9 +57,16 @@ class Pass:
         return unified_diff((source.path, source.text, text) for source, text in self.changes)
 
 
-def one_pass(findings: Sequence[Finding], unsafe: bool) -> Pass:
-    """The applicable, non-overlapping fixes of ``findings`` applied to their files' text."""
-    from inertia_kit.description.edits import apply_edits, read_source
+def one_pass(
+    findings: Sequence[Finding], unsafe: bool, reads: Mapping[str, str | None] | None = None
+) -> Pass:
+    """
+    The applicable, non-overlapping fixes of ``findings`` applied to their files' text, each
+    file read as the lint's load read it (``reads``: :mod:`inertia_kit.description.reads`;
+    ``ChangedWhileEditing`` when it holds other bytes now).
+    """
+    from inertia_kit.description.edits import apply_edits
+    from inertia_kit.description.reads import as_loaded
 
     taken: dict[str, list[Edit]] = {}  # resolved path -> edits
     fixed = []
@@ -75,7 +82,7 @@ def one_pass(findings: Sequence[Finding], unsafe: bool) -> Pass:
         fixed.append(finding)
     changes = []
     for edits in taken.values():
-        source = read_source(edits[0].path)
+        source = as_loaded(edits[0].path, reads or {})
         text, _ = apply_edits(source.text, edits)
         if source.encode(text) != source.original:
             changes.append((source, text))
@@ -102,32 +109,57 @@ class Outcome:
     diff: str = ""
 
 
-def fix_file(lint: Callable[[], FileResult], unsafe: bool, *, write: bool) -> Outcome:
+def fix_file(
+    lint: Callable[[], FileResult],
+    unsafe: bool,
+    *,
+    write: bool,
+    check: Callable[[Sequence[str]], None] | None = None,
+) -> Outcome:
     """
     Lint, apply, lint again until nothing applies (``write``); or, without ``write``, one pass
     whose diff is returned. ``InputError`` from a write is kept in the result (as a file that
-    could not be read).
+    could not be read), so is ``check(paths)``'s, which may refuse the files about to be
+    written.
+
+    Each pass edits the text its lint read and writes only if the files still hold it; a pass
+    after the first also stops when a file it wrote is no longer what it wrote (another writer
+    came between two passes: ``ChangedWhileEditing``).
     """
-    from inertia_kit.description.edits import write_all_atomic
+    from inertia_kit.description.edits import CHANGED, ChangedWhileEditing, write_all_atomic
+    from inertia_kit.description.reads import digest, key
 
     fixed = 0
+    ours: dict[str, str] = {}  # real path -> digest of what the last pass wrote there
     for number in range(1, MAX_PASSES + 1):
         result = lint()
         if result.error is not None or result.disabled or result.fragment:
             return Outcome(result, fixed, number - 1)
-        step = one_pass(result.findings, unsafe)
-        if not step.changes:
+        foreign = [name for name, mine in ours.items() if result.reads.get(name, mine) != mine]
+        if foreign:
+            result.error = ChangedWhileEditing(CHANGED, foreign[0])
             return Outcome(result, fixed, number - 1)
-        if not write:
-            return Outcome(result, 0, 1, diff=step.diff())
         try:
-            write_all_atomic([(s.path, s.encode(text), s.original) for s, text in step.changes])
+            step = one_pass(result.findings, unsafe, result.reads)
+            if not step.changes:
+                return Outcome(result, fixed, number - 1)
+            if not write:
+                return Outcome(result, 0, 1, diff=step.diff())
+            writes = [(s.path, s.encode(text), s.original) for s, text in step.changes]
+            if check is not None:
+                check([path for path, _, _ in writes])
+            write_all_atomic(writes)
         except InputError as error:
             result.error = error
             return Outcome(result, fixed, number)
+        ours.update((key(path), digest(data)) for path, data, _ in writes)
         fixed += len(step.fixed)
     result = lint()
-    settled = one_pass(result.findings, unsafe).changes == ()
+    try:
+        settled = one_pass(result.findings, unsafe, result.reads).changes == ()
+    except InputError as error:
+        result.error = error
+        return Outcome(result, fixed, MAX_PASSES)
     if not settled:
         result.notes.append(
             f"{result.path}: the fixes did not settle after {MAX_PASSES} passes; "

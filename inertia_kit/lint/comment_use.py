@@ -20,6 +20,9 @@ class CommentUse:
     judged: set[str] = field(default_factory=set)
     used: set[str] = field(default_factory=set)
     robots: int = 1  # how many linted robots include its file
+    # the digest of the bytes of its file as the load read them (description.reads; None:
+    # unknown, or robots read different bytes): its removal is planned on those bytes only
+    digest: str | None = None
 
     @property
     def unused(self) -> list[str]:

@@ -46,6 +46,7 @@ def lint_paths(
     jobs: int | None = 1,
     told: Callable[[FileResult, list[Finding]], None] | None = None,
     progress: Callable[[int, int, str | None], None] | None = None,
+    follow_symlinks: bool = False,
 ) -> list[FileResult]:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -69,7 +70,9 @@ def lint_paths(
     (:mod:`~inertia_kit.lint.applying`), safe ones, and unsafe ones with ``unsafe_fixes``
     (``None``: the configured ``unsafe-fixes``); ``diff`` computes them without writing.
     ``discovery`` (a :class:`~inertia_kit.lint.discovery.Discovery`; default: as configured)
-    says what the folder walk leaves out.
+    says what the folder walk leaves out. A file to fix that is a symbolic link out of its
+    repository is not written (an error for it), unless ``follow_symlinks``
+    (:mod:`~inertia_kit.lint.repository_links`).
 
     ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
     are several files); ``--fix`` always lints in this process (:func:`_run` says why).
@@ -135,6 +138,7 @@ def lint_paths(
                 diff,
                 # not `or`: Severity.INFO is 0
                 next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None),
+                follow_symlinks,
             )
         )
     results = _run(tasks, chosen, jobs, on_error, told, progress)
@@ -157,6 +161,7 @@ class _Task:
     fixing: bool
     diff: bool
     fail_on: Severity
+    follow_symlinks: bool = False
 
 
 def _lint_task(task: _Task) -> FileResult:
@@ -182,8 +187,12 @@ def _lint_task(task: _Task) -> FileResult:
 
     if task.fixing:
         from inertia_kit.lint.applying import fix_file
+        from inertia_kit.lint.repository_links import refuse_links_out
 
-        outcome = fix_file(once, task.unsafe, write=not task.diff)
+        def check(paths: Sequence[str]) -> None:
+            refuse_links_out(paths, task.follow_symlinks)
+
+        outcome = fix_file(once, task.unsafe, write=not task.diff, check=check)
         result = outcome.result
         result.fixed, result.diff = outcome.fixed, outcome.diff
     else:

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.analysis.links import RobotAnalysis, analyse
 from inertia_kit.description import model
+from inertia_kit.description.edits import ChangedWhileEditing
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError, InternalError
 from inertia_kit.fixes.masses import MassChoice
@@ -195,6 +196,9 @@ class FileResult:
     empty: bool = False  # no link and no joint: a placeholder, or a piece of other robots
     # what the environment gave its xacro expansion, for --redact-env (description.redaction)
     environment_values: tuple[str, ...] = ()
+    # real path -> digest of the bytes the load read (description.reads): what fixes and
+    # suppression comments are placed in
+    reads: dict[str, str | None] = field(default_factory=dict)
 
     @property
     def failing(self) -> list[Finding]:
@@ -251,10 +255,14 @@ def lint_file(
         if not selection.ignored(f, path) and not suppressed(f)
     ]
     ran = selection.enabled(catalog.RULES)
-    uses = unused.track(robot.files or (str(path),), findings + replaced, ran)
+    reads = dict(robot.reads)
+    uses = unused.track(robot.files or (str(path),), findings + replaced, ran, reads)
     kept += unused.report(uses, selection, path)
     if fixes != "none" and any(f.wants is not None for f in kept):
-        kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
+        try:
+            kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
+        except ChangedWhileEditing as error:  # the robot's lines point into another text now
+            return FileResult(str(path), error=error, reads=reads)
     empty = not robot.links and not robot.joints
     return FileResult(
         str(path),
@@ -264,6 +272,7 @@ def lint_file(
         selection=selection,
         empty=empty,
         environment_values=robot.environment_values,
+        reads=reads,
     )
 
 
@@ -274,14 +283,18 @@ def _with_fixes(
     choice: MassChoice,
     safe_only: bool,
 ) -> list[Finding]:
-    """The findings with their fixes, planned on the text of ``path`` as it is now."""
-    from inertia_kit.description.edits import read_source
+    """
+    The findings with their fixes, planned on the text of ``path`` as the load read it
+    (``ChangedWhileEditing`` when a file the fixes edit holds other bytes now).
+    """
     from inertia_kit.fixes.files import Files
     from inertia_kit.lint.fixing import attach, plan_fixes
 
-    files = Files.for_input(path)
+    files = Files.for_input(path, dict(analysis.robot.reads))
     try:
-        files.add(read_source(path))
+        files.source(str(path))
+    except ChangedWhileEditing:
+        raise
     except InputError:
         return findings  # not editable as text (an odd encoding): findings without fixes
     planned = plan_fixes(analysis, findings, choice, files, safe_only=safe_only)

@@ -35,12 +35,21 @@ def suppression_rules(rules: Iterable[ModuleType]) -> list[ModuleType]:
     return [rule for rule in rules if rule.SCOPE == SCOPE]
 
 
-def track(files: Iterable[str], findings: Sequence[Finding], ran: Sequence[ModuleType]) -> Uses:
+def track(
+    files: Iterable[str],
+    findings: Sequence[Finding],
+    ran: Sequence[ModuleType],
+    reads: Mapping[str, str | None] | None = None,
+) -> Uses:
     """
     The use of every ``ignore[...]`` comment in ``files`` (a robot's files) by ``findings``
     (everything the rules ``ran`` found on that robot, before any suppression). Files with
-    ``disable-file`` are not judged: nothing in them is reported.
+    ``disable-file`` are not judged: nothing in them is reported. ``reads``: what the robot's
+    load read (:mod:`inertia_kit.description.reads`), each comment's file's digest.
     """
+    from inertia_kit.description.reads import key
+
+    reads = {} if reads is None else reads
     codes = {rule.CODE for rule in ran if rule.SCOPE != SCOPE}
     uses: Uses = {}
     for path in dict.fromkeys(files):
@@ -51,7 +60,7 @@ def track(files: Iterable[str], findings: Sequence[Finding], ran: Sequence[Modul
             judged = {s for s in ignore.selectors if _judged(s, codes)}
             lines = (ignore.first, ignore.last)
             uses[(path, ignore.line)] = CommentUse(
-                path, ignore.line, ignore.selectors, lines, judged
+                path, ignore.line, ignore.selectors, lines, judged, digest=reads.get(key(path))
             )
     for finding in findings:
         for path, ignore in covering(finding):
@@ -75,8 +84,12 @@ def combine(each: Iterable[Uses]) -> Uses:
     for uses in each:
         for key, use in uses.items():
             if key not in combined:
-                combined[key] = CommentUse(use.path, use.line, use.selectors, use.lines, robots=0)
+                combined[key] = CommentUse(
+                    use.path, use.line, use.selectors, use.lines, robots=0, digest=use.digest
+                )
             total = combined[key]
+            if total.digest != use.digest:  # robots read different texts: no removal planned
+                total.digest = None
             total.judged |= use.judged
             total.used |= use.used
             total.robots += use.robots

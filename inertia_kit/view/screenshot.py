@@ -114,15 +114,26 @@ def capture(
 
 
 def screenshot(
-    html: str | Path, png: str | Path, *, width: int = 1280, height: int = 800
+    html: str | Path,
+    png: str | Path,
+    *,
+    width: int = 1280,
+    height: int = 800,
+    follow_symlinks: bool = False,
 ) -> Capture:
-    """Render ``html`` to the PNG file ``png`` (written atomically); ``RendererError`` if not."""
+    """
+    Render ``html`` to the PNG file ``png`` (written atomically); ``RendererError`` if not.
+    ``InputError`` for a ``png`` that is or passes through a symbolic link, unless
+    ``follow_symlinks`` (:mod:`~inertia_kit.description.output_paths`).
+    """
     from inertia_kit.description.edits import write_atomic
+    from inertia_kit.description.output_paths import refuse_links
 
+    refuse_links(png, follow_symlinks)
     result = capture(html, width=width, height=height)
     if result.errors:
         raise RendererError(f"the page reported errors in Chromium: {result.errors.strip()}")
-    write_atomic(png, result.png, create=True)
+    write_atomic(png, result.png, create=True, follow_symlinks=follow_symlinks)
     return result
 
 

@@ -1,8 +1,8 @@
 """
-How `inertia-fill` writes: through symbolic links (the file a link points to is edited, the link
-kept; a link that leads nowhere, or out of the package, is refused with a message), and the
-temporary files a killed run leaves behind (removed by the next run, never one a live run is
-writing).
+How `inertia-fill` writes: through symbolic links within the repository (the file a link points
+to is edited, the link kept; a link that leads nowhere, out of the package, or out of the
+repository without --follow-symlinks is refused with a message), and the temporary files a
+killed run leaves behind (removed by the next run, never one a live run is writing).
 """
 
 from __future__ import annotations
@@ -55,6 +55,7 @@ def test_symlink_install_layout_edits_the_source_and_keeps_the_links(tmp_path: P
     os.chmod(real, 0o640)
     installed = tmp_path / "ws" / "install" / "share" / "pkg"
     (installed / "urdf").mkdir(parents=True)
+    write(tmp_path / "ws" / "install" / ".colcon_install_layout", "merged")  # colcon writes it
     (installed / "package.xml").symlink_to(source / "package.xml")
     (installed / "urdf" / "robot.urdf").symlink_to(real)
     links = links_of(tmp_path / "ws")
@@ -70,7 +71,35 @@ def test_symlink_install_layout_edits_the_source_and_keeps_the_links(tmp_path: P
     assert temporaries(tmp_path / "ws") == []
 
 
+@pytest.mark.parametrize("follow", [False, True])
+def test_a_link_out_of_its_repository_is_written_only_when_asked(tmp_path: Path, follow):
+    """A link a pull request could plant: to a file outside the repository it stands in (an
+    install space without colcon's marker is no workspace). Refused, nothing written, unless
+    --follow-symlinks."""
+    real = write(tmp_path / "elsewhere" / "robot.urdf", ROBOT)
+    (tmp_path / "repo" / ".git").mkdir(parents=True)
+    link = tmp_path / "repo" / "install" / "robot.urdf"
+    link.parent.mkdir()
+    link.symlink_to(real)
+
+    result = CliRunner().invoke(fill_command, [str(link), *(["--follow-symlinks"] * follow)])
+
+    if follow:
+        assert result.exit_code == 1, result.stderr
+        assert real.read_bytes() == filled(tmp_path)
+    else:
+        assert result.exit_code == 2
+        assert result.stderr.splitlines()[0] == (
+            f"error: {link}: is a symbolic link to {real}, outside its repository "
+            f"{tmp_path / 'repo'}, the git top level: not written; --follow-symlinks writes "
+            "through it"
+        )
+        assert real.read_text() == ROBOT
+    assert link.is_symlink()
+
+
 def test_a_chain_of_relative_links_is_followed(tmp_path: Path):
+    (tmp_path / ".git").mkdir()  # the repository both ends of the chain are in
     real = write(tmp_path / "src" / "robot.urdf", ROBOT)
     (tmp_path / "ws").mkdir()
     (tmp_path / "ws" / "mid.urdf").symlink_to("../src/robot.urdf")
@@ -104,13 +133,22 @@ def test_a_link_that_leads_nowhere_exits_2_and_says_so(tmp_path: Path, kind: str
 
 
 def test_output_through_a_link(tmp_path: Path):
-    """-o OUT, OUT a link: the file it points to is written; a dangling OUT is refused."""
+    """-o OUT, OUT a link: refused (nothing written) unless --follow-symlinks, which writes the
+    file it points to; a dangling OUT is refused either way."""
     path = write(tmp_path / "robot.urdf", ROBOT)
     real = write(tmp_path / "out" / "filled.urdf", "old\n")
     out = tmp_path / "filled.urdf"
     out.symlink_to("out/filled.urdf")
 
-    result = CliRunner().invoke(fill_command, ["-o", str(out), str(path)])
+    refused = CliRunner().invoke(fill_command, ["-o", str(out), str(path)])
+    assert refused.exit_code == 2
+    assert refused.stderr == (
+        f"error: -o: {out}: is a symbolic link to out/filled.urdf: not written; "
+        "--follow-symlinks writes through it\n"
+    )
+    assert real.read_text() == "old\n"
+
+    result = CliRunner().invoke(fill_command, ["--follow-symlinks", "-o", str(out), str(path)])
 
     assert result.exit_code == 1, result.stderr
     assert real.read_bytes() == filled(tmp_path) and out.is_symlink()
@@ -118,9 +156,11 @@ def test_output_through_a_link(tmp_path: Path):
 
     dangling = tmp_path / "dangling.urdf"
     dangling.symlink_to("nowhere/filled.urdf")
-    result = CliRunner().invoke(fill_command, ["-o", str(dangling), str(path)])
-    assert result.exit_code == 2 and "which does not exist" in result.stderr
-    assert dangling.is_symlink() and not (tmp_path / "nowhere").exists()
+    for follow in ([], ["--follow-symlinks"]):
+        result = CliRunner().invoke(fill_command, [*follow, "-o", str(dangling), str(path)])
+        assert result.exit_code == 2
+        assert ("which does not exist" if follow else "is a symbolic link to") in result.stderr
+        assert dangling.is_symlink() and not (tmp_path / "nowhere").exists()
 
 
 def included(folder: Path) -> Path:
@@ -198,6 +238,7 @@ def test_a_killed_run_leaves_a_temporary_file_the_next_run_removes(tmp_path: Pat
     young to judge and another program's.
     """
     real = write(tmp_path / "src" / "robot.urdf", ROBOT)
+    (tmp_path / ".git").mkdir()  # the repository the link and its target are in
     path = real
     if through == "link":
         (tmp_path / "ws").mkdir()

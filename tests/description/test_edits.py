@@ -294,3 +294,60 @@ def test_a_failing_write_is_an_input_error_and_leaves_the_file(tmp_path, monkeyp
     with pytest.raises(InputError, match=f"no temporary file in {tmp_path} \\(Permission denied"):
         write_atomic(path, b"new", expected=b"old")
     assert path.read_bytes() == b"old"
+
+
+def test_writers_check_and_replace_one_at_a_time(tmp_path):
+    """Two writers that both read the same text: the one that waits for the other's
+    check-and-replace then finds the other's bytes, and writes nothing (else both checks pass
+    before either replaces, and the second silently undoes the first)."""
+    import threading
+
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(b"old")
+    outcome: list[object] = []
+
+    def second_writer() -> None:
+        try:
+            outcome.append(edits.write_all_atomic([(path, b"second", b"old")]))
+        except InputError as error:
+            outcome.append(error)
+
+    with edits._commit_lock([tmp_path]):  # the first writer, between its check and replace
+        thread = threading.Thread(target=second_writer)
+        thread.start()
+        thread.join(0.3)
+        assert thread.is_alive() and path.read_bytes() == b"old"  # it waits
+        edits.write_atomic(path, b"first")  # the first one's replace
+    thread.join(10)
+    assert [type(o) for o in outcome] == [edits.ChangedWhileEditing]
+    assert path.read_bytes() == b"first"
+
+
+def test_a_set_of_files_is_written_whole_or_not_at_all(tmp_path, monkeypatch):
+    """The last look covers every file of the set before any is renamed into place."""
+    a, b = tmp_path / "a.xacro", tmp_path / "b.xacro"
+    a.write_bytes(b"a")
+    b.write_bytes(b"b")
+    original = edits._prepare
+
+    def prepare(target, *args):
+        made = original(target, *args)
+        if target.name == "b.xacro":
+            b.write_bytes(b"saved")  # an editor's save once a's new text is ready
+        return made
+
+    monkeypatch.setattr(edits, "_prepare", prepare)
+    with pytest.raises(edits.ChangedWhileEditing):
+        edits.write_all_atomic([(a, b"A", b"a"), (b, b"B", b"b")])
+    assert (a.read_bytes(), b.read_bytes()) == (b"a", b"saved")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.xacro", "b.xacro"]
+
+
+def test_without_following_links_the_name_itself_is_replaced(tmp_path):
+    target = tmp_path / "deploy.sh"
+    target.write_bytes(b"#!/bin/sh\n")
+    link = tmp_path / "results.sarif"
+    link.symlink_to("deploy.sh")
+    edits.write_atomic(link, b"{}", create=True, follow_symlinks=False)
+    assert target.read_bytes() == b"#!/bin/sh\n"
+    assert not link.is_symlink() and link.read_bytes() == b"{}"

@@ -66,3 +66,46 @@ def test_diff_is_one_pass_and_writes_nothing(tmp_path: Path):
     outcome = fix_file(lint, unsafe=False, write=False)
     assert path.read_text() == "<robot/>\n"
     assert outcome.diff.splitlines()[-2:] == ["-<robot/>", '+<robot name="r"/>']
+
+
+def test_a_pass_edits_only_the_text_its_lint_read(tmp_path: Path):
+    """The reproducer: the edits of a lint were applied, at their old offsets, to a file saved
+    since. A file whose bytes differ from those the lint read is refused, nothing written."""
+    from inertia_kit.description.edits import ChangedWhileEditing
+    from inertia_kit.description.reads import digest, key
+
+    path = tmp_path / "a.urdf"
+    path.write_text("<robot/>")
+    read = {key(path): digest(b"<robot/>")}
+    path.write_text("<!-- saved --><robot/>")
+
+    def lint() -> FileResult:
+        return FileResult(str(path), [finding(path, [(0, 0, "<!-- fix -->")])], reads=read)
+
+    outcome = fix_file(lint, unsafe=False, write=True)
+    assert isinstance(outcome.result.error, ChangedWhileEditing)
+    assert path.read_text() == "<!-- saved --><robot/>"
+
+
+def test_a_write_between_two_passes_stops_the_next(tmp_path: Path):
+    """Pass 1 wrote; another writer changed the file before pass 2's lint: pass 2 would edit
+    their text as if it were the result of pass 1, so it stops (exit 2), writing nothing."""
+    from inertia_kit.description.edits import ChangedWhileEditing
+    from inertia_kit.description.reads import digest, key
+
+    path = tmp_path / "a.urdf"
+    path.write_text("<robot/>")
+    passes = []
+
+    def lint() -> FileResult:
+        passes.append(1)
+        if len(passes) == 2:
+            path.write_text(path.read_text() + "<!-- theirs -->")
+        data = path.read_bytes()
+        fix = [finding(path, [(0, 0, "<!-- fix -->")])] if len(passes) < 3 else []
+        return FileResult(str(path), fix, reads={key(path): digest(data)})
+
+    outcome = fix_file(lint, unsafe=False, write=True)
+    assert isinstance(outcome.result.error, ChangedWhileEditing)
+    assert (outcome.fixed, len(passes)) == (1, 2)
+    assert path.read_text() == "<!-- fix --><robot/><!-- theirs -->"

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit, read_source
 from inertia_kit.description.model import Source
+from inertia_kit.description.reads import digest
 from inertia_kit.errors import InputError
 from inertia_kit.lint import markup
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
@@ -41,7 +42,7 @@ def check(comments: Sequence[CommentUse], ctx: RuleContext) -> Iterator[Finding]
         )
         first, last = use.lines
         span = f"line {first}" if first == last else f"lines {first}–{last}"
-        fix = _fix(use.path, use.line, set(unused))
+        fix = _fix(use.path, use.line, set(unused), use.digest)
         yield ctx.finding(
             f"`ignore[{', '.join(use.selectors)}]`: {what}: no finding of {listed} on the "
             f"element it covers ({span}){over}",
@@ -52,15 +53,18 @@ def check(comments: Sequence[CommentUse], ctx: RuleContext) -> Iterator[Finding]
         )
 
 
-def _fix(path: str, line: int, unused: set[str]) -> tuple[Fix, int] | None:
+def _fix(path: str, line: int, unused: set[str], read: str | None) -> tuple[Fix, int] | None:
     """
     The edit that removes the unused selectors from the comment on ``line`` (the whole comment,
-    with its line when nothing else stands on it, when none is left), and the comment's column.
+    with its line when nothing else stands on it, when none is left), and the comment's column;
+    none unless the file still holds the bytes the lint read (digest ``read``).
     """
     try:
         source = read_source(path)
     except InputError:
         return None
+    if read is None or digest(source.original) != read:
+        return None  # the comment's line is one of another text: no edit computed on this one
     text = source.text
     found = markup.layout(text)
     comment = found.comment_on(line)

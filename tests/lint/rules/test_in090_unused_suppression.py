@@ -213,3 +213,24 @@ def test_a_comment_whose_finding_a_per_file_ignore_also_drops_is_used(tmp_path):
         '[tool.inertia-kit]\nper-file-ignores = { "*.xacro" = ["IN002"] }\n'
     )
     assert lint(tmp_path / "bad.urdf.xacro") == (0, [])
+
+
+def test_no_removal_is_offered_on_a_text_the_lint_did_not_read(tmp_path):
+    """The comment's line is the one the lint read: a file saved since (or read differently by
+    two robots) gets the finding, without a fix computed on the other text."""
+    from inertia_kit.description.reads import digest
+    from inertia_kit.lint.comment_use import CommentUse
+    from inertia_kit.lint.rules import RuleContext, in090_unused_suppression
+
+    path = tmp_path / "robot.urdf"
+    path.write_text(CLEAN.format(comment=COMMENT.format("IN012")))
+
+    def fixes(read):
+        use = CommentUse(str(path), 2, ("IN012",), (3, 3), {"IN012"}, digest=read)
+        ctx = RuleContext(in090_unused_suppression, {}, None)
+        return [f.fix for f in in090_unused_suppression.check([use], ctx)]
+
+    [fix] = fixes(digest(path.read_bytes()))
+    assert fix is not None
+    assert fixes(digest(b"<robot/>")) == [None]
+    assert fixes(None) == [None]
