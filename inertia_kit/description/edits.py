@@ -11,6 +11,7 @@ import os
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 
 from inertia_kit.errors import InputError
@@ -54,12 +55,12 @@ class SourceText:
             raise ValueError(f"{self.path}: no line {line}")
         return starts[line - 1] + column - 1
 
-    @property
+    @cached_property
     def line_starts(self) -> list[int]:
-        starts = [0]
-        for match in re.finditer(r"\r\n|\n|\r", self.text):
-            starts.append(match.end())
-        return starts
+        """Where each line begins, lines counted as XML counts them (:mod:`.lines`)."""
+        from inertia_kit.description.lines import line_starts
+
+        return line_starts(self.text)
 
 
 def read_source(path: str | Path) -> SourceText:
@@ -69,6 +70,11 @@ def read_source(path: str | Path) -> SourceText:
     except OSError as error:
         real_target(path)  # a link that leads nowhere: say so
         raise InputError(f"cannot read: {error.strerror or error}", path) from None
+    return decode_source(original, path)
+
+
+def decode_source(original: bytes, path: str | Path) -> SourceText:
+    """``original``, the bytes of the file ``path``, as text to edit (see :func:`read_source`)."""
     bom = b""
     encoding = "utf-8"
     for mark, name in (
@@ -83,6 +89,8 @@ def read_source(path: str | Path) -> SourceText:
         declared = _DECLARED_ENCODING.match(original)
         if declared:
             encoding = declared.group(1).decode("ascii").lower()
+        elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
+            encoding = "utf-16-le" if original[0] else "utf-16-be"
     try:
         text = original[len(bom) :].decode(encoding)
     except (LookupError, UnicodeDecodeError) as error:

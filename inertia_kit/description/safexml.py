@@ -80,8 +80,10 @@ def refuse_entities(data: bytes, shown: str | Path) -> None:
         end = close.end() if close else len(data)
     entity = _ENTITY.search(data, start, len(data) if end == -1 else end)
     if entity is not None:
-        line = data.count(b"\n", 0, entity.start()) + 1
-        column = entity.start() - data.rfind(b"\n", 0, entity.start())
+        from inertia_kit.description.lines import line_start, line_starts
+
+        line = len(line_starts(data[: entity.start()]))
+        column = entity.start() - line_start(data, entity.start()) + 1
         raise InputError(NO_ENTITIES, shown, line, column)
 
 

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
 
 from inertia_kit.description import safexml
+from inertia_kit.description.lines import line_starts
 from inertia_kit.description.model import Source
 from inertia_kit.errors import InputError
 
@@ -93,7 +94,7 @@ def parse_stamped(data: bytes, shown: str, on_element: Callable[[], None] | None
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as error:
-        line = data.count(b"\n", 0, error.start) + 1
+        line = len(line_starts(data[: error.start]))
         raise InputError(_not_utf8(data, error), shown, line) from None
     try:
         return Builder().parseString(text)

@@ -10,6 +10,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from inertia_kit.description.lines import line_start
+
 _NAME = r"[A-Za-z_:][-A-Za-z0-9_.:]*"
 _TOKEN = re.compile(
     r"<!--.*?-->"  # comment
@@ -20,6 +22,9 @@ _TOKEN = re.compile(
     rf"|<({_NAME})((?:\s+{_NAME}\s*=\s*(?:\"[^\"]*\"|'[^']*'))*)\s*(/?)>",  # start tag: 2, 3, 4
     re.DOTALL,
 )
+
+
+_INDENT = re.compile(r"[ \t]*")
 
 
 @dataclass(frozen=True)
@@ -89,9 +94,7 @@ def children(text: str, span: Span) -> list[Span]:
 
 def line_indent(text: str, offset: int) -> str:
     """The whitespace that begins the line holding ``offset``."""
-    line_start = max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
-    match = re.match(r"[ \t]*", text[line_start:])
-    return match.group(0) if match else ""
+    return _INDENT.match(text, line_start(text, offset)).group(0)  # type: ignore[union-attr]
 
 
 def indent_unit(text: str) -> str:

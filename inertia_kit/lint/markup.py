@@ -1,9 +1,9 @@
 """
 Where elements and comments stand in a file's text (character offsets and lines), so that a
 suppression comment can be inserted before an element, extended, or removed, leaving every
-other byte alone. Lines count as :mod:`inertia_kit.lint.suppress` counts them (from 1, any of
-``\\r\\n``, ``\\n``, ``\\r`` ends one), so a comment written here covers what that module says it
-covers.
+other byte alone. Lines are counted as XML counts them (:mod:`inertia_kit.description.lines`),
+and :mod:`inertia_kit.lint.suppress` reads comments through this module, so a comment written
+here covers what that module says it covers.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ import bisect
 import re
 from dataclasses import dataclass, field
 
+from inertia_kit.description.lines import line_starts
 from inertia_kit.description.xmlspan import tokens
 
 # `inertia-lint: ignore[...]`: group 1 is what stands between the brackets
@@ -92,7 +93,7 @@ class Layout:
 
 def layout(text: str) -> Layout:
     """The elements and comments of ``text`` (well-formed XML: the loader has parsed it)."""
-    starts = [0] + [m.end() for m in re.finditer(r"\r\n|\n|\r", text)]
+    starts = line_starts(text)
 
     def line(offset: int) -> int:
         return bisect.bisect_right(starts, offset)
