@@ -65,11 +65,13 @@ class SourceText:
 
 def read_source(path: str | Path) -> SourceText:
     """Read a text file keeping its encoding and byte-order mark, for editing."""
+    from inertia_kit.description.safexml import read_bounded
+
     try:
-        original = Path(path).read_bytes()
-    except OSError as error:
+        original = read_bounded(path)
+    except InputError:
         real_target(path)  # a link that leads nowhere: say so
-        raise InputError(f"cannot read: {error.strerror or error}", path) from None
+        raise
     return decode_source(original, path)
 
 

@@ -13,6 +13,8 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from inertia_kit.description import safexml
+from inertia_kit.errors import InputError
+from inertia_kit.reading import read_regular
 
 #: How many folder levels below a package path entry (or a workspace ``src/``) are searched.
 MAX_DEPTH = 5
@@ -40,11 +42,11 @@ def package_name(folder: Path) -> str | None:
     from lxml import etree
 
     manifest = folder / "package.xml"
+    if not is_file(manifest):
+        return None
     try:
-        if not is_file(manifest) or manifest.stat().st_size > MAX_PACKAGE_XML_BYTES:
-            return None
-        data = manifest.read_bytes()
-    except OSError:
+        data = read_regular(manifest, MAX_PACKAGE_XML_BYTES)
+    except InputError:
         return None
     try:
         root = etree.fromstring(data, safexml.parser())

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from inertia_kit.errors import InputError
+from inertia_kit.reading import read_regular, size_text
 
 # larger than any real robot description (the biggest published ones are a few MB)
 MAX_BYTES = 50 * 1024 * 1024
@@ -22,39 +23,19 @@ _ENTITY = re.compile(rb"<!ENTITY\b")
 _SUBSET_END = re.compile(rb"\]\s*>")
 
 
-def size_text(count: int) -> str:
-    """``50 MB``, ``4 kB`` or ``64 bytes``."""
-    for unit, scale in (("MB", 1 << 20), ("kB", 1 << 10)):
-        if count >= scale and count % scale == 0:
-            return f"{count // scale} {unit}"
-    return f"{count} bytes"
-
-
 def read_bounded(path: str | Path, shown: str | Path | None = None) -> bytes:
     """
-    The bytes of ``path``, refusing unreadable files and files over :data:`MAX_BYTES`, with
-    an ``InputError`` naming ``shown`` (default: ``path``).
+    The bytes of ``path``, refusing unreadable files, what is not a regular file (a named pipe,
+    a device) and files over :data:`MAX_BYTES`, with an ``InputError`` naming ``shown``
+    (default: ``path``).
     """
-    shown = path if shown is None else shown
-    try:
-        with open(path, "rb") as stream:
-            data = stream.read(MAX_BYTES + 1)
-    except FileNotFoundError:
-        raise InputError("no such file", shown) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, not a robot description", shown) from None
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", shown) from None
-    except ValueError as error:  # a NUL character in the path
-        raise InputError(f"cannot read: {error}", repr(str(shown))) from None
-    check_size(data, shown)
-    return data
+    return read_regular(path, MAX_BYTES, shown, what="robot description")
 
 
 def check_size(data: bytes, shown: str | Path) -> None:
     if len(data) > MAX_BYTES:
         raise InputError(
-            f"file is larger than {size_text(MAX_BYTES)}; no robot description is that big "
+            f"is larger than {size_text(MAX_BYTES)}; no robot description is that big "
             "(nothing was parsed)",
             shown,
         )

@@ -266,8 +266,8 @@ def _path_after_find(package: str, texts: list[str]) -> str:
 def read_checked(filename: str, shown: str) -> bytes:
     """The bytes of ``filename``, refused (``InputError``) when too large or declaring entities."""
     # an OSError propagates: xacro reports a missing include at the line that includes it
-    with open(filename, "rb") as stream:
-        data = stream.read(safexml.MAX_BYTES + 1)
+    os.stat(filename)
+    data = safexml.read_bounded(filename, shown)  # a regular file only: no pipe, no device
     check_bytes(data, shown)
     return data
 

@@ -43,7 +43,7 @@ def test_usage_errors_exit_2(args, message, tmp_path: Path):
 def test_unreadable_input_exits_2(tmp_path: Path):
     result = CliRunner().invoke(fill_command, [str(tmp_path / "missing.urdf")])
     assert result.exit_code == 2
-    assert "cannot read" in result.stderr
+    assert "missing.urdf: no such file" in result.stderr
 
 
 def test_console_script_umbrella():
