@@ -7,6 +7,7 @@ other byte alone.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -97,10 +98,14 @@ def line_indent(text: str, offset: int) -> str:
     return _INDENT.match(text, line_start(text, offset)).group(0)  # type: ignore[union-attr]
 
 
+@functools.lru_cache(maxsize=16)
 def indent_unit(text: str) -> str:
     """
     One level of the file's indentation: the most common step between a line and the next
     deeper one (two spaces, four spaces, a tab); two spaces for a file with no indentation.
+
+    Read once per text (a fix of each of 5000 links asks it of the same file; a string's hash
+    is computed once, so asking again costs nothing).
     """
     steps: dict[str, int] = {}
     previous = ""
