@@ -16,6 +16,13 @@ from inertia_kit.reading import read_regular, size_text
 # larger than any real robot description (the biggest published ones are a few MB)
 MAX_BYTES = 50 * 1024 * 1024
 
+#: The most characters an attribute value, and an element or attribute name, of a robot
+#: description may hold: far above any path (4096), name or list of numbers a robot needs, and
+#: what keeps one value from filling every finding that quotes it (a xacro expression makes a
+#: 100 MB name in 230 bytes). The same bounds for a file and for what an expansion returns.
+MAX_VALUE_CHARS = 65_536
+MAX_NAME_CHARS = 1_024
+
 NO_ENTITIES = "entity declarations are not allowed: nothing was expanded or fetched"
 
 _DOCTYPE = re.compile(rb"<!DOCTYPE\b")
@@ -39,6 +46,29 @@ def check_size(data: bytes, shown: str | Path) -> None:
             "(nothing was parsed)",
             shown,
         )
+
+
+def oversized(tag: str, attributes) -> str | None:
+    """
+    What is too long in an element (its ``tag`` and its ``(name, value)`` ``attributes``),
+    said in a few words; ``None`` when nothing is.
+    """
+    if len(tag) > MAX_NAME_CHARS:
+        return f"an element name of {len(tag)} characters, more than the {MAX_NAME_CHARS}"
+    for name, value in attributes:
+        if len(name) > MAX_NAME_CHARS:
+            return (
+                f"<{tag}> has an attribute name of {len(name)} characters, more than the "
+                f"{MAX_NAME_CHARS}"
+            )
+        if len(value) > MAX_VALUE_CHARS:
+            return f"<{tag} {name}> holds {len(value)} characters, more than the {MAX_VALUE_CHARS}"
+    return None
+
+
+def too_long(what: str) -> str:
+    """The message for :func:`oversized`'s finding."""
+    return f"{what} a robot description may hold (nothing was read further)"
 
 
 def refuse_entities(data: bytes, shown: str | Path) -> None:

@@ -14,7 +14,13 @@ from typing import Any
 from lxml import etree
 
 from inertia_kit.description.lines import from_libxml2, line_of, line_starts
-from inertia_kit.description.safexml import NO_ENTITIES, parser, refuse_entities
+from inertia_kit.description.safexml import (
+    NO_ENTITIES,
+    oversized,
+    parser,
+    refuse_entities,
+    too_long,
+)
 from inertia_kit.errors import InputError
 
 _BOM = b"\xef\xbb\xbf"
@@ -78,7 +84,21 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
     if dtd is not None and next(iter(dtd.iterentities()), None) is not None:
         # only reachable for encodings the byte-level check cannot read (UTF-16, UTF-32)
         raise InputError(NO_ENTITIES, path, 1)
+    _refuse_oversized(data, root, path)
     return root
+
+
+def _refuse_oversized(data: bytes, root: etree._Element, path: str | Path) -> None:
+    """``InputError`` (file, line, column) for a name or attribute value past the bounds of
+    :func:`.safexml.oversized`."""
+    for element in root.iter():
+        if not isinstance(element.tag, str):
+            continue
+        attributes = ((name.rpartition("}")[2], value) for name, value in element.items())
+        what = oversized(element.tag.rpartition("}")[2], attributes)
+        if what is not None:
+            line, column = element_locator(data, root)(element)
+            raise InputError(too_long(what), path, line, column)
 
 
 def fromstring(data: bytes, **options: Any) -> etree._Element:
