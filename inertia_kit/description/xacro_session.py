@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import safexml
+from inertia_kit.description import safexml, xacro_yaml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound
 from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
@@ -213,7 +213,8 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
         for owner, name, value in patches:
             setattr(owner, name, value)
         substitution_args._eval_dict["find"] = session.find
-        yield
+        with xacro_yaml.hooked(xacro, session.meter):  # YAML bounded as the rest
+            yield
     finally:
         sys.stderr = stderr
         for owner, name, value in saved:
