@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import safexml, xacro_yaml
+from inertia_kit.description import safexml, xacro_dom, xacro_yaml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound
 from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
@@ -52,6 +52,7 @@ class Session:
         self.stderr = io.StringIO()
         self.includes_start = 0
         self.texts: list[str] = []  # the texts xacro is evaluating, innermost last
+        self.calls: dict[Any, Source] = {}  # macro call node -> its site, while it expands
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -102,15 +103,27 @@ class Session:
             if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
                 return original(node, macros, symbols)
             call = stamp_of(node)
-            parent = node.parentNode
-            before = set(parent.childNodes)
-            handled = original(node, macros, symbols)
-            if handled and call is not None:
-                site = Source(call.path, call.line, call.column)
-                for child in parent.childNodes:
-                    if child.nodeType == Node.ELEMENT_NODE and child not in before:
-                        add_call_site(child, site)
-            return handled
+            if call is not None:  # stamped as the expansion replaces the call (replace_node)
+                self.calls[node] = Source(call.path, call.line, call.column)
+            try:
+                return original(node, macros, symbols)
+            finally:
+                self.calls.pop(node, None)
+
+        return hook
+
+    def replace_node(self, original):
+        def hook(node, by, content_only=False):
+            # a macro call's expansion: its elements carry the call site. Taken from the
+            # expansion itself, not by comparing the parent's children before and after (as
+            # many as the robot's links, for each call: quadratic)
+            site = self.calls.pop(node, None)
+            if site is not None and by is not None:
+                for part in by if isinstance(by, list) else [by]:
+                    for child in part.childNodes if content_only else [part]:
+                        if child.nodeType == Node.ELEMENT_NODE:
+                            add_call_site(child, site)
+            return original(node, by, content_only)
 
         return hook
 
@@ -195,6 +208,8 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
         patches += [
             (xacro, "parse", session.parse),
             (xacro, "handle_macro_call", session.handle_macro_call(xacro.handle_macro_call)),
+            (xacro, "replace_node", session.replace_node(xacro_dom.replace_node)),
+            (xacro, "remove_previous_comments", xacro_dom.remove_previous_comments),
             (xacro, "safe_eval", session.safe_eval),
             (_COPY_STAMP, "on_copy", session.meter.add),
         ]
@@ -217,6 +232,7 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
             yield
     finally:
         sys.stderr = stderr
+        xacro_dom.forget()
         for owner, name, value in saved:
             setattr(owner, name, value)
         substitution_args._eval_dict["find"] = saved_find
