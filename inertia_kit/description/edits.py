@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import codecs
 import contextlib
+import itertools
 import os
 import re
 from collections.abc import Iterable, Sequence
@@ -61,6 +62,23 @@ class SourceText:
         from inertia_kit.description.lines import line_starts
 
         return line_starts(self.text)
+
+    def byte_offset(self, offset: int) -> int:
+        """The offset in the file's bytes of the character offset ``offset`` (after the mark):
+        the bytes of the lines before counted once per text, then of the rest of its line."""
+        import bisect
+
+        line = bisect.bisect_right(self.line_starts, offset) - 1
+        start = self.line_starts[line]
+        return self._line_bytes[line] + len(self.text[start:offset].encode(self.encoding))
+
+    @cached_property
+    def _line_bytes(self) -> list[int]:
+        """The byte offset where each line begins (the mark included)."""
+        starts, text, found = self.line_starts, self.text, [len(self.bom)]
+        for begin, end in itertools.pairwise(starts):
+            found.append(found[-1] + len(text[begin:end].encode(self.encoding)))
+        return found
 
 
 def read_source(path: str | Path) -> SourceText:

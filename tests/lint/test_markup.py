@@ -65,3 +65,28 @@ def test_comments_and_what_stands_before_an_element():
     assert ODD[found.innermost(5).start :].startswith('<link\r\n  name="a"')
     assert ODD[found.innermost(5, 3).start :].startswith('<link name="b">')
     assert ODD[found.innermost(5, 20).start :].startswith("<inertial>")
+
+
+def brute_innermost(found, line, column):
+    """What innermost gives, by looking at every element (as it once did)."""
+    if column is not None and 1 <= line <= len(found.line_starts):
+        offset = found.line_starts[line - 1] + column - 1
+        holding = [e for e in found.elements if e.start <= offset < e.end]
+        if holding:
+            return max(holding, key=lambda e: e.start)
+    holding = [e for e in found.elements if e.first <= line <= e.last]
+    return min(holding, key=lambda e: e.last - e.first, default=None)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [ODD, LONE_CR] + [p.read_text() for p in FILES],
+    ids=["odd", "lone-cr"] + [p.name for p in FILES],
+)
+def test_innermost_is_the_smallest_holding_element(text):
+    found = markup.layout(text)
+    lines = len(found.line_starts)
+    for line in range(0, lines + 2):
+        width = 1 + (len(text) if line > lines else 120)
+        for column in (None, *range(1, min(width, 120))):
+            assert found.innermost(line, column) is brute_innermost(found, line, column)
