@@ -148,12 +148,12 @@ def unified_diff(changes: Iterable[tuple[str, str, str]]) -> str:
     A unified diff of ``(name, text before, text after)`` changes, file after file: ``a/NAME``
     and ``b/NAME`` for a relative name (as git shows it), the name itself for an absolute one.
     """
-    import difflib
+    from inertia_kit.description import line_diff
 
     parts = []
     for name, before, after in changes:
         shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
-        lines = difflib.unified_diff(
+        lines = line_diff.unified_diff(
             before.splitlines(keepends=True), after.splitlines(keepends=True), *shown
         )
         parts.append("".join(lines))

@@ -61,7 +61,39 @@ class Directives:
     def covers(self, finding: Finding, line: int | None) -> bool:
         if self.disabled:
             return True
-        return any(ignore.covers(finding, line) for ignore in self.ignores)
+        return any(ignore.covers(finding, line) for ignore in self.holding(line))
+
+    def holding(self, line: int | None) -> list[Ignore]:
+        """
+        The ignores whose element holds ``line`` (``None``: those before the root), in file
+        order: looked up by line, not by trying each (``--add-noqa`` writes a comment for each
+        of thousands of links, and each finding was checked against every one of them).
+        """
+        if line is None:
+            return [ignore for ignore in self.ignores if ignore.root]
+        found = {
+            k for level, nodes in enumerate(self._segments) for k in nodes.get(line >> level, ())
+        }
+        return [self.ignores[k] for k in sorted(found)]
+
+    @functools.cached_property
+    def _segments(self) -> list[dict[int, list[int]]]:
+        """Each ignore's lines as the few aligned runs of 2**level lines that tile them
+        (a segment tree): ``levels[level][line >> level]`` lists the ignores holding the run."""
+        levels: list[dict[int, list[int]]] = []
+        for index, ignore in enumerate(self.ignores):
+            low, high, level = max(ignore.first, 0), ignore.last + 1, 0
+            while low < high:
+                while len(levels) <= level:
+                    levels.append({})
+                if low & 1:
+                    levels[level].setdefault(low, []).append(index)
+                    low += 1
+                if high & 1:
+                    high -= 1
+                    levels[level].setdefault(high, []).append(index)
+                low, high, level = low >> 1, high >> 1, level + 1
+        return levels
 
 
 def directives(path: str | Path) -> Directives:
@@ -94,7 +126,7 @@ def covering(finding: Finding) -> list[tuple[str, Ignore]]:
         (path, ignore)
         for path, line in places
         if path
-        for ignore in directives(path).ignores
+        for ignore in directives(path).holding(line)
         if ignore.covers(finding, line)
     ]
 
