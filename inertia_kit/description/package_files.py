@@ -20,6 +20,9 @@ from inertia_kit.reading import read_regular
 MAX_DEPTH = 5
 #: Folders visited per search root at most, so that a package path of ``/`` stays bounded.
 MAX_FOLDERS = 20_000
+#: Folders visited by all the walks of one package search (a file deep in a tree with a
+#: ``src`` folder at every level walks each of them).
+MAX_FOLDERS_IN_ALL = 100_000
 #: Entries read from one folder at most.
 MAX_ENTRIES = 50_000
 #: A ``package.xml`` larger than this is not read.
@@ -85,12 +88,14 @@ def normal(path: Path) -> Path:
     return Path(os.path.normpath(path))
 
 
-def walk(root: Path) -> Iterator[Path]:
+def walk(root: Path, limit: int = MAX_FOLDERS) -> Iterator[Path]:
     """
-    Folders below ``root`` (itself included) breadth-first; packages are not descended. Each
-    folder is visited once however many links lead to it (a link to a parent, a loop of links),
-    and a folder that cannot be listed or a link that cannot be followed is passed over.
+    Folders below ``root`` (itself included) breadth-first, at most ``limit`` (and
+    :data:`MAX_FOLDERS`) of them; packages are not descended. Each folder is visited once
+    however many links lead to it (a link to a parent, a loop of links), and a folder that
+    cannot be listed or a link that cannot be followed is passed over.
     """
+    limit = min(limit, MAX_FOLDERS)
     level = [root]
     visited = 0
     seen: set[tuple[int, int]] = set()
@@ -101,7 +106,7 @@ def walk(root: Path) -> Iterator[Path]:
         following: list[Path] = []
         for folder in level:
             visited += 1
-            if visited > MAX_FOLDERS:
+            if visited > limit:
                 return
             yield folder
             if depth == MAX_DEPTH or is_file(folder / "package.xml"):

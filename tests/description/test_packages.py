@@ -165,6 +165,27 @@ def test_a_folder_with_more_entries_than_the_bound_is_read_up_to_it(tmp_path, mo
     assert len(list(package_files.walk(tmp_path))) == 1 + 5
 
 
+def test_the_walks_of_one_search_are_bounded_together(tmp_path, monkeypatch):
+    from inertia_kit.description import package_lookup
+
+    folder = tmp_path
+    for _ in range(6):  # a `src` at every level, each with 20 folders
+        for index in range(20):
+            (folder / "src" / f"f{index}").mkdir(parents=True)
+        folder = folder / "src" / "f0"
+    robot = touch(folder / "robot.urdf", "<robot/>")
+    walked: list[Path] = []
+    real = package_lookup.walk
+    monkeypatch.setattr(
+        package_lookup,
+        "walk",
+        lambda root, limit=10**9: (walked.append(f) or f for f in real(root, limit)),
+    )
+    monkeypatch.setattr(package_lookup, "MAX_FOLDERS_IN_ALL", 50)
+    assert PackageResolver(start=robot, env={}).find("unknown_pkg") is None
+    assert 0 < len(walked) <= 50
+
+
 def test_lint_with_loops_under_the_workspace_and_the_package_path(tmp_path):
     from click.testing import CliRunner
 
