@@ -8,8 +8,8 @@ meshes never read them.
 from __future__ import annotations
 
 import functools
-from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING, Any
 
 from inertia_kit.analysis.bounds import Hull, MomentExcess, moment_excess
 from inertia_kit.analysis.declared import (
@@ -189,9 +189,12 @@ class RobotAnalysis:
         load_mesh = _memoised(load_mesh)
         parents: dict[str, model.Joint] = {}
         children: dict[str, list[model.Joint]] = {}
+        #: link -> every joint that names it as child (more than one: a broken tree, IN040's)
+        self.joints_into: dict[str, list[model.Joint]] = {}
         for joint in robot.joints:
             if joint.child is not None:
                 parents.setdefault(joint.child, joint)
+                self.joints_into.setdefault(joint.child, []).append(joint)
             if joint.parent is not None:
                 children.setdefault(joint.parent, []).append(joint)
         self.links = tuple(
@@ -204,28 +207,62 @@ class RobotAnalysis:
         for link in self.links:
             link.robot = self
             self.by_name.setdefault(link.name, link)
+        self._groups: dict[str, tuple[LinkAnalysis, ...]] | None = None
+        self._group_facts: dict[tuple[str, str], Any] = {}
 
     def group_of(self, name: str) -> tuple[LinkAnalysis, ...]:
         """
-        The links welded to ``name`` by fixed joints (what simulators lump into one body),
-        ``name`` included; cycles and unknown names are tolerated.
+        The links welded to ``name`` by fixed joints, in either direction (what simulators lump
+        into one body), ``name`` included; cycles and unknown names are tolerated. Each group
+        is found once (for every link: a welded chain of 5000 links costs 5000 steps, not 5000
+        walks of it), its links in the order of a walk from its first link in the file.
         """
-        seen: dict[str, LinkAnalysis] = {}
-        stack = [name]
-        while stack:
-            current = stack.pop()
-            if current in seen or current not in self.by_name:
+        if self._groups is None:
+            self._groups = self._fixed_groups()
+        found = self._groups.get(name)
+        if found is None:  # an unknown name
+            return ()
+        return found
+
+    def _fixed_groups(self) -> dict[str, tuple[LinkAnalysis, ...]]:
+        groups: dict[str, tuple[LinkAnalysis, ...]] = {}
+        for first in self.links:
+            if first.name in groups:
                 continue
-            link = self.by_name[current]
-            seen[current] = link
-            if link.parent is not None and link.parent.type == "fixed" and link.parent.parent:
-                stack.append(link.parent.parent)
-            stack.extend(j.child for j in link.children if j.type == "fixed" and j.child)
-        return tuple(seen.values())
+            seen: dict[str, LinkAnalysis] = {}
+            stack = [first.name]
+            while stack:
+                current = stack.pop()
+                if current in seen or current not in self.by_name:
+                    continue
+                link = self.by_name[current]
+                seen[current] = link
+                into = self.joints_into.get(current, ())
+                stack.extend(j.parent for j in reversed(into) if j.type == "fixed" and j.parent)
+                stack.extend(j.child for j in link.children if j.type == "fixed" and j.child)
+            group = tuple(seen.values())
+            for member in group:
+                groups.setdefault(member.name, group)
+        return groups
+
+    def group_fact(
+        self, name: str, fact: str, compute: Callable[[tuple[LinkAnalysis, ...]], Any]
+    ) -> Any:
+        """
+        ``compute(group)`` for ``name``'s fixed-joint group, computed once per group and
+        ``fact`` (its name): what each of a group's links asks costs one walk of the group.
+        """
+        group = self.group_of(name)
+        key = (group[0].name if group else name, fact)
+        if key not in self._group_facts:
+            self._group_facts[key] = compute(group)
+        return self._group_facts[key]
 
     def welded_to_world(self, name: str) -> bool:
         """Whether a fixed-joint path joins ``name`` to the link ``world`` (a static body)."""
-        return any(member.name == model.WORLD for member in self.group_of(name))
+        return self.group_fact(
+            name, "welded to the world", lambda g: any(m.name == model.WORLD for m in g)
+        )
 
     def mass_share(self, name: str) -> float:
         """
@@ -241,7 +278,9 @@ class RobotAnalysis:
 
     def group_mass(self, name: str) -> float:
         """Total declared mass of ``name``'s fixed-joint group (finite positive masses only)."""
-        return sum((declared_mass(link.link) or 0.0 for link in self.group_of(name)), 0.0)
+        return self.group_fact(
+            name, "mass", lambda g: sum((declared_mass(link.link) or 0.0 for link in g), 0.0)
+        )
 
 
 def analyse(robot: model.Robot, load_mesh: MeshLoader = default_mesh_loader) -> RobotAnalysis:

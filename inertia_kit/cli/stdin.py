@@ -92,10 +92,17 @@ def _stdin() -> bytes | None:
     stream = getattr(sys.stdin, "buffer", None)
     why = "stdin is closed"  # Python sets sys.stdin to None when descriptor 0 is not open
     if stream is not None:
+        from inertia_kit.description.safexml import MAX_BYTES
+        from inertia_kit.reading import size_text
+
         try:
-            return stream.read()
+            data = stream.read(MAX_BYTES + 1)
         except OSError as error:
             why = error.strerror or str(error)
+        else:
+            if len(data) <= MAX_BYTES:
+                return data
+            why = f"it is larger than {size_text(MAX_BYTES)}; no robot description is that big"
     say(f"error: -: cannot read stdin: {why}")
     return None
 

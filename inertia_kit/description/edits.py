@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import codecs
 import contextlib
+import itertools
 import os
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -55,21 +57,45 @@ class SourceText:
             raise ValueError(f"{self.path}: no line {line}")
         return starts[line - 1] + column - 1
 
-    @property
+    @cached_property
     def line_starts(self) -> list[int]:
-        starts = [0]
-        for match in re.finditer(r"\r\n|\n|\r", self.text):
-            starts.append(match.end())
-        return starts
+        """Where each line begins, lines counted as XML counts them (:mod:`.lines`)."""
+        from inertia_kit.description.lines import line_starts
+
+        return line_starts(self.text)
+
+    def byte_offset(self, offset: int) -> int:
+        """The offset in the file's bytes of the character offset ``offset`` (after the mark):
+        the bytes of the lines before counted once per text, then of the rest of its line."""
+        import bisect
+
+        line = bisect.bisect_right(self.line_starts, offset) - 1
+        start = self.line_starts[line]
+        return self._line_bytes[line] + len(self.text[start:offset].encode(self.encoding))
+
+    @cached_property
+    def _line_bytes(self) -> list[int]:
+        """The byte offset where each line begins (the mark included)."""
+        starts, text, found = self.line_starts, self.text, [len(self.bom)]
+        for begin, end in itertools.pairwise(starts):
+            found.append(found[-1] + len(text[begin:end].encode(self.encoding)))
+        return found
 
 
 def read_source(path: str | Path) -> SourceText:
     """Read a text file keeping its encoding and byte-order mark, for editing."""
+    from inertia_kit.description.safexml import read_bounded
+
     try:
-        original = Path(path).read_bytes()
-    except OSError as error:
+        original = read_bounded(path)
+    except InputError:
         real_target(path)  # a link that leads nowhere: say so
-        raise InputError(f"cannot read: {error.strerror or error}", path) from None
+        raise
+    return decode_source(original, path)
+
+
+def decode_source(original: bytes, path: str | Path) -> SourceText:
+    """``original``, the bytes of the file ``path``, as text to edit (see :func:`read_source`)."""
     bom = b""
     encoding = "utf-8"
     for mark, name in (
@@ -84,6 +110,8 @@ def read_source(path: str | Path) -> SourceText:
         declared = _DECLARED_ENCODING.match(original)
         if declared:
             encoding = declared.group(1).decode("ascii").lower()
+        elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
+            encoding = "utf-16-le" if original[0] else "utf-16-be"
     try:
         text = original[len(bom) :].decode(encoding)
     except (LookupError, UnicodeDecodeError) as error:
@@ -121,15 +149,14 @@ def unified_diff(changes: Iterable[tuple[str, str, str]]) -> str:
     A unified diff of ``(name, text before, text after)`` changes, file after file: ``a/NAME``
     and ``b/NAME`` for a relative name (as git shows it), the name itself for an absolute one.
     """
-    import difflib
-
+    from inertia_kit.description import line_diff
     from inertia_kit.printable import printable
 
     parts = []
     for name, before, after in changes:
         name = printable(name)  # a header is one line, whatever the file is called
         shown = (name, name) if Path(name).is_absolute() else (f"a/{name}", f"b/{name}")
-        lines = difflib.unified_diff(
+        lines = line_diff.unified_diff(
             before.splitlines(keepends=True), after.splitlines(keepends=True), *shown
         )
         parts.append("".join(lines))

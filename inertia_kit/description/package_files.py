@@ -6,16 +6,25 @@ breadth-first walk below a search root that colcon, catkin and ament would make.
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import os
 from collections.abc import Iterator
 from pathlib import Path
 
 from inertia_kit.description import safexml
+from inertia_kit.errors import InputError
+from inertia_kit.reading import read_regular
 
 #: How many folder levels below a package path entry (or a workspace ``src/``) are searched.
 MAX_DEPTH = 5
 #: Folders visited per search root at most, so that a package path of ``/`` stays bounded.
 MAX_FOLDERS = 20_000
+#: Folders visited by all the walks of one package search (a file deep in a tree with a
+#: ``src`` folder at every level walks each of them).
+MAX_FOLDERS_IN_ALL = 100_000
+#: Entries read from one folder at most.
+MAX_ENTRIES = 50_000
 #: A ``package.xml`` larger than this is not read.
 MAX_PACKAGE_XML_BYTES = 1 << 20
 #: Where an install prefix registers its packages (ament_index_python, ``get_package_prefix``).
@@ -36,11 +45,11 @@ def package_name(folder: Path) -> str | None:
     from lxml import etree
 
     manifest = folder / "package.xml"
+    if not is_file(manifest):
+        return None
     try:
-        if not is_file(manifest) or manifest.stat().st_size > MAX_PACKAGE_XML_BYTES:
-            return None
-        data = manifest.read_bytes()
-    except OSError:
+        data = read_regular(manifest, MAX_PACKAGE_XML_BYTES)
+    except InputError:
         return None
     try:
         root = etree.fromstring(data, safexml.parser())
@@ -79,30 +88,36 @@ def normal(path: Path) -> Path:
     return Path(os.path.normpath(path))
 
 
-def walk(root: Path) -> Iterator[Path]:
-    """Folders below ``root`` (itself included) breadth-first; packages are not descended."""
+def walk(root: Path, limit: int = MAX_FOLDERS) -> Iterator[Path]:
+    """
+    Folders below ``root`` (itself included) breadth-first, at most ``limit`` (and
+    :data:`MAX_FOLDERS`) of them; packages are not descended. Each folder is visited once
+    however many links lead to it (a link to a parent, a loop of links), and a folder that
+    cannot be listed or a link that cannot be followed is passed over.
+    """
+    limit = min(limit, MAX_FOLDERS)
     level = [root]
     visited = 0
+    seen: set[tuple[int, int]] = set()
+    with contextlib.suppress(OSError):
+        status = root.stat()
+        seen.add((status.st_dev, status.st_ino))
     for depth in range(MAX_DEPTH + 1):
         following: list[Path] = []
         for folder in level:
             visited += 1
-            if visited > MAX_FOLDERS:
+            if visited > limit:
                 return
             yield folder
             if depth == MAX_DEPTH or is_file(folder / "package.xml"):
                 continue
-            try:
-                children = sorted(os.scandir(folder), key=lambda e: e.name)
-            except OSError:
-                continue
-            for child in children:
-                if (
-                    child.name.startswith(".")
-                    or child.name in _SKIP_NAMES
-                    or not child.is_dir(follow_symlinks=True)
-                ):
+            for child in folder_entries(folder):
+                if child.name.startswith(".") or child.name in _SKIP_NAMES:
                     continue
+                identity = _folder_identity(child)
+                if identity is None or identity in seen:
+                    continue
+                seen.add(identity)
                 path = Path(child.path)
                 if any(exists(path / marker) for marker in _IGNORE_MARKERS):
                     continue
@@ -110,6 +125,47 @@ def walk(root: Path) -> Iterator[Path]:
         level = following
         if not level:
             return
+
+
+def folder_entries(folder: Path, limit: int | None = None) -> list[os.DirEntry]:
+    """
+    The entries of ``folder`` sorted by name, at most ``limit`` (default :data:`MAX_ENTRIES`)
+    of them read, so a folder of a million files stays cheap; none when it cannot be listed.
+    """
+    try:
+        with os.scandir(folder) as scan:
+            read = itertools.islice(scan, MAX_ENTRIES if limit is None else limit)
+            return sorted(read, key=lambda e: e.name)
+    except (OSError, ValueError):
+        return []
+
+
+def entry_is_dir(entry: os.DirEntry) -> bool:
+    """Whether ``entry`` is a folder or a link to one; ``False`` for a link that cannot be
+    followed (dangling, a loop of links), never raising."""
+    try:
+        return entry.is_dir(follow_symlinks=True)
+    except OSError:
+        return False
+
+
+def entry_is_file(entry: os.DirEntry) -> bool:
+    """Whether ``entry`` is a regular file or a link to one, never raising."""
+    try:
+        return entry.is_file(follow_symlinks=True)
+    except OSError:
+        return False
+
+
+def _folder_identity(entry: os.DirEntry) -> tuple[int, int] | None:
+    """``(device, inode)`` of the folder ``entry`` is or leads to; ``None``: not a folder."""
+    try:
+        if not entry.is_dir(follow_symlinks=True):
+            return None
+        status = entry.stat(follow_symlinks=True)
+    except OSError:
+        return None
+    return status.st_dev, status.st_ino
 
 
 def split_path(value: str) -> tuple[Path, ...]:

@@ -16,6 +16,7 @@ from pathlib import Path
 from inertia_kit.description.package_files import (
     AMENT_INDEX,
     MAX_DEPTH,
+    MAX_FOLDERS_IN_ALL,
     exists,
     folder_of,
     is_dir,
@@ -121,6 +122,7 @@ class PackageFinder:
         self.start = None if start is None else folder_of(Path(start))
         self._names: dict[Path, str | None] = {}
         self._indexes: dict[Path, dict[str, Path]] = {}
+        self._folders_left = MAX_FOLDERS_IN_ALL  # what the walks may still visit, together
         self._lookups: dict[tuple[str, Path | None], Lookup] = {}
         self._prefixes: dict[tuple[Path, ...], tuple[tuple[Path, str], ...]] = {}
         # folders ``$(find)`` gave: a path below one is labelled with the rule that chose it
@@ -276,7 +278,8 @@ class PackageFinder:
         """``package name -> folder`` below ``root``; the shallowest, then first sorted, wins."""
         if root not in self._indexes:
             index: dict[str, Path] = {}
-            for folder in walk(root):
+            for folder in walk(root, self._folders_left):
+                self._folders_left -= 1
                 name = self._name(folder)
                 if name is not None:
                     index.setdefault(name, folder)

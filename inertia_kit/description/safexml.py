@@ -11,9 +11,17 @@ from pathlib import Path
 from typing import Any
 
 from inertia_kit.errors import InputError
+from inertia_kit.reading import read_regular, size_text
 
 # larger than any real robot description (the biggest published ones are a few MB)
 MAX_BYTES = 50 * 1024 * 1024
+
+#: The most characters an attribute value, and an element or attribute name, of a robot
+#: description may hold: far above any path (4096), name or list of numbers a robot needs, and
+#: what keeps one value from filling every finding that quotes it (a xacro expression makes a
+#: 100 MB name in 230 bytes). The same bounds for a file and for what an expansion returns.
+MAX_VALUE_CHARS = 65_536
+MAX_NAME_CHARS = 1_024
 
 NO_ENTITIES = "entity declarations are not allowed: nothing was expanded or fetched"
 
@@ -22,42 +30,45 @@ _ENTITY = re.compile(rb"<!ENTITY\b")
 _SUBSET_END = re.compile(rb"\]\s*>")
 
 
-def size_text(count: int) -> str:
-    """``50 MB``, ``4 kB`` or ``64 bytes``."""
-    for unit, scale in (("MB", 1 << 20), ("kB", 1 << 10)):
-        if count >= scale and count % scale == 0:
-            return f"{count // scale} {unit}"
-    return f"{count} bytes"
-
-
 def read_bounded(path: str | Path, shown: str | Path | None = None) -> bytes:
     """
-    The bytes of ``path``, refusing unreadable files and files over :data:`MAX_BYTES`, with
-    an ``InputError`` naming ``shown`` (default: ``path``).
+    The bytes of ``path``, refusing unreadable files, what is not a regular file (a named pipe,
+    a device) and files over :data:`MAX_BYTES`, with an ``InputError`` naming ``shown``
+    (default: ``path``).
     """
-    shown = path if shown is None else shown
-    try:
-        with open(path, "rb") as stream:
-            data = stream.read(MAX_BYTES + 1)
-    except FileNotFoundError:
-        raise InputError("no such file", shown) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, not a robot description", shown) from None
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", shown) from None
-    except ValueError as error:  # a NUL character in the path
-        raise InputError(f"cannot read: {error}", repr(str(shown))) from None
-    check_size(data, shown)
-    return data
+    return read_regular(path, MAX_BYTES, shown, what="robot description")
 
 
 def check_size(data: bytes, shown: str | Path) -> None:
     if len(data) > MAX_BYTES:
         raise InputError(
-            f"file is larger than {size_text(MAX_BYTES)}; no robot description is that big "
+            f"is larger than {size_text(MAX_BYTES)}; no robot description is that big "
             "(nothing was parsed)",
             shown,
         )
+
+
+def oversized(tag: str, attributes) -> str | None:
+    """
+    What is too long in an element (its ``tag`` and its ``(name, value)`` ``attributes``),
+    said in a few words; ``None`` when nothing is.
+    """
+    if len(tag) > MAX_NAME_CHARS:
+        return f"an element name of {len(tag)} characters, more than the {MAX_NAME_CHARS}"
+    for name, value in attributes:
+        if len(name) > MAX_NAME_CHARS:
+            return (
+                f"<{tag}> has an attribute name of {len(name)} characters, more than the "
+                f"{MAX_NAME_CHARS}"
+            )
+        if len(value) > MAX_VALUE_CHARS:
+            return f"<{tag} {name}> holds {len(value)} characters, more than the {MAX_VALUE_CHARS}"
+    return None
+
+
+def too_long(what: str) -> str:
+    """The message for :func:`oversized`'s finding."""
+    return f"{what} a robot description may hold (nothing was read further)"
 
 
 def refuse_entities(data: bytes, shown: str | Path) -> None:
@@ -80,8 +91,10 @@ def refuse_entities(data: bytes, shown: str | Path) -> None:
         end = close.end() if close else len(data)
     entity = _ENTITY.search(data, start, len(data) if end == -1 else end)
     if entity is not None:
-        line = data.count(b"\n", 0, entity.start()) + 1
-        column = entity.start() - data.rfind(b"\n", 0, entity.start())
+        from inertia_kit.description.lines import line_start, line_starts
+
+        line = len(line_starts(data[: entity.start()]))
+        column = entity.start() - line_start(data, entity.start()) + 1
         raise InputError(NO_ENTITIES, shown, line, column)
 
 

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import reads, safexml
+from inertia_kit.description import reads, safexml, xacro_dom, xacro_yaml
 from inertia_kit.description.model import Source
 from inertia_kit.description.xacro_errors import PackageNotFound
 from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
@@ -58,6 +58,7 @@ class Session:
         # what the environment gave: $(env), $(optenv) and YAML values (description.redaction)
         self.environment_values: dict[str, None] = {}
         self.reads: dict[str, str | None] = {}  # every file read: description.reads
+        self.calls: dict[Any, Source] = {}  # macro call node -> its site, while it expands
 
     # --- hooks ------------------------------------------------------------------------------
 
@@ -109,15 +110,27 @@ class Session:
             if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
                 return original(node, macros, symbols)
             call = stamp_of(node)
-            parent = node.parentNode
-            before = set(parent.childNodes)
-            handled = original(node, macros, symbols)
-            if handled and call is not None:
-                site = Source(call.path, call.line, call.column)
-                for child in parent.childNodes:
-                    if child.nodeType == Node.ELEMENT_NODE and child not in before:
-                        add_call_site(child, site)
-            return handled
+            if call is not None:  # stamped as the expansion replaces the call (replace_node)
+                self.calls[node] = Source(call.path, call.line, call.column)
+            try:
+                return original(node, macros, symbols)
+            finally:
+                self.calls.pop(node, None)
+
+        return hook
+
+    def replace_node(self, original):
+        def hook(node, by, content_only=False):
+            # a macro call's expansion: its elements carry the call site. Taken from the
+            # expansion itself, not by comparing the parent's children before and after (as
+            # many as the robot's links, for each call: quadratic)
+            site = self.calls.pop(node, None)
+            if site is not None and by is not None:
+                for part in by if isinstance(by, list) else [by]:
+                    for child in part.childNodes if content_only else [part]:
+                        if child.nodeType == Node.ELEMENT_NODE:
+                            add_call_site(child, site)
+            return original(node, by, content_only)
 
         return hook
 
@@ -257,14 +270,13 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
         (substitution_args, "_eval_find", session.find),
         (xacro, "eval_text", session.eval_text(xacro.eval_text)),
     ]
-    entries: list[tuple[dict, str, Any]] = [
-        (substitution_args._eval_dict, "find", session.find),
-        *_environment_entries(xacro, session),  # YAML files, recorded
-    ]
+    entries: list[tuple[dict, str, Any]] = [(substitution_args._eval_dict, "find", session.find)]
     if stamping:
         patches += [
             (xacro, "parse", session.parse),
             (xacro, "handle_macro_call", session.handle_macro_call(xacro.handle_macro_call)),
+            (xacro, "replace_node", session.replace_node(xacro_dom.replace_node)),
+            (xacro, "remove_previous_comments", xacro_dom.remove_previous_comments),
             (xacro, "safe_eval", session.safe_eval),
             (_COPY_STAMP, "on_copy", session.meter.add),
         ]
@@ -288,12 +300,14 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
             setattr(owner, name, value)
         for owner, key, value in entries:
             owner[key] = value
-        yield
+        with xacro_yaml.hooked(xacro, session.meter), _recording_yaml(xacro, session):
+            yield  # YAML bounded as the rest of the expansion, and what it gives recorded
     except InputError as error:  # its message may quote them
         error.environment_values = tuple(session.environment_values)
         raise
     finally:
         sys.stderr = stderr
+        xacro_dom.forget()
         for owner, name, value in saved:
             setattr(owner, name, value)
         for owner, key, value in saved_entries:
@@ -305,15 +319,26 @@ def patched(xacro, session: Session, stamping: bool = True) -> Iterator[None]:
         del xacro.all_includes[session.includes_start :]
 
 
-def _environment_entries(xacro, session: Session) -> list[tuple[dict, str, Any]]:
-    """``xacro.load_yaml`` (and its deprecated top-level name) in ``${...}``'s symbols, with a
-    hook recording what it loads."""
-    entries = []
+@contextlib.contextmanager
+def _recording_yaml(xacro, session: Session) -> Iterator[None]:
+    """``xacro.load_yaml`` (and its deprecated top-level name) in ``${...}``'s symbols wrapped,
+    while the expansion runs, by a hook recording what it loads; restored afterwards. Entered
+    after :func:`.xacro_yaml.hooked`, so that it records what the bounded loader gives."""
     symbols = getattr(xacro, "_global_symbols", {})
-    for table in (symbols.get("xacro"), symbols):
-        if isinstance(table, dict) and callable(table.get("load_yaml")):
-            entries.append((table, "load_yaml", session.loads_yaml(table["load_yaml"])))
-    return entries
+    tables = [
+        table
+        for table in (symbols.get("xacro"), symbols)
+        if isinstance(table, dict) and callable(table.get("load_yaml"))
+    ]
+    saved = [(table, table["load_yaml"]) for table in tables]
+    try:
+        for table, loader in saved:
+            # dict's own: xacro's tables warn of a redefined global symbol
+            dict.__setitem__(table, "load_yaml", session.loads_yaml(loader))
+        yield
+    finally:
+        for table, loader in saved:
+            dict.__setitem__(table, "load_yaml", loader)
 
 
 class _ThreadRoutedStream:
@@ -356,8 +381,8 @@ def _path_after_find(package: str, texts: list[str]) -> str:
 def read_checked(filename: str, shown: str) -> bytes:
     """The bytes of ``filename``, refused (``InputError``) when too large or declaring entities."""
     # an OSError propagates: xacro reports a missing include at the line that includes it
-    with open(filename, "rb") as stream:
-        data = stream.read(safexml.MAX_BYTES + 1)
+    os.stat(filename)
+    data = safexml.read_bounded(filename, shown)  # a regular file only: no pipe, no device
     check_bytes(data, shown)
     return data
 

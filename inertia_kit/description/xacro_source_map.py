@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node, UserDataHandler
 
 from inertia_kit.description import safexml
+from inertia_kit.description.lines import line_starts
 from inertia_kit.description.model import Source
 from inertia_kit.errors import InputError
 
@@ -93,7 +94,7 @@ def parse_stamped(data: bytes, shown: str, on_element: Callable[[], None] | None
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as error:
-        line = data.count(b"\n", 0, error.start) + 1
+        line = len(line_starts(data[: error.start]))
         raise InputError(_not_utf8(data, error), shown, line) from None
     try:
         return Builder().parseString(text)
@@ -183,26 +184,51 @@ def _quoteattr(value: str) -> str:
     return '"{}"'.format(value.replace('"', "&quot;"))
 
 
-def _write(node, out: list[str], sources: list[Source], inherited: Source) -> None:
-    kind = node.nodeType
-    if kind == Node.ELEMENT_NODE:
-        source = node.getUserData(STAMP) or inherited
-        sources.append(source)
-        out.append("<" + node.tagName)
-        for name, value in node.attributes.items():
-            out.append(f" {name}={_quoteattr(value)}")
-        if not node.childNodes:
-            out.append("/>")
-            return
-        out.append(">")
-        for child in node.childNodes:
-            _write(child, out, sources, source)
-        out.append(f"</{node.tagName}>")
-    elif kind in (Node.TEXT_NODE, Node.CDATA_SECTION_NODE):
-        out.append(_escape(node.data))
-    elif kind == Node.COMMENT_NODE:
-        text = node.data.replace("--", "- -")
-        out.append(f"<!--{text}{' ' if text.endswith('-') else ''}-->")
+def _write(root, out: list[str], sources: list[Source], inherited: Source) -> None:
+    """
+    ``root`` as XML text into ``out`` (an explicit stack: a tree of any depth), refusing what a
+    robot description may not hold (:func:`.safexml.oversized`, at the element's source) and a
+    text larger than :data:`.safexml.MAX_BYTES`: the bounds apply to what an expansion returns,
+    not only to the expansion (``name="${'x'*10**8}"`` is 230 bytes of xacro).
+    """
+    written = 0
+    stack: list[tuple[Any, Source, bool]] = [(root, inherited, False)]
+    while stack:
+        node, inherited, closing = stack.pop()
+        start = len(out)
+        if closing:
+            out.append(f"</{node.tagName}>")
+        elif node.nodeType == Node.ELEMENT_NODE:
+            source = node.getUserData(STAMP) or inherited
+            attributes = node.attributes.items()
+            what = safexml.oversized(node.tagName, attributes)
+            if what is not None:
+                raise InputError(f"xacro: {safexml.too_long(what)}", *_place(source))
+            sources.append(source)
+            out.append("<" + node.tagName)
+            out.extend(f" {name}={_quoteattr(value)}" for name, value in attributes)
+            if node.childNodes:
+                out.append(">")
+                stack.append((node, source, True))
+                stack.extend((child, source, False) for child in reversed(node.childNodes))
+            else:
+                out.append("/>")
+        elif node.nodeType in (Node.TEXT_NODE, Node.CDATA_SECTION_NODE):
+            out.append(_escape(node.data))
+        elif node.nodeType == Node.COMMENT_NODE:
+            text = node.data.replace("--", "- -")
+            out.append(f"<!--{text}{' ' if text.endswith('-') else ''}-->")
+        written += sum(len(piece) for piece in out[start:])
+        if written > safexml.MAX_BYTES:
+            raise InputError(
+                f"xacro: the expanded robot is larger than {safexml.size_text(safexml.MAX_BYTES)}"
+                "; no robot description is that big (nothing was read further)",
+                *_place(inherited),
+            )
+
+
+def _place(source: Source) -> tuple[str, int | None, int | None]:
+    return source.path, source.line, source.column
 
 
 def _elements(node) -> Iterator[Any]:

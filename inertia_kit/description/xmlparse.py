@@ -6,7 +6,6 @@ and every element's start tag located by line and column, which lxml does not gi
 
 from __future__ import annotations
 
-import bisect
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -14,7 +13,14 @@ from typing import Any
 
 from lxml import etree
 
-from inertia_kit.description.safexml import NO_ENTITIES, parser, refuse_entities
+from inertia_kit.description.lines import from_libxml2, line_of, line_starts
+from inertia_kit.description.safexml import (
+    NO_ENTITIES,
+    oversized,
+    parser,
+    refuse_entities,
+    too_long,
+)
 from inertia_kit.errors import InputError
 
 _BOM = b"\xef\xbb\xbf"
@@ -69,7 +75,7 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
     except LookupError:
         raise InputError(f"unsupported encoding {encoding!r}", path, 1) from None
     except etree.XMLSyntaxError as error:
-        line, column = error.position if error.position else (None, None)
+        line, column = from_libxml2(data, *error.position) if error.position else (None, None)
         message = _POSITION.sub("", str(error.msg or error))
         raise InputError(f"not well-formed XML: {message}", path, line, column) from None
     except (ValueError, etree.LxmlError) as error:
@@ -78,7 +84,21 @@ def parse_xml(data: bytes, path: str | Path) -> etree._Element:
     if dtd is not None and next(iter(dtd.iterentities()), None) is not None:
         # only reachable for encodings the byte-level check cannot read (UTF-16, UTF-32)
         raise InputError(NO_ENTITIES, path, 1)
+    _refuse_oversized(data, root, path)
     return root
+
+
+def _refuse_oversized(data: bytes, root: etree._Element, path: str | Path) -> None:
+    """``InputError`` (file, line, column) for a name or attribute value past the bounds of
+    :func:`.safexml.oversized`."""
+    for element in root.iter():
+        if not isinstance(element.tag, str):
+            continue
+        attributes = ((name.rpartition("}")[2], value) for name, value in element.items())
+        what = oversized(element.tag.rpartition("}")[2], attributes)
+        if what is not None:
+            line, column = element_locator(data, root)(element)
+            raise InputError(too_long(what), path, line, column)
 
 
 def fromstring(data: bytes, **options: Any) -> etree._Element:
@@ -168,7 +188,7 @@ def check_text(data: bytes, path: str | Path) -> None:
         raise InputError("empty file: not a robot description", path)
     nul = data.rstrip(b"\x00\t\n\r ").find(b"\x00")
     if nul >= 0:
-        line = data.count(b"\n", 0, nul) + 1
+        line = line_of(line_starts(data[:nul]), nul)
         raise InputError("binary file (it holds NUL bytes): not a robot description", path, line)
 
 
@@ -183,22 +203,45 @@ def start_tag_positions(
     several lines (and off by one past line 65535, libxml2 2.14), and it has no column at all.
     """
     if _is_wide(data):
-        return None
+        data = _transcoded(data)
+        if data is None:
+            return None
     starts = [match.start() for match in _MARKUP.finditer(data) if match.end() - match.start() == 1]
     elements = [element for element in root.iter() if isinstance(element.tag, str)]
     if len(starts) != len(elements):
         return None
-    newlines = [match.start() for match in re.finditer(b"\n", data)]
+    lines = line_starts(data)
     positions: dict[etree._Element, tuple[int, int]] = {}
     for offset, element in zip(starts, elements, strict=True):
         name = _qualified_name(element)
         if not data.startswith(b"<" + name, offset):
             return None
-        index = bisect.bisect_left(newlines, offset)
-        line_start = newlines[index - 1] + 1 if index else len(_BOM) * data.startswith(_BOM)
-        column = len(data[line_start:offset].decode("utf-8", "replace")) + 1
-        positions[element] = (index + 1, column)
+        line = line_of(lines, offset)
+        begin = lines[line - 1] if line > 1 else len(_BOM) * data.startswith(_BOM)
+        column = len(data[begin:offset].decode("utf-8", "replace")) + 1
+        positions[element] = (line, column)
     return positions
+
+
+def _transcoded(data: bytes) -> bytes | None:
+    """UTF-16 or UTF-32 ``data`` as UTF-8 (no mark); ``None`` when it does not decode."""
+    for mark, encoding in (
+        (b"\x00\x00\xfe\xff", "utf-32-be"),
+        (b"\xff\xfe\x00\x00", "utf-32-le"),
+        (b"\xff\xfe", "utf-16-le"),
+        (b"\xfe\xff", "utf-16-be"),
+        (b"\x00\x00\x00<", "utf-32-be"),
+        (b"<\x00\x00\x00", "utf-32-le"),
+        (b"<\x00", "utf-16-le"),
+        (b"\x00<", "utf-16-be"),
+    ):
+        if data.startswith(mark):
+            start = len(mark) if mark[0] != ord("<") and mark[-1] != ord("<") else 0
+            try:
+                return data[start:].decode(encoding).encode("utf-8")
+            except UnicodeError:
+                return None
+    return None
 
 
 def element_locator(

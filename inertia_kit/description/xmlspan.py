@@ -7,8 +7,11 @@ other byte alone.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
+
+from inertia_kit.description.lines import line_start
 
 _NAME = r"[A-Za-z_:][-A-Za-z0-9_.:]*"
 _TOKEN = re.compile(
@@ -20,6 +23,9 @@ _TOKEN = re.compile(
     rf"|<({_NAME})((?:\s+{_NAME}\s*=\s*(?:\"[^\"]*\"|'[^']*'))*)\s*(/?)>",  # start tag: 2, 3, 4
     re.DOTALL,
 )
+
+
+_INDENT = re.compile(r"[ \t]*")
 
 
 @dataclass(frozen=True)
@@ -89,15 +95,17 @@ def children(text: str, span: Span) -> list[Span]:
 
 def line_indent(text: str, offset: int) -> str:
     """The whitespace that begins the line holding ``offset``."""
-    line_start = max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
-    match = re.match(r"[ \t]*", text[line_start:])
-    return match.group(0) if match else ""
+    return _INDENT.match(text, line_start(text, offset)).group(0)  # type: ignore[union-attr]
 
 
+@functools.lru_cache(maxsize=16)
 def indent_unit(text: str) -> str:
     """
     One level of the file's indentation: the most common step between a line and the next
     deeper one (two spaces, four spaces, a tab); two spaces for a file with no indentation.
+
+    Read once per text (a fix of each of 5000 links asks it of the same file; a string's hash
+    is computed once, so asking again costs nothing).
     """
     steps: dict[str, int] = {}
     previous = ""

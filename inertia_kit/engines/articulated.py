@@ -15,6 +15,7 @@ engine model (``engines/drake.py``) builds the bodies from its own reading of th
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -173,11 +174,9 @@ def hinges(bodies: Iterable[Body]) -> list[Hinge]:
             d = h.T @ p @ h
             scale = np.diag(h.T @ k @ h)
             if (scale > 0).all() and np.isfinite(d).all():
-                normed = d / np.sqrt(np.outer(scale, scale))
-                smallest = float(np.linalg.eigvalsh(0.5 * (normed + normed.T))[0])
+                found.append(Hinge(body.name, _smallest_scaled(d, scale), depth, order))
             else:
-                smallest = 0.0
-            found.append(Hinge(body.name, smallest, depth, order))
+                found.append(Hinge(body.name, 0.0, depth, order))
             u = p @ h
             # the motions nothing resists are left free: the pseudo-inverse drops them
             p = p - u @ _pseudo_inverse(d) @ u.T
@@ -185,6 +184,24 @@ def hinges(bodies: Iterable[Body]) -> list[Hinge]:
         composite[body.name] = k
     found.sort(key=lambda hinge: (-hinge.depth, hinge.order))
     return found
+
+
+def _smallest_scaled(d: NDArray[np.float64], scale: NDArray[np.float64]) -> float:
+    """
+    The smallest eigenvalue of ``d`` with each motion scaled by ``scale`` (positive): each row
+    and column divided by the root of its own scale, not by the root of a product, which
+    underflows to 0 for a 1e-300 kg·m² moment. NaN (no claim) where the scaled matrix leaves
+    double precision or its eigenvalues do not converge.
+    """
+    root = np.sqrt(scale)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        normed = d / root[:, None] / root[None, :]
+    if not np.isfinite(normed).all():
+        return math.nan
+    try:
+        return float(np.linalg.eigvalsh(0.5 * (normed + normed.T))[0])
+    except np.linalg.LinAlgError:
+        return math.nan
 
 
 def _pseudo_inverse(d: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -108,9 +108,12 @@ def _tree(robot: RobotAnalysis) -> list[_Body] | None:
 
 
 def _preorder(body: _Body) -> Iterator[_Body]:
-    yield body
-    for child in body.children:
-        yield from _preorder(child)
+    """``body`` and its descendants, each before its children (a stack: a chain of any length)."""
+    stack = [body]
+    while stack:
+        current = stack.pop()
+        yield current
+        stack.extend(reversed(current.children))
 
 
 def _eigenvalues(tensor: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -295,14 +298,25 @@ def _fuse_into(
     refusals: list[Prediction],
     changes: list[Prediction],
 ) -> None:
-    """Fuse the static descendants of ``body`` (at ``pose`` in ``host``'s frame) into ``host``."""
-    for child in body.children:
+    """
+    Fuse the static descendants of ``body`` (at ``pose`` in ``host``'s frame) into ``host``,
+    depth first. A welded chain may be thousands of links long: the levels being visited are a
+    stack here, not Python's; leaving a level is where a recursive visit would return.
+    """
+    levels = [(iter(body.children), pose)]  # each: the children left to visit, their parent's pose
+    while levels:
+        children, pose = levels[-1]
+        child = next(children, None)
+        if child is None:
+            levels.pop()
+            continue
         if child.moving:
             continue
         origin = joint_pose(child.link.parent)  # type: ignore[arg-type]  # a child has a joint
         if origin is None:
             host.known = False
-            return
+            levels.pop()
+            continue
         at = pose @ origin
         _note_changes(child, host, changes)
         if not child.known:
@@ -326,9 +340,10 @@ def _fuse_into(
                     )
                 )
                 host.known = False
-                return
+                levels.pop()
+                continue
             host.value = total
-        _fuse_into(host, child, at, refusals, changes)
+        levels.append((iter(child.children), at))
 
 
 def _note_changes(body: _Body, host: _Body | None, changes: list[Prediction]) -> None:

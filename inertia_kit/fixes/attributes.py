@@ -106,7 +106,30 @@ class Slot:
         return None if self.element is None else self.element.get(self.attribute)
 
 
+class Decisions(dict):
+    """Each target's :class:`Decision`, fixed while its fixes are placed, with what
+    :func:`users_agree` found of each group of links (asked by each link of a group)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.agreed: dict[tuple[int, str], tuple[tuple[str, ...], bool]] = {}
+
+
 def users_agree(
+    users: tuple[str, ...], name: str, decisions: Mapping[str, Decision | None]
+) -> bool:
+    """Whether every link of ``users`` writes the same text for value ``name``; found once per
+    group when ``decisions`` is a :class:`Decisions`."""
+    if not isinstance(decisions, Decisions):
+        return _users_agree(users, name, decisions)
+    found = decisions.agreed.get((id(users), name))
+    if found is None or found[0] is not users:  # the group kept with the answer: ids stay its
+        found = users, _users_agree(users, name, decisions)
+        decisions.agreed[(id(users), name)] = found
+    return found[1]
+
+
+def _users_agree(
     users: tuple[str, ...], name: str, decisions: Mapping[str, Decision | None]
 ) -> bool:
     texts = set()

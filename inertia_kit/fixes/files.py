@@ -77,6 +77,8 @@ class Files:
 
     def offset(self, where: Source, tag: str) -> int | None:
         """The offset of the ``<`` of the element written at ``where`` (``None``: not found)."""
+        from inertia_kit.description.lines import line_end
+
         if where.line is None:
             return None
         source = self.source(where.path)
@@ -88,11 +90,7 @@ class Files:
         pattern = re.compile(r"<" + re.escape(tag) + r"(?=[\s/>])")
         if where.column is not None and pattern.match(text, line_start + where.column - 1):
             return line_start + where.column - 1
-        line_end = text.find("\n", line_start)
-        found = [
-            m.start()
-            for m in pattern.finditer(text, line_start, len(text) if line_end < 0 else line_end)
-        ]
+        found = [m.start() for m in pattern.finditer(text, line_start, line_end(text, line_start))]
         return found[0] if len(found) == 1 else None
 
     def element(self, where: Source) -> etree._Element | None:

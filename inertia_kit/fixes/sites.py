@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
-from inertia_kit.fixes.attributes import Decision, decide, write_values
+from inertia_kit.fixes.attributes import Decision, Decisions, decide, write_values
 from inertia_kit.fixes.files import Files, Key, key, location
 from inertia_kit.fixes.xacro_macros import macro_of, written_name
 
@@ -94,7 +94,7 @@ def place(
     which others share a macro body with a target).
     """
     wanted = {t.name: t for t in targets}
-    decisions = {t.name: decide(t) for t in targets}
+    decisions = Decisions({t.name: decide(t) for t in targets})
     users = _Users(links)
     placements: dict[str, Placement] = {}
     for target in targets:
@@ -103,24 +103,43 @@ def place(
 
 
 class _Users:
-    """Which links each written element makes (through their ``<inertial>`` or ``<link>``)."""
+    """
+    Which links each written element makes (through their ``<inertial>`` or ``<link>``): one
+    tuple per element, the same object each time it is asked for, so what is found of its
+    links (:meth:`agree`, :func:`.attributes.users_agree`) is found once, not for each of
+    them (a macro body 1667 links share, asked by each: quadratic).
+    """
 
     def __init__(self, links: Sequence[LinkAnalysis]):
-        self.body: dict[Key, list[str]] = {}
-        self.link: dict[Key, list[str]] = {}
-        self.chain: dict[Key, list[str]] = {}
-        self.call: dict[tuple[Key, Key], list[str]] = {}
+        body: dict[Key, list[str]] = {}
+        made: dict[Key, list[str]] = {}
+        chain: dict[Key, list[str]] = {}
+        call: dict[tuple[Key, Key], list[str]] = {}
         for link in links:
-            self.link.setdefault(key(link.link.source), []).append(link.name)
+            made.setdefault(key(link.link.source), []).append(link.name)
             inertial = link.link.inertial
             if inertial is None:
                 continue
-            body = key(inertial.source)
-            self.body.setdefault(body, []).append(link.name)
-            for call in inertial.source.calls:
-                self.chain.setdefault(key(call), []).append(link.name)
+            body_key = key(inertial.source)
+            body.setdefault(body_key, []).append(link.name)
+            for site in inertial.source.calls:
+                chain.setdefault(key(site), []).append(link.name)
             if inertial.source.calls:
-                self.call.setdefault((key(inertial.source.calls[-1]), body), []).append(link.name)
+                call.setdefault((key(inertial.source.calls[-1]), body_key), []).append(link.name)
+        self.body = {k: tuple(v) for k, v in body.items()}
+        self.link = {k: tuple(v) for k, v in made.items()}
+        self.chain = {k: tuple(v) for k, v in chain.items()}
+        self.call = {k: tuple(v) for k, v in call.items()}
+        self._agreed: dict[int, tuple[tuple[str, ...], bool]] = {}
+
+    def agree(self, names: tuple[str, ...], wanted: Mapping[str, Target]) -> bool:
+        """Whether every link in ``names`` is being filled, all with the same values; found
+        once per group (``wanted`` is the same for every question)."""
+        found = self._agreed.get(id(names))
+        if found is None or found[0] is not names:  # the group kept: its id stays its own
+            found = names, _agree(names, wanted)
+            self._agreed[id(names)] = found
+        return found[1]
 
 
 def _agree(names: Sequence[str], wanted: Mapping[str, Target]) -> bool:
@@ -141,7 +160,7 @@ def _place(
     inertial = link.link.inertial
     if inertial is None:
         sharers = users.link[key(link.link.source)]
-        if not _agree(sharers, wanted):
+        if not users.agree(sharers, wanted):
             problem = _shared_words(link.link.source, sharers, "<link>")
             return Placement(problem=problem + _advice(link.link.source, sharers))
         return _insert(target, files)
@@ -286,7 +305,7 @@ def _replace_body(target: Target, wanted, users: _Users, files: Files) -> Placem
     inertial = target.link.link.inertial
     assert inertial is not None
     sharers = users.body[key(inertial.source)]
-    if not _agree(sharers, wanted):
+    if not users.agree(sharers, wanted):
         return Placement(problem=_shared_words(inertial.source, sharers, "<inertial>"))
     placed = _replace_element(target, inertial.source, "inertial", files)
     body = files.element(inertial.source)
@@ -318,7 +337,7 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
         macro = None if element is None else macro_of(element)
         if macro is None or [c for c in macro if isinstance(c.tag, str)] != [element]:
             continue  # the macro makes more than this element
-        if not _agree(users.chain.get(key(call), []), wanted):
+        if not users.agree(users.chain.get(key(call), ()), wanted):
             continue
         call_element = files.element(call)
         if call_element is None:

@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
+from inertia_kit.description import lines
 from inertia_kit.description.edits import ChangedWhileEditing, Edit, SourceText, apply_edits
 from inertia_kit.description.reads import as_loaded
 from inertia_kit.errors import InputError
@@ -119,7 +120,7 @@ def _edit(source: SourceText, element: markup.Element, codes: list[str]) -> Edit
         at = start + len(text[start:end].rstrip())
         return Edit(source.path, at, at, (", " if items else "") + ", ".join(new))
     comment = COMMENT.format(", ".join(codes))
-    line_start = max(text.rfind("\n", 0, element.start), text.rfind("\r", 0, element.start)) + 1
+    line_start = lines.line_start(text, element.start)
     indent = text[line_start : element.start]
     if indent.strip(" \t"):  # something else stands before it on its line: the comment too
         return Edit(source.path, element.start, element.start, comment)

@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from inertia_kit.errors import ConfigError
+from inertia_kit.errors import ConfigError, InputError
 from inertia_kit.lint.config import Config, parse_config
 
 if sys.version_info >= (3, 11):
@@ -24,6 +24,9 @@ else:  # pragma: no cover - exercised on Python 3.10 only
 
 CONFIG_NAME = ".inertia-kit.toml"
 PYPROJECT = "pyproject.toml"
+#: A configuration file larger than this is refused unread (the largest real pyproject.toml
+#: files are tens of kB).
+MAX_CONFIG_BYTES = 1 << 20
 
 
 def load_config(path: str | Path) -> Config:
@@ -42,14 +45,14 @@ def load_config(path: str | Path) -> Config:
 
 
 def _read_toml(path: Path) -> dict[str, Any]:
+    from inertia_kit.reading import read_regular
+
+    if not path.exists():
+        raise ConfigError(f"{path}: no such configuration file")
     try:
-        text = path.read_bytes().decode("utf-8")
-    except FileNotFoundError:
-        raise ConfigError(f"{path}: no such configuration file") from None
-    except IsADirectoryError:
-        raise ConfigError(f"{path}: is a directory, not a configuration file") from None
-    except OSError as error:
-        raise ConfigError(f"{path}: cannot read: {error.strerror or error}") from None
+        text = read_regular(path, MAX_CONFIG_BYTES, what="configuration file").decode("utf-8")
+    except InputError as error:
+        raise ConfigError(str(error)) from None
     except UnicodeDecodeError as error:
         raise ConfigError(f"{path}: not UTF-8 text: {error.reason}") from None
     try:
@@ -63,19 +66,36 @@ def find_config(folder: str | Path) -> Path | None:
     folder = Path(os.path.abspath(folder))
     for candidate in (folder, *folder.parents):
         own = candidate / CONFIG_NAME
-        if own.is_file():
+        if _is_config_file(own):
             return own
         pyproject = candidate / PYPROJECT
-        if pyproject.is_file() and _has_section(pyproject):
+        if _is_config_file(pyproject) and _has_section(pyproject):
             return pyproject
     return None
 
 
+def _is_config_file(path: Path) -> bool:
+    """Whether ``path`` is a file to read; ``ConfigError`` for one that exists but is not a
+    regular file (a named pipe would block the read, ``/dev/zero`` never ends)."""
+    if path.is_file():
+        return True
+    if path.exists():
+        from inertia_kit.reading import check_regular
+
+        try:
+            check_regular(path, MAX_CONFIG_BYTES, what="configuration file")
+        except InputError as error:
+            raise ConfigError(str(error)) from None
+    return False
+
+
 def _has_section(pyproject: Path) -> bool:
+    from inertia_kit.reading import read_regular
+
     try:
-        data = pyproject.read_bytes()
-    except OSError:
-        return False
+        data = read_regular(pyproject, MAX_CONFIG_BYTES, what="configuration file")
+    except InputError as error:
+        raise ConfigError(str(error)) from None
     if b"inertia-kit" not in data:  # most pyproject.toml files: no need to parse them
         return False
     return "inertia-kit" in _read_toml(pyproject).get("tool", {})

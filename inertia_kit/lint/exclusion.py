@@ -27,6 +27,9 @@ from typing import Any
 #: a folder holding one of these is skipped by colcon (and catkin, ament): by the walk too
 IGNORE_MARKERS = frozenset(("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE"))
 _WORKSPACE_OUTPUT = ("build", "install", "log")
+#: An ignore file larger than this is refused unread (git's own bound is 100 MB; real ones hold
+#: a few kB, and every pattern costs every path walked).
+MAX_IGNORE_BYTES = 1 << 20
 _COLCON_WRITES = ("COLCON_IGNORE", ".built_by", ".colcon_install_layout")
 DEFAULT_EXCLUDE_TEXT = "hidden folders, __pycache__, a colcon workspace's build/ install/ log/"
 
@@ -202,18 +205,33 @@ class GitIgnores:
 
     def _layers(self, root: Path, folder: Path) -> Iterable[tuple[Path, Any]]:
         exclude = root / ".git" / "info" / "exclude"
-        yield root, self._read(exclude)
+        yield root, self._read(exclude, in_tree=False)
         for each in (*reversed(folder.relative_to(root).parents), folder.relative_to(root)):
-            yield root / each, self._read(root / each / ".gitignore")
+            yield root / each, self._read(root / each / ".gitignore", in_tree=True)
 
-    def _read(self, file: Path) -> Any:
-        """The file's patterns; None for a file with none (missing, or blank lines and comments
-        only, as git's template ``.git/info/exclude``), which needs no pathspec."""
+    def _read(self, file: Path, in_tree: bool) -> Any:
+        """
+        The file's patterns; None for a file with none (missing, or blank lines and comments
+        only, as git's template ``.git/info/exclude``), which needs no pathspec.
+
+        As git (2.32 and later) reads them: a ``.gitignore`` in the tree that is a symbolic
+        link is not read, and one that cannot be read is passed over. One that is not a
+        regular file or is larger than :data:`MAX_IGNORE_BYTES` is a ``ConfigError``.
+        """
+        from inertia_kit.errors import ConfigError, InputError
+        from inertia_kit.reading import Refused, read_regular
+
         if file not in self._specs:
             try:
-                lines = file.read_text(encoding="utf-8", errors="replace").splitlines()
-            except OSError:
-                lines = []
+                if not os.path.lexists(file) or (in_tree and os.path.islink(file)):
+                    data = b""
+                else:
+                    data = read_regular(file, MAX_IGNORE_BYTES, what="ignore file")
+            except Refused as error:
+                raise ConfigError(str(error)) from None
+            except InputError:
+                data = b""
+            lines = data.decode("utf-8", errors="replace").splitlines()
             if all(not line.strip() or line.startswith("#") for line in lines):
                 self._specs[file] = None
                 return None

@@ -248,11 +248,8 @@ def _edit_place(edit: Edit, files: Files) -> EditPlace | None:
         line = bisect.bisect_right(starts, offset)
         return line, offset - starts[line - 1] + 1
 
-    def byte(offset: int) -> int:
-        return len(source.bom) + len(source.text[:offset].encode(source.encoding))
-
     start, end = line_column(edit.start), line_column(edit.end)
-    return EditPlace(*start, *end, byte(edit.start), byte(edit.end))
+    return EditPlace(*start, *end, source.byte_offset(edit.start), source.byte_offset(edit.end))
 
 
 def fixing_rules() -> list:

@@ -164,10 +164,12 @@ def _includable(file: str) -> bool:
 
     if file.lower().endswith(".xacro"):
         return True
+    from inertia_kit.description.safexml import read_bounded
+    from inertia_kit.errors import InputError
+
     try:
-        with open(file, "rb") as stream:
-            data = stream.read()
-    except OSError:
+        data = read_bounded(file)
+    except InputError:
         return False
     return is_xacro(data) or _linkless(data)
 

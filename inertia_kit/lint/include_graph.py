@@ -115,6 +115,7 @@ def _scan(
     """What ``path`` is and reads, by its text and (for xacro that includes) its expansion."""
     from inertia_kit.description.loader import needs_expansion
     from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.safexml import read_bounded
     from inertia_kit.description.xacro_expand import expand
     from inertia_kit.errors import InputError
 
@@ -122,10 +123,9 @@ def _scan(
     if own is None:
         return None
     try:
-        with open(path, "rb") as stream:
-            data = stream.read()
-    except OSError:
-        return None
+        data = read_bounded(path)
+    except InputError:
+        return None  # the loader tells why
     if not (needs_expansion(data) and _READS_OTHERS.search(data)):
         return Entry("plain", ((path, own),))
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)

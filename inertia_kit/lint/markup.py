@@ -1,9 +1,9 @@
 """
 Where elements and comments stand in a file's text (character offsets and lines), so that a
 suppression comment can be inserted before an element, extended, or removed, leaving every
-other byte alone. Lines count as :mod:`inertia_kit.lint.suppress` counts them (from 1, any of
-``\\r\\n``, ``\\n``, ``\\r`` ends one), so a comment written here covers what that module says it
-covers.
+other byte alone. Lines are counted as XML counts them (:mod:`inertia_kit.description.lines`),
+and :mod:`inertia_kit.lint.suppress` reads comments through this module, so a comment written
+here covers what that module says it covers.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ import bisect
 import re
 from dataclasses import dataclass, field
 
+from inertia_kit.description.lines import line_starts
 from inertia_kit.description.xmlspan import tokens
 
 # `inertia-lint: ignore[...]`: group 1 is what stands between the brackets
@@ -63,6 +64,11 @@ class Layout:
     elements: list[Element]
     comments: list[Comment]
     line_starts: list[int]
+    _starts: list[int] = field(default_factory=list, repr=False)
+    _on_line: dict[int, Element | None] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        self._starts = [element.start for element in self.elements]
 
     @property
     def root(self) -> Element | None:
@@ -73,13 +79,42 @@ class Layout:
         The innermost element at ``line`` and ``column`` (1-based, the ``<`` of its start tag or
         a place inside it); without a column, or with one no element holds, the smallest
         element whose lines hold ``line`` (the first such in document order).
+
+        Found among the few that can be (the last element starting before the place and its
+        ancestors; the elements starting on the line), not all: ``--add-noqa`` asks it of
+        each finding.
         """
         if column is not None and 1 <= line <= len(self.line_starts):
-            offset = self.line_starts[line - 1] + column - 1
-            holding = [e for e in self.elements if e.start <= offset < e.end]
-            if holding:
-                return max(holding, key=lambda e: e.start)
-        holding = [e for e in self.elements if e.first <= line <= e.last]
+            found = self._holding(self.line_starts[line - 1] + column - 1)
+            if found is not None:
+                return found
+        if line not in self._on_line:
+            self._on_line[line] = self._smallest_on(line)
+        return self._on_line[line]
+
+    def _holding(self, offset: int) -> Element | None:
+        """The innermost element whose text holds ``offset``."""
+        index = bisect.bisect_right(self._starts, offset) - 1
+        element = self.elements[index] if index >= 0 else None
+        while element is not None and not element.start <= offset < element.end:
+            element = element.parent
+        return element
+
+    def _smallest_on(self, line: int) -> Element | None:
+        if not 1 <= line <= len(self.line_starts):
+            return None
+        begin = self.line_starts[line - 1]
+        end = self.line_starts[line] if line < len(self.line_starts) else len(self.text)
+        first = bisect.bisect_left(self._starts, begin)
+        last = bisect.bisect_left(self._starts, end)
+        candidates = {id(e): e for e in self.elements[first:last]}  # starting on the line
+        above = self._holding(begin)
+        while above is not None:  # and what holds the line's start, out to the root
+            candidates[id(above)] = above
+            above = above.parent
+        holding = sorted(
+            (e for e in candidates.values() if e.first <= line <= e.last), key=lambda e: e.start
+        )
         return min(holding, key=lambda e: e.last - e.first, default=None)
 
     def comment_on(self, line: int) -> Comment | None:
@@ -92,7 +127,7 @@ class Layout:
 
 def layout(text: str) -> Layout:
     """The elements and comments of ``text`` (well-formed XML: the loader has parsed it)."""
-    starts = [0] + [m.end() for m in re.finditer(r"\r\n|\n|\r", text)]
+    starts = line_starts(text)
 
     def line(offset: int) -> int:
         return bisect.bisect_right(starts, offset)

@@ -23,12 +23,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from inertia_kit.errors import InputError
-from inertia_kit.lint import catalog
+from inertia_kit.lint import catalog, markup
 from inertia_kit.lint.findings import Finding
 
 _DIRECTIVE = re.compile(r"\s*inertia-lint\s*:\s*(.*?)\s*\Z", re.DOTALL)
 _IGNORE = re.compile(r"ignore\s*\[([^\]]*)\](.*)\Z", re.DOTALL)
-_MARKER = b"inertia-lint"
+_MARKERS = tuple("inertia-lint".encode(c) for c in ("utf-8", "utf-16-le", "utf-16-be"))
 
 
 @dataclass(frozen=True)
@@ -61,7 +61,39 @@ class Directives:
     def covers(self, finding: Finding, line: int | None) -> bool:
         if self.disabled:
             return True
-        return any(ignore.covers(finding, line) for ignore in self.ignores)
+        return any(ignore.covers(finding, line) for ignore in self.holding(line))
+
+    def holding(self, line: int | None) -> list[Ignore]:
+        """
+        The ignores whose element holds ``line`` (``None``: those before the root), in file
+        order: looked up by line, not by trying each (``--add-noqa`` writes a comment for each
+        of thousands of links, and each finding was checked against every one of them).
+        """
+        if line is None:
+            return [ignore for ignore in self.ignores if ignore.root]
+        found = {
+            k for level, nodes in enumerate(self._segments) for k in nodes.get(line >> level, ())
+        }
+        return [self.ignores[k] for k in sorted(found)]
+
+    @functools.cached_property
+    def _segments(self) -> list[dict[int, list[int]]]:
+        """Each ignore's lines as the few aligned runs of 2**level lines that tile them
+        (a segment tree): ``levels[level][line >> level]`` lists the ignores holding the run."""
+        levels: list[dict[int, list[int]]] = []
+        for index, ignore in enumerate(self.ignores):
+            low, high, level = max(ignore.first, 0), ignore.last + 1, 0
+            while low < high:
+                while len(levels) <= level:
+                    levels.append({})
+                if low & 1:
+                    levels[level].setdefault(low, []).append(index)
+                    low += 1
+                if high & 1:
+                    high -= 1
+                    levels[level].setdefault(high, []).append(index)
+                low, high, level = low >> 1, high >> 1, level + 1
+        return levels
 
 
 def directives(path: str | Path) -> Directives:
@@ -94,44 +126,48 @@ def covering(finding: Finding) -> list[tuple[str, Ignore]]:
         (path, ignore)
         for path, line in places
         if path
-        for ignore in directives(path).ignores
+        for ignore in directives(path).holding(line)
         if ignore.covers(finding, line)
     ]
 
 
 @functools.lru_cache(maxsize=512)
 def _directives(path: str, mtime_ns: int, size: int) -> Directives:
+    from inertia_kit.description.edits import decode_source
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.description.xmlparse import parse_xml
 
     try:
         data = read_bounded(path)
-        if _MARKER not in data:  # no directive: no need to parse
+        if not any(marker in data for marker in _MARKERS):  # no directive: no need to parse
             return Directives(path)
-        root = parse_xml(data, path)
+        parse_xml(data, path)  # well-formed: the markup below is read right
     except InputError:
         return Directives(path)  # the loader reports unreadable files
-    return _scan(path, root)
+    try:
+        text = decode_source(data, path).text
+    except InputError:  # an encoding we cannot edit in: read as libxml2 does then, as UTF-8
+        text = data.decode("utf-8", "replace")
+    return _scan(path, markup.layout(text))
 
 
-def _scan(path: str, root) -> Directives:
-    from lxml import etree
-
+def _scan(path: str, found: markup.Layout) -> Directives:
+    """
+    The directives among ``found``'s comments. Lines are read from the text as XML counts them
+    (:mod:`.markup`), where ``--add-noqa`` places its comments: never from lxml, whose lines
+    differ after a lone carriage return.
+    """
     known = catalog.names()
     disabled = False
     ignores: list[Ignore] = []
     problems: list[tuple[int | None, str]] = []
-    prolog = list(root.itersiblings(preceding=True))[::-1]
-    epilog = list(root.itersiblings())
-    nodes = [*prolog, *root.iter(etree.Comment), *epilog]
-    for node in nodes:
-        if not isinstance(node, etree._Comment):
-            continue
-        match = _DIRECTIVE.match(node.text or "")
+    followed = {id(c): e for e in found.elements for c in e.before}  # comment -> its element
+    for comment in found.comments:
+        match = _DIRECTIVE.match(comment.body)
         if match is None:
             continue
         body = match.group(1)
-        line = node.sourceline - _newlines(node.text)  # where the comment starts
+        line = comment.line
         if body == "disable-file" or body.startswith(("disable-file ", "disable-file:")):
             disabled = True
             continue
@@ -156,52 +192,10 @@ def _scan(path: str, root) -> Directives:
         if not ignore.group(1).strip():
             problems.append((line, "`ignore[]` names no rule: give codes or names"))
             continue
-        target, first = _next_element(node)
+        target = followed.get(id(comment))
         if target is None:
             problems.append((line, "`ignore[...]` is not followed by an element it could cover"))
         elif selectors:
-            root = target.getparent() is None
-            ignores.append(Ignore(tuple(selectors), first, _last_line(target), line, root))
+            root = target.parent is None
+            ignores.append(Ignore(tuple(selectors), target.first, target.last, line, root))
     return Directives(path, disabled, tuple(ignores), tuple(problems))
-
-
-def _newlines(text: str | None) -> int:
-    return text.count("\n") if text else 0
-
-
-def _next_element(comment):
-    """
-    The element a comment stands before (other comments may come between), and the line its
-    start tag begins on; ``(None, 0)`` when there is none.
-
-    lxml gives the line a node's markup *ends* on; what lies between two nodes is text (their
-    ``tail``), so a start tag begins on the previous node's end line plus the tail's newlines.
-    """
-    from lxml import etree
-
-    node = comment
-    while True:
-        line = node.sourceline + _newlines(node.tail)
-        node = node.getnext()
-        if node is None:
-            return None, 0
-        if not isinstance(node, (etree._Comment, etree._ProcessingInstruction)):
-            return node, line
-
-
-def _last_line(element) -> int:
-    """
-    The line an element's end tag is on (for ``<x/>``, its start tag's end): its last child's
-    end plus the text after it, down to the innermost last child. A line break inside an end
-    tag (``</link\\n>``) is not seen, and no finding can point there.
-    """
-    from lxml import etree
-
-    extra = 0
-    node = element
-    while len(node):
-        node = node[-1]
-        extra += _newlines(node.tail)
-    if isinstance(node, (etree._Comment, etree._ProcessingInstruction)):
-        return node.sourceline + extra  # a comment's line is where it ends
-    return node.sourceline + _newlines(node.text) + extra

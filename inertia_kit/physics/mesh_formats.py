@@ -45,6 +45,12 @@ FORMATS = {
     ".gltf": ("gltf", "glTF"),
 }
 
+#: The largest mesh file read whole (every format trimesh reads, which holds several times the
+#: file in memory, and ASCII STL); a binary STL is streamed, and may be up to MAX_STL_BYTES.
+MAX_MESH_BYTES = 256 << 20
+#: The largest binary STL integrated (streamed: memory bounded; 4 GB is 86 M triangles, ~4 s).
+MAX_STL_BYTES = 4 << 30
+
 # what to do about a MeshError of each kind, for messages that do not say it yet
 ADVICE = {
     "not-found": "check the path and the package it names",
@@ -116,6 +122,7 @@ def _readable(path: str | Path) -> tuple[Path, str]:
             path, "not-found", f"the mesh file {what}; check the path and the package it names"
         )
     suffix = file.suffix.lower()
+    _check_size(file, MAX_STL_BYTES if suffix == ".stl" else MAX_MESH_BYTES)
     if suffix not in FORMATS:
         raise MeshError(
             path,
@@ -124,6 +131,56 @@ def _readable(path: str | Path) -> tuple[Path, str]:
             f"{', '.join(FORMATS)}; convert the mesh to STL",
         )
     return file, suffix
+
+
+def _check_size(file: Path, limit: int) -> None:
+    """``MeshError`` for a file larger than ``limit`` bytes (before reading any of it)."""
+    from inertia_kit.reading import size_text
+
+    try:
+        size = file.stat().st_size
+    except OSError as error:
+        raise MeshError(file, "unreadable", f"cannot read the file ({error})") from None
+    if size > limit:
+        raise MeshError(
+            file,
+            "unreadable",
+            f"the mesh file is larger than {size_text(limit)} (nothing was read); decimate it, "
+            "or give a simpler collision mesh",
+        )
+
+
+def _bounded_resolver(path: Path):
+    """
+    A trimesh resolver for the files a mesh names (a glTF's buffers, an OBJ's materials): only
+    below the mesh's folder (trimesh 5 does that, 4 does not), only regular files, each at
+    most :data:`MAX_MESH_BYTES`.
+    """
+    import os
+
+    from trimesh.resolvers import FilePathResolver
+
+    from inertia_kit.errors import InputError
+    from inertia_kit.reading import read_regular
+
+    class Bounded(FilePathResolver):
+        def get(self, name: str) -> bytes:
+            try:
+                folder = Path(self.parent).resolve()
+                for candidate in (name.strip(), name.strip().lstrip("/"), os.path.basename(name)):
+                    target = (folder / candidate).resolve()
+                    if target.is_relative_to(folder) and target.exists():
+                        return read_regular(target, MAX_MESH_BYTES, name, what="mesh file")
+            except (OSError, RuntimeError, ValueError) as error:  # a loop of links, a NUL
+                raise FileNotFoundError(f"{name}: {error}") from None
+            except InputError as error:
+                raise ValueError(str(error)) from None
+            raise FileNotFoundError(name)
+
+        def namespaced(self, namespace: str) -> Bounded:
+            return Bounded(os.path.join(self.parent, namespace))
+
+    return Bounded(str(path))
 
 
 def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
@@ -144,7 +201,10 @@ def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
         raise MeshError(path, "unreadable", f"reading {name} needs trimesh: {error}") from None
     try:
         with library_logs_quiet(path):
-            scene = trimesh.load_scene(str(path), file_type=file_type, process=False)
+            _check_size(path, MAX_MESH_BYTES)  # read whole, and held several times over
+            scene = trimesh.load_scene(
+                str(path), file_type=file_type, resolver=_bounded_resolver(path), process=False
+            )
             parts, units = _scene_parts(scene, trimesh.Trimesh)
     except MeshError:
         raise

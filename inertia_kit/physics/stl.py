@@ -19,6 +19,8 @@ from inertia_kit.physics import polyhedra
 from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 
 HEADER_BYTES = 84
+#: An ASCII STL (parsed whole) larger than this is not read.
+MAX_ASCII_BYTES = 256 << 20
 RECORD = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
 
 _ASCII_VERTEX = re.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
@@ -119,6 +121,13 @@ def _fill(stream, view: memoryview) -> int:
 
 
 def _read_ascii(path: str | Path) -> SurfaceIntegrator:
+    if os.path.getsize(path) > MAX_ASCII_BYTES:
+        raise MeshError(
+            path,
+            "unreadable",
+            f"not a binary STL (its size does not match its triangle count), and larger than "
+            f"the {MAX_ASCII_BYTES >> 20} MB an ASCII STL is read up to",
+        )
     data = Path(path).read_bytes()
     if data.lstrip()[:5].lower() != b"solid" or _BINARY_BYTES.search(data):
         size = len(data)

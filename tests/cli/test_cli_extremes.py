@@ -244,3 +244,20 @@ def test_a_sphere_at_the_edge_of_float32_no_warning(tmp_path):
         warnings.simplefilter("error", RuntimeWarning)
         result = lint_file(path, Selection(select=("IN0",)))
     assert result.error is None and "IN022" in {f.code for f in result.findings}
+
+
+@pytest.mark.parametrize("tiny", ["1e-300", "5e-324"])
+def test_a_floating_child_with_a_vanishing_moment_under_every_engine(tmp_path, tiny):
+    """Issue 19: a massless base with a floating child whose izz is 1e-300 was an internal
+    error under --engine drake (LinAlgError: Eigenvalues did not converge)."""
+    body = inertial(1, 0.01, 0.01, tiny)
+    text = robot_lines(
+        "  " + link("base") + "\n",
+        "  " + joint("base", "arm", "floating") + "\n",
+        "  " + link("arm", body) + "\n",
+    )
+    path = write(tmp_path / "robot.urdf", text)
+    for engine in ("drake", "all"):
+        result = lint(path, "--engine", engine, "--output-format", "json")
+        assert result.exit_code == 1, result.output
+        assert only(result, "IN004")  # the value itself

@@ -123,6 +123,86 @@ def test_search_depth_is_bounded(tmp_path):
     assert PackageResolver([tmp_path], env={}).find("deep_pkg") is None
 
 
+def hostile_workspace(tmp_path: Path) -> Path:
+    """A workspace ``src`` holding loops of links (a <-> b, a link to itself, a link to its
+    parent folder, a dangling link) beside a package ``real_pkg`` two levels down."""
+    src = tmp_path / "ws" / "src"
+    package = make_package(src / "group" / "real_pkg", "real_pkg")
+    (src / "a").symlink_to("b")
+    (src / "b").symlink_to("a")
+    (src / "self").symlink_to("self")
+    (src / "group" / "up").symlink_to("..")
+    (src / "gone").symlink_to("nowhere")
+    touch(package / "urdf" / "robot.urdf", "<robot/>")
+    return src
+
+
+def test_loops_of_links_are_passed_over_and_each_folder_visited_once(tmp_path):
+    from inertia_kit.description.package_files import walk
+
+    src = hostile_workspace(tmp_path)
+    robot = src / "group" / "real_pkg" / "urdf" / "robot.urdf"
+    for resolver in (
+        PackageResolver(start=robot, env={}),
+        PackageResolver([src], env={}),
+        PackageResolver([src / "a"], env={"ROS_PACKAGE_PATH": str(src / "self")}),
+    ):
+        assert resolver.find("unknown_pkg") is None
+        assert resolver.resolve("package://unknown_pkg/m.stl", robot).path is None
+    assert PackageResolver([src], env={}).find("real_pkg") == src / "group" / "real_pkg"
+    visited = [p.relative_to(src) for p in walk(src)]
+    assert sorted(map(str, visited)) == [".", "group", "group/real_pkg"]
+
+
+def test_a_folder_with_more_entries_than_the_bound_is_read_up_to_it(tmp_path, monkeypatch):
+    from inertia_kit.description import package_files
+
+    for index in range(30):
+        (tmp_path / f"f{index:02}").mkdir()
+    assert len(package_files.folder_entries(tmp_path)) == 30
+    assert len(package_files.folder_entries(tmp_path, limit=7)) == 7
+    monkeypatch.setattr(package_files, "MAX_ENTRIES", 5)
+    assert len(list(package_files.walk(tmp_path))) == 1 + 5
+
+
+def test_the_walks_of_one_search_are_bounded_together(tmp_path, monkeypatch):
+    from inertia_kit.description import package_lookup
+
+    folder = tmp_path
+    for _ in range(6):  # a `src` at every level, each with 20 folders
+        for index in range(20):
+            (folder / "src" / f"f{index}").mkdir(parents=True)
+        folder = folder / "src" / "f0"
+    robot = touch(folder / "robot.urdf", "<robot/>")
+    walked: list[Path] = []
+    real = package_lookup.walk
+    monkeypatch.setattr(
+        package_lookup,
+        "walk",
+        lambda root, limit=10**9: (walked.append(f) or f for f in real(root, limit)),
+    )
+    monkeypatch.setattr(package_lookup, "MAX_FOLDERS_IN_ALL", 50)
+    assert PackageResolver(start=robot, env={}).find("unknown_pkg") is None
+    assert 0 < len(walked) <= 50
+
+
+def test_lint_with_loops_under_the_workspace_and_the_package_path(tmp_path):
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import lint_main
+
+    src = hostile_workspace(tmp_path)
+    robot = src / "group" / "real_pkg" / "urdf" / "robot.urdf"
+    robot.write_text(
+        '<robot name="r"><link name="base"><collision><geometry>'
+        '<mesh filename="package://unknown_pkg/m.stl"/></geometry></collision></link></robot>'
+    )
+    for extra in ([], ["--package-path", str(src)], ["--package-path", str(src / "a")]):
+        result = CliRunner().invoke(lint_main, ["--output-format", "concise", *extra, str(robot)])
+        assert result.exit_code == 1, result.output
+        assert "IN030" in result.output and "internal error" not in result.output
+
+
 def test_results_are_cached(tmp_path):
     package = make_package(tmp_path / "pkgs" / "cached_pkg", "cached_pkg")
     resolver = PackageResolver([tmp_path / "pkgs"], env={})

@@ -124,3 +124,21 @@ def test_a_body_past_double_precision_gives_no_hinge_value_and_no_exception():
         ("arm", 0.0),
         ("base", 0.0),
     ]
+
+
+@pytest.mark.parametrize("tiny", [1e-300, 5e-324, 1e-160])
+def test_a_moment_whose_square_underflows_is_judged_and_raises_nothing(tiny):
+    """Issue 19: a free body whose izz is 1e-300 made each motion's scale 1e-300, their product
+    0, the scaled hinge inertia inf, and LAPACK raised 'Eigenvalues did not converge' (an
+    internal error in `--engine drake`). Scaled row by row, its hinge is judged: one rigid
+    body resists each motion in proportion to itself (1), however small."""
+    (hinge,) = hinges([body("arm", None, "free", inertia=rod(1.0, moments=(0.01, 0.01, tiny)))])
+    assert hinge.smallest == pytest.approx(1.0, rel=1e-3) and not hinge.singular
+
+
+@pytest.mark.parametrize("huge", [1e154, 1e300])
+def test_a_scaled_hinge_past_double_precision_gives_no_claim(huge):
+    """A hinge inertia whose scaled form leaves double precision says nothing (NaN, not
+    singular) rather than raising."""
+    (hinge,) = hinges([body("arm", None, "free", inertia=rod(huge, moments=(huge, 1.0, 1.0)))])
+    assert not hinge.singular

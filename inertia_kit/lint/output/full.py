@@ -39,14 +39,19 @@ class _Sources:
 
     @staticmethod
     def _read(path: str) -> list[str] | None:
+        from inertia_kit.description.edits import decode_source
+        from inertia_kit.description.lines import BREAK
         from inertia_kit.description.safexml import read_bounded
 
         try:
             data = read_bounded(path)
         except InputError:
             return None
-        text = data.decode("utf-8", "replace").removeprefix("\ufeff")
-        return [line.rstrip("\r") for line in text.split("\n")]
+        try:  # lines as the positions count them (a lone CR ends one), in the file's encoding
+            text = decode_source(data, path).text
+        except InputError:
+            text = data.decode("utf-8", "replace").removeprefix("\ufeff")
+        return BREAK.split(text)
 
 
 #: the most characters of a source line shown: a longer line (a minified one-line file) is shown

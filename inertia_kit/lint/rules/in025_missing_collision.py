@@ -37,9 +37,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if link.mass_share < float(ctx.option("min_mass_share")):
         return
     # simulators weld fixed-joint groups into one body: a collision shape anywhere in it counts
-    if link.robot is not None and any(
-        other.link.collisions for other in link.robot.group_of(link.name)
-    ):
+    if link.robot is not None and link.robot.group_fact(link.name, "collision", _any_collision):
         return
     yield ctx.finding(
         f"link `{link.name}` has {fmt(mass)} kg and a visual shape but no <collision>: "
@@ -51,11 +49,19 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     )
 
 
+def _any_collision(group: tuple[LinkAnalysis, ...]) -> bool:
+    return any(member.link.collisions for member in group)
+
+
 def _consequence(link: LinkAnalysis) -> str:
-    """What a body without a surface does, by its place in the robot."""
-    robot = link.robot
-    group = (link,) if robot is None else robot.group_of(link.name)
-    top = next((m for m in group if m.parent is None or m.parent.type != "fixed"), link)
+    """What a body without a surface does, by its place in the robot (once per group)."""
+    if link.robot is None:
+        return _group_consequence((link,))
+    return link.robot.group_fact(link.name, "without a surface", _group_consequence)
+
+
+def _group_consequence(group: tuple[LinkAnalysis, ...]) -> str:
+    top = next((m for m in group if m.parent is None or m.parent.type != "fixed"), group[0])
     if any(m.name == WORLD for m in group):
         return "it is fixed to the world, so it stays put, but other bodies pass through it"
     if top.parent is None or top.parent.type == "floating":

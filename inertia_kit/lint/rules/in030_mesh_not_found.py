@@ -9,7 +9,15 @@ from pathlib import Path
 
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
-from inertia_kit.description.package_files import exists, is_dir, is_file, package_name
+from inertia_kit.description.package_files import (
+    entry_is_dir,
+    entry_is_file,
+    exists,
+    folder_entries,
+    is_dir,
+    is_file,
+    package_name,
+)
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -148,19 +156,13 @@ def _named_in(folder: Path, name: str) -> Path | None:
     """``folder/name`` or ``folder/*/name``, a file (first sorted), or ``None``."""
     if is_file(folder / name):
         return folder / name
-    try:
-        children = sorted(e.path for e in os.scandir(folder) if e.is_dir())
-    except OSError:
-        return None
+    children = [e.path for e in folder_entries(folder) if entry_is_dir(e)]
     return next((Path(c) / name for c in children if is_file(Path(c) / name)), None)
 
 
 def _similar(path: Path) -> Path | None:
     """A mesh file in the same folder with a close name (one listing, no recursion)."""
-    try:
-        names = [e.name for e in os.scandir(path.parent) if e.is_file()]
-    except OSError:
-        return None
+    names = [e.name for e in folder_entries(path.parent) if entry_is_file(e)]
     suffix = path.suffix.lower()
     candidates = [n for n in names if Path(n).suffix.lower() == suffix]
     close = difflib.get_close_matches(path.name, candidates, n=1, cutoff=0.7)
@@ -207,10 +209,7 @@ def _case_variant(path: Path) -> Path | None:
         if exists(exact):
             current = exact
             continue
-        try:
-            names = os.listdir(current)
-        except OSError:
-            return None
+        names = [e.name for e in folder_entries(current)]
         matches = [name for name in names if name.lower() == part.lower()]
         if len(matches) != 1:
             return None

@@ -6,6 +6,7 @@ import re
 from collections.abc import Iterator, Sequence
 from typing import TYPE_CHECKING
 
+from inertia_kit.description import lines
 from inertia_kit.description.edits import Edit, read_source
 from inertia_kit.description.model import Source
 from inertia_kit.description.reads import digest
@@ -91,7 +92,7 @@ def _selector(item: str) -> str:
 
 def _removal(path: str, text: str, comment: markup.Comment) -> Edit:
     """The comment, with its whole line(s) when only blanks stand beside it."""
-    line_start = max(text.rfind("\n", 0, comment.start), text.rfind("\r", 0, comment.start)) + 1
+    line_start = lines.line_start(text, comment.start)
     rest = len(text) - len(text[comment.end :].lstrip(" \t"))
     ending = text[rest : rest + 2]
     newline = (

@@ -1,0 +1,75 @@
+"""
+Every command linear in the number of links (issue 19): each command on robots of 5000 links,
+a serial chain (the deepest tree: no recursion may follow it) and a star (the widest), URDF and
+xacro (a macro called once per link), ends without an internal error within a generous bound,
+and takes at most 8 times the CPU time it takes for 1000 links (linear: 5; the quadratic steps
+this found took 9 to 25 times, and a welded chain did not end). ``python
+benchmarks/scaling.py`` prints the figures of every command and output format.
+"""
+
+from __future__ import annotations
+
+import resource
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from kit import write
+from kit.big import XACRO_ELEMENTS, urdf, xacro
+from kit.in_process import lint_in_process
+
+from inertia_kit.cli import fill_main, lint_main, main
+
+pytestmark = pytest.mark.slow
+
+#: CPU seconds a command may take for 5000 links: generous (a loaded 2-vCPU VM takes 2 to 20)
+BOUND = 90.0
+#: the most CPU time 5000 links may take against 1000
+RATIO = 8.0
+
+#: name -> (command, arguments): each run on a robot written for it; --diff and each output
+#: format are measured by benchmarks/scaling.py (and the diff by tests/description)
+COMMANDS = {
+    "lint --engine all": (lint_main, ["--engine", "all", "--output-format", "json"]),
+    "lint --fix --unsafe-fixes": (lint_main, ["--fix", "--unsafe-fixes", "-q"]),
+    "lint --add-noqa": (lint_main, ["--add-noqa"]),
+    "fill --fix all": (fill_main, ["--fix", "all"]),
+    "report --lumped": (main, ["report", "--lumped"]),
+    "view": (main, ["view", "-o", "{folder}/page.html"]),
+}
+CASES = [
+    *((kind, shape, name) for kind in ["urdf"] for shape in ["chain", "star"] for name in COMMANDS),
+    *(("xacro", shape, "lint --engine all") for shape in ["chain", "star"]),
+]
+
+
+def cpu() -> float:
+    """CPU seconds of this process and its children (xacro expands in a forked child)."""
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def run(command, arguments, robot: Path, folder: Path) -> float:
+    arguments = [a.format(folder=folder) for a in arguments]
+    if robot.suffix == ".xacro":
+        arguments += ["--xacro-limit", f"elements={XACRO_ELEMENTS},timeout=0"]
+    began = cpu()
+    result = CliRunner().invoke(command, [*arguments, str(robot)])
+    spent = cpu() - began
+    assert result.exit_code in (0, 1), result.output[-2000:]
+    assert "internal error" not in result.output
+    return spent
+
+
+@pytest.mark.parametrize(("kind", "shape", "name"), CASES)
+def test_every_command_is_linear_in_the_links(tmp_path, monkeypatch, kind, shape, name):
+    lint_in_process(monkeypatch)
+    make = urdf if kind == "urdf" else xacro
+    command, arguments = COMMANDS[name]
+    spent = {}
+    for links in (1000, 5000):
+        robot = write(tmp_path / f"{shape}{links}.{kind}", make(links, shape))
+        spent[links] = run(command, arguments, robot, tmp_path)
+    assert spent[5000] < BOUND, spent
+    assert spent[5000] / spent[1000] < RATIO, spent
