@@ -82,7 +82,12 @@ def read_source(path: str | Path) -> SourceText:
     else:
         declared = _DECLARED_ENCODING.match(original)
         if declared:
+            from inertia_kit.description.xmlparse import reads_declared
+
             encoding = declared.group(1).decode("ascii").lower()
+            if not reads_declared(encoding) and _is_utf8(original):
+                # the parser read it as UTF-8, and told positions in those characters
+                encoding = "utf-8"
     try:
         text = original[len(bom) :].decode(encoding)
     except (LookupError, UnicodeDecodeError) as error:
@@ -90,6 +95,14 @@ def read_source(path: str | Path) -> SourceText:
     if bom + text.encode(encoding) != original:
         raise InputError(f"does not round-trip through {encoding}; refusing to edit", path)
     return SourceText(str(path), original, text, encoding, bom)
+
+
+def _is_utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def apply_edits(text: str, edits: Iterable[Edit]) -> tuple[str, list[Edit]]:
