@@ -62,11 +62,12 @@ def find_config(folder: str | Path) -> Path | None:
     """The configuration file that applies in ``folder``: the nearest, looking upward."""
     folder = Path(os.path.abspath(folder))
     for candidate in (folder, *folder.parents):
+        # os.path.isfile: False for a folder we may not search (Path.is_file raises there)
         own = candidate / CONFIG_NAME
-        if own.is_file():
+        if os.path.isfile(own):
             return own
         pyproject = candidate / PYPROJECT
-        if pyproject.is_file() and _has_section(pyproject):
+        if os.path.isfile(pyproject) and _has_section(pyproject):
             return pyproject
     return None
 

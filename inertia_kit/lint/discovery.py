@@ -44,7 +44,7 @@ class Discovery:
             from inertia_kit.lint.config_files import ConfigFinder
 
             self.config = ConfigFinder()
-        configured = self.config.for_folder(path) if path.is_dir() else self.config.for_file(path)
+        configured = self.config.for_folder(path) if _is_dir(path) else self.config.for_file(path)
         if configured.path not in self._by_config:
             self._by_config[configured.path] = exclusion(
                 configured,
@@ -54,6 +54,12 @@ class Discovery:
                 force_exclude=self.force_exclude,
             )
         return self._by_config[configured.path]
+
+
+def _is_dir(path: Path) -> bool:
+    # os.path's answer: False for what cannot be looked at (a file in a folder we may not
+    # search), where Path.is_dir raises; reading the file then says why
+    return os.path.isdir(path)
 
 
 def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None) -> Iterator[Path]:
@@ -69,7 +75,7 @@ def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None
         rules = discovery.for_path(path)
         if rules.excludes_given(path):
             continue
-        found = _robot_files(path, rules) if path.is_dir() else [path]
+        found = _robot_files(path, rules) if _is_dir(path) else [path]
         for file in found:
             key = os.path.normcase(os.path.abspath(file))
             if key not in seen:
@@ -93,4 +99,4 @@ def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
             and not is_stand_in(name)  # another run's robot read from stdin
             and not rules.excluded(Path(top, name), folder=False)
         )
-    return sorted(f for f in files if f.is_file())
+    return sorted(f for f in files if os.path.isfile(f))

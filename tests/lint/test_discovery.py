@@ -74,3 +74,22 @@ def test_patterns_outside_their_base_match_names_only(tmp_path, monkeypatch):
 def test_a_stand_in_for_stdin_is_never_walked(tmp_path):
     _files(tmp_path, ".inertia-kit-stdin-0a1b2c3d-robot.urdf", "robot.urdf")
     assert _found(tmp_path) == ["robot.urdf"]
+
+
+def test_a_file_in_a_folder_that_may_not_be_searched_is_given_as_it_is(tmp_path):
+    """
+    Path.is_dir raises on it (EACCES) where os.path.isdir says no: the file is given on, and
+    reading it says why it cannot be read (it was an internal error: fuzz input 61).
+    """
+    from kit.permissions import obeying_permissions
+
+    folder = tmp_path / "urdf"
+    folder.mkdir()
+    (folder / "robot.urdf").write_text("<robot/>")
+    (tmp_path / "pyproject.toml").write_text("[tool.inertia-kit]\nignore = ['IN025']\n")
+    folder.chmod(0o444)  # its names can be listed, not looked at
+    try:
+        given = obeying_permissions(lambda: list(expand_paths([folder / "robot.urdf"])))
+    finally:
+        folder.chmod(0o755)
+    assert given == [folder / "robot.urdf"]
