@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import textwrap
 from pathlib import Path
 from typing import Any
@@ -185,7 +186,7 @@ def fill(
     try:
         if not paths:
             raise UsageError("give URDF files or folders to fill")
-        if output is not None and (len(paths) != 1 or Path(paths[0]).is_dir()):
+        if output is not None and (len(paths) != 1 or os.path.isdir(paths[0])):
             raise UsageError(f"-o takes exactly one file PATH, got {', '.join(paths)}")
         arguments = parse_xacro_args(xacro_args)
         limits = parse_xacro_limits(xacro_limits)

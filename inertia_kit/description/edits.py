@@ -158,7 +158,7 @@ def real_target(path: str | Path) -> Path:
     Raises ``InputError`` for a link that leads nowhere (dangling, or a loop of links).
     """
     target = Path(path)
-    if not target.is_symlink():
+    if not os.path.islink(target):
         return target
     try:
         return target.resolve(strict=True)
@@ -387,10 +387,10 @@ def _set_mode(handle: int, name: str, mode: int) -> None:
 
 def _state(target: Path, create: bool, shown: str | Path) -> tuple[bytes | None, int]:
     """The file's bytes (``None``: to be created) and the permission bits to write with."""
-    if target.is_dir():
+    if os.path.isdir(target):
         raise InputError("is a folder, not a file; nothing was written", shown)
-    if create and not target.exists():
-        if not target.parent.is_dir():
+    if create and not os.path.exists(target):
+        if not os.path.isdir(target.parent):
             raise InputError(f"no folder {str(target.parent)!r} to write into", shown)
         umask = os.umask(0)
         os.umask(umask)

@@ -7,6 +7,7 @@ package; an included file that is a link into another package is not edited.
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -39,7 +40,7 @@ class Files:
     def for_input(cls, path: str | Path) -> Files:
         path = Path(path).resolve()
         for folder in path.parents:
-            if (folder / "package.xml").is_file():
+            if os.path.isfile(folder / "package.xml"):
                 return cls(folder)
         return cls(path.parent)
 
@@ -49,7 +50,7 @@ class Files:
 
     def outside(self, path: str) -> str:
         """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target)."""
-        if Path(path).is_symlink():
+        if os.path.islink(path):
             return f"outside {self.root} (it is a symbolic link to {Path(path).resolve()})"
         return f"outside {self.root}"
 

@@ -94,7 +94,7 @@ class Exclusion:
         holding an :data:`IGNORE_MARKERS` file too (the walk sees those in the folder's names).
         """
         path = Path(path)
-        if markers and folder and any((path / marker).is_file() for marker in IGNORE_MARKERS):
+        if markers and folder and any(os.path.isfile(path / marker) for marker in IGNORE_MARKERS):
             return True
         if self.defaults and folder and _default_excluded(path):
             return True
@@ -112,7 +112,7 @@ class Exclusion:
             return False
         absolute = Path(os.path.abspath(path))
         rules = Exclusion(self.defaults, self.patterns, respect_gitignore=False)
-        if rules.excluded(absolute, absolute.is_dir()):
+        if rules.excluded(absolute, os.path.isdir(absolute)):
             return True
         here = Path(os.getcwd())
         return any(
@@ -128,8 +128,8 @@ def _default_excluded(folder: Path) -> bool:
         return True
     if name not in _WORKSPACE_OUTPUT:
         return False
-    return (folder.parent / "src").is_dir() or any(
-        (folder / mark).exists() for mark in _COLCON_WRITES
+    return os.path.isdir(folder.parent / "src") or any(
+        os.path.exists(folder / mark) for mark in _COLCON_WRITES
     )
 
 
@@ -193,7 +193,7 @@ class GitIgnores:
 
     def _root(self, folder: Path) -> Path | None:
         if folder not in self._roots:
-            if (folder / ".git").exists():
+            if os.path.exists(folder / ".git"):
                 self._roots[folder] = folder
             else:
                 parent = folder.parent
