@@ -108,7 +108,8 @@ def check_input(
         coverage += invocation.coverage()
         failures, written = procedures.writer(ctx, invocation)
         add(failures, invocation, "writer")
-        if invocation is plan.interrupt and written is not None:
+        if plan.interrupt and written is not None:  # the first writer that edited
+            plan.interrupt = False
             coverage.append(f"interrupted {invocation.program}")
             add(procedures.interrupted(ctx, invocation, written), invocation, "interrupted")
     if plan.concurrent:

@@ -35,7 +35,8 @@ from fuzz.plan import Invocation
 from fuzz.tree import CACHE, HOME, OUTSIDE, WORK, Seen, changes
 
 ROBOT_SUFFIXES = (".urdf", ".xacro", ".xml")
-TEMPORARY = re.compile(r"\..+\.inertia-kit-[0-9a-f]{12}\.tmp$")
+#: what a killed run may leave: a write's temporary file, the stand-in of a robot read from stdin
+TEMPORARY = re.compile(r"\..+\.inertia-kit-[0-9a-f]{12}\.tmp$|^\.inertia-kit-stdin-")
 EXITS = (0, 1, 2, 130)
 HUGE_OUTPUT = 256 << 20
 
@@ -224,7 +225,11 @@ def check_tree(
     may edit robot files in place; ``killed``: a SIGKILLed run may leave its temporary file).
     """
     found, edited = [], []
-    command = label(invocation)
+    # told by what writes (-o, a writer, or neither), not by the output format: one bug, one
+    # signature
+    command = f"{invocation.program} -o" if invocation.output else label(invocation)
+    if not invocation.output and invocation.program == "inertia-lint" and not invocation.writes:
+        command = "inertia-lint"
     for key, how in sorted(changes(before, after).items()):
         top = key.split("/", 1)[0]
         if top in (CACHE, HOME, RUN) or key in (CACHE, HOME, RUN):
@@ -237,7 +242,8 @@ def check_tree(
             continue
         if how == "created" and TEMPORARY.search(PurePosixPath(key).name):
             if not killed:
-                found.append(Failure("stray-file", f"{command} temporary file", f"left {key}"))
+                kind = "stand-in" if "-stdin-" in key else "temporary file"
+                found.append(Failure("stray-file", f"{command} {kind}", f"left {key}"))
             continue
         was, now = before.get(key), after.get(key)
         if (

@@ -163,10 +163,11 @@ def unreadable_folder(rng, tree):
 
 
 def planted_output(rng, tree):
-    name = rng.choice(OUTPUT_NAMES)
+    """A link at each path a command writes with -o (fuzz.plan), pointing out of the tree."""
     target = rng.choice(["../outside/deploy.sh", "../outside/robot.urdf", "/dev/null", "nowhere/x"])
-    tree.put(name, link(target))
-    return f"layout planted {name} -> {target}"
+    for name in OUTPUT_NAMES:
+        tree.put(name, link(target))
+    return f"layout planted outputs -> {target}"
 
 
 def control_names(rng, tree):

@@ -75,7 +75,7 @@ class Plan:
     writers: list[Invocation] = field(
         default_factory=list
     )  # each run twice: the 2nd changes nothing
-    interrupt: Invocation | None = None  # SIGKILLed at a random moment
+    interrupt: bool = False  # the first writer that edits is run again, SIGKILLed mid-run
     concurrent: tuple[Invocation, Invocation] | None = None  # two writers at once
 
 
@@ -151,7 +151,8 @@ def lint(rng: random.Random, tree: Tree, fmt: str | None = None) -> Invocation:
     output, output_kind, stdout_kind = None, None, FORMAT_KIND[fmt]
     if "--statistics" in args or "--show-files" in args:
         stdout_kind = "text"
-    if rng.random() < 0.15:
+    planted = tree.get("report.out") is not None
+    if rng.random() < (0.8 if planted else 0.15):
         output = "report.out"
         args += ["-o", output]
         output_kind, stdout_kind = stdout_kind, "text"
@@ -376,6 +377,11 @@ def other(rng: random.Random, tree: Tree, kind: str | None = None) -> Invocation
     )
 
 
+def _every(index: int, share: float, offset: int) -> bool:
+    """One input in ``1/share``, spread evenly by the index (a small run covers it too)."""
+    return share > 0 and index % max(1, round(1 / share)) == offset % max(1, round(1 / share))
+
+
 def make_plan(
     rng: random.Random,
     tree: Tree,
@@ -392,12 +398,15 @@ def make_plan(
     """
     plan = Plan()
     plan.plain.append(lint(rng, tree, LINT_FORMATS[index % len(LINT_FORMATS)]))
-    extra = other(rng, tree, OTHER_KINDS[index % len(OTHER_KINDS)])
+    kind = OTHER_KINDS[index % len(OTHER_KINDS)]
+    if tree.get("review.html") is not None:  # links planted at the outputs: write them
+        kind = rng.choice(["view", "fill-o", kind])
+    extra = other(rng, tree, kind)
     if extra is not None:
         plan.plain.append(extra)
     if rng.random() < 0.85:
         plan.writers.append(writer(rng, tree, WRITER_KINDS[index % len(WRITER_KINDS)]))
-    if rng.random() < real_share:
+    if _every(index, real_share, 1):
         pick = rng.choice(plan.plain + plan.writers)
         real = Invocation(
             pick.program,
@@ -414,9 +423,9 @@ def make_plan(
     # a plain lint that a configuration turns into a writer is checked as one
     plan.writers += [i for i in plan.plain if i.writes]
     plan.plain = [i for i in plan.plain if not i.writes]
-    if plan.writers and rng.random() < interrupt_share:
-        plan.interrupt = rng.choice(plan.writers)
-    if rng.random() < concurrent_share and tree.main != ".":
+    if plan.writers and _every(index, interrupt_share, 2):
+        plan.interrupt = True
+    if _every(index, concurrent_share, 3) and tree.main != ".":
         plan.concurrent = (writer(rng, tree), writer(rng, tree))
     return plan
 

@@ -119,18 +119,10 @@ def _output(invocation: Invocation, root: Path, outcome: Outcome) -> list[Failur
             if what
             else []
         )
-    if kind == "robot":
-        return (
-            []
-            if parses(data)
-            else [
-                Failure(
-                    "unparsable-output",
-                    f"{label(invocation)} -o file",
-                    "the written robot does not parse",
-                )
-            ]
-        )
+    if kind == "robot":  # it parses if the robot it was written from did
+        if parses(data) or not parses(execute_input(root, invocation.args[-1])):
+            return []
+        return [Failure("unparsable-output", f"{label(invocation)} -o file", "does not parse")]
     problem = _unparsable(data, kind)
     return (
         [Failure("unparsable-output", f"{label(invocation)} -o file", problem)] if problem else []
@@ -138,19 +130,16 @@ def _output(invocation: Invocation, root: Path, outcome: Outcome) -> list[Failur
 
 
 def _stdout_robot(invocation: Invocation, root: Path, outcome: Outcome) -> list[Failure]:
-    """``inertia-fill -`` prints the robot: it parses if the input did."""
+    """``inertia-fill -`` prints the robot (in its own encoding): it parses if the input did."""
     if invocation.stdout_kind != "robot" or outcome.exit not in (0, 1) or not invocation.stdin:
         return []
-    node = execute_input(root, invocation.stdin)
-    if node is None or not parses(node):
+    if not parses(execute_input(root, invocation.stdin)) or parses(outcome.stdout):
         return []
-    text = outcome.stdout.decode("utf-8", "replace")
-    body = text.split("?>", 1)[1] if text.lstrip().startswith("<?xml") else text
-    return (
-        []
-        if parses(body.encode("utf-8"))
-        else [Failure("unparsable-output", f"{label(invocation)} stdout robot", text[:200])]
-    )
+    return [
+        Failure(
+            "unparsable-output", f"{label(invocation)} stdout robot", repr(outcome.stdout[:200])
+        )
+    ]
 
 
 def execute_input(root: Path, relative: str) -> bytes | None:
@@ -166,7 +155,7 @@ def plain(ctx: Context, invocation: Invocation) -> list[Failure]:
     outcome = ctx.run(invocation, root)
     after = snapshot(root)
     failures = check_outcome(invocation, outcome, ctx.limits)
-    failures += check_tree(invocation, before, after)[0]
+    failures += check_tree(invocation, before, after, killed=outcome.timed_out)[0]
     failures += _output(invocation, root, outcome)
     failures += _stdout_robot(invocation, root, outcome)
     return failures
@@ -188,7 +177,7 @@ def writer(ctx: Context, invocation: Invocation) -> tuple[list[Failure], Written
     first = ctx.run(invocation, root)
     after = snapshot(root)
     failures = check_outcome(invocation, first, ctx.limits)
-    found, edited = check_tree(invocation, before, after)
+    found, edited = check_tree(invocation, before, after, killed=first.timed_out)
     failures += found
     failed = dict(old)
     for key in edited:
