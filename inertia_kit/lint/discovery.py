@@ -83,9 +83,38 @@ def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None
                 yield file
 
 
+def _walk(top: str) -> Iterator[tuple[str, list[str], list[str]]]:
+    """
+    ``os.walk(top)`` (top-down, links to folders listed but not entered, unreadable folders
+    passed over) without recursion: Python 3.11's recurses, and a tree 1000 folders deep was a
+    RecursionError. The caller may prune ``folders`` in place, as with os.walk.
+    """
+    stack = [top]
+    while stack:
+        here = stack.pop()
+        folders: list[str] = []
+        names: list[str] = []
+        try:
+            with os.scandir(here) as entries:
+                for entry in entries:
+                    try:
+                        is_folder = entry.is_dir()
+                    except OSError:
+                        is_folder = False
+                    (folders if is_folder else names).append(entry.name)
+        except OSError:
+            continue
+        yield here, folders, names
+        stack.extend(
+            path
+            for path in (os.path.join(here, name) for name in reversed(folders))
+            if not os.path.islink(path)
+        )
+
+
 def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
     files = []
-    for top, folders, names in os.walk(folder):
+    for top, folders, names in _walk(os.fspath(folder)):
         if top != os.fspath(folder) and not IGNORE_MARKERS.isdisjoint(names):
             folders[:] = []  # colcon skips this folder (a folder given is walked all the same)
             continue

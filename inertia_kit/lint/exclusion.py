@@ -19,7 +19,7 @@ holding ``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` is skipped, as 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -177,6 +177,7 @@ class GitIgnores:
     def __init__(self) -> None:
         self._roots: dict[Path, Path | None] = {}
         self._specs: dict[Path, Any] = {}
+        self._layers_of: dict[Path, tuple[tuple[Path, Any], ...]] = {}
 
     def ignored(self, path: Path, folder: bool) -> bool:
         absolute = Path(os.path.abspath(path))
@@ -185,26 +186,49 @@ class GitIgnores:
             return False
         verdict = None
         for base, spec in self._layers(root, absolute.parent):
-            if spec is None:
-                continue
             relative = absolute.relative_to(base).as_posix() + ("/" if folder else "")
             verdict = _last_match(spec, relative, verdict)
         return bool(verdict)
 
     def _root(self, folder: Path) -> Path | None:
-        if folder not in self._roots:
-            if os.path.exists(folder / ".git"):
-                self._roots[folder] = folder
+        # upward without recursion, each folder met remembered: a walk of a folder thousands
+        # deep asks once per folder (a recursion was a RecursionError at a depth of 1000)
+        chain = []
+        here = folder
+        while here not in self._roots:
+            if os.path.exists(here / ".git"):
+                self._roots[here] = here
+            elif here.parent == here:
+                self._roots[here] = None
             else:
-                parent = folder.parent
-                self._roots[folder] = None if parent == folder else self._root(parent)
-        return self._roots[folder]
+                chain.append(here)
+                here = here.parent
+        for each in chain:
+            self._roots[each] = self._roots[here]
+        return self._roots[here]
 
-    def _layers(self, root: Path, folder: Path) -> Iterable[tuple[Path, Any]]:
-        exclude = root / ".git" / "info" / "exclude"
-        yield root, self._read(exclude)
-        for each in (*reversed(folder.relative_to(root).parents), folder.relative_to(root)):
-            yield root / each, self._read(root / each / ".gitignore")
+    def _layers(self, root: Path, folder: Path) -> tuple[tuple[Path, Any], ...]:
+        """
+        The ignore files that apply in ``folder`` (below ``root``), from the top: each folder's
+        list is its parent's and its own ``.gitignore``, made once, so that a walk's cost is
+        linear in its folders, not in their depth times their number.
+        """
+        chain = []
+        here = folder
+        while here not in self._layers_of and here != root:
+            chain.append(here)
+            here = here.parent
+        if here not in self._layers_of:  # the root: .git/info/exclude, then its .gitignore
+            found = ((root, self._read(root / ".git" / "info" / "exclude")),)
+            found += ((root, self._read(root / ".gitignore")),)
+            self._layers_of[root] = tuple(layer for layer in found if layer[1] is not None)
+        layers = self._layers_of[here]
+        for each in reversed(chain):
+            spec = self._read(each / ".gitignore")
+            if spec is not None:
+                layers = (*layers, (each, spec))
+            self._layers_of[each] = layers
+        return layers
 
     def _read(self, file: Path) -> Any:
         """The file's patterns; None for a file with none (missing, or blank lines and comments

@@ -93,3 +93,21 @@ def test_a_file_in_a_folder_that_may_not_be_searched_is_given_as_it_is(tmp_path)
     finally:
         folder.chmod(0o755)
     assert given == [folder / "robot.urdf"]
+
+
+def test_a_folder_a_thousand_deep_is_walked_with_its_ignore_files(tmp_path):
+    """
+    Python 3.11's os.walk recursed (a RecursionError at a depth of 1000: an internal error),
+    and each file's ignore files were looked up through all its folders (a 600-deep folder took
+    40 s); a .gitignore half way down still applies below it.
+    """
+    (tmp_path / ".git").mkdir()
+    deep = tmp_path
+    for depth in range(1100):
+        deep = deep / "a"
+        deep.mkdir()
+        if depth == 550:
+            (deep / ".gitignore").write_text("skipped.urdf\n")
+    for name in ("kept.urdf", "skipped.urdf"):
+        (deep / name).write_text("<robot/>")
+    assert [path.name for path in expand_paths([tmp_path])] == ["kept.urdf"]
