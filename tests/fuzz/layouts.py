@@ -146,8 +146,8 @@ def loops(rng, tree):
 
 
 def deep_folders(rng, tree):
-    depth = rng.choice([50, 200, 600])
-    folder = "/".join(f"d{i}" for i in range(depth))
+    depth = rng.choice([50, 200, 600, 1100])
+    folder = "/".join(["d"] * depth)  # short names: 1100 deep is 2200 characters
     tree.put(f"{folder}/deep.urdf", b'<robot name="deep"><link name="a"/></robot>\n')
     return f"layout deep folders {depth}"
 

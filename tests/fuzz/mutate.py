@@ -43,6 +43,11 @@ def robot_files(tree: Tree) -> list[str]:
     return found
 
 
+def shown(path: str) -> str:
+    """A path short enough for a note."""
+    return path if len(path) <= 60 else "…" + path[-50:]
+
+
 def _target(rng: random.Random, tree: Tree) -> str | None:
     files = robot_files(tree)
     if not files:
@@ -80,11 +85,11 @@ def structure(rng: random.Random, tree: Tree) -> str | None:
             op = "lines"
         else:
             tree.put(path, changed[1])
-            return f"structure {changed[0]} {path}"
+            return f"structure {changed[0]} {shown(path)}"
     if op == "truncate":
         cut = rng.randrange(len(text) + 1)
         tree.put(path, text[:cut])
-        return f"truncate {path} at {cut}"
+        return f"truncate {shown(path)} at {cut}"
     if op == "lines":
         lines = text.splitlines(keepends=True)
         if len(lines) < 2:
@@ -98,7 +103,7 @@ def structure(rng: random.Random, tree: Tree) -> str | None:
         else:
             lines[i], lines[j] = lines[j], lines[i]
         tree.put(path, "".join(lines))
-        return f"lines {how} {path}"
+        return f"lines {how} {shown(path)}"
     if op == "garbage":
         at = rng.randrange(len(text) + 1)
         junk = rng.choice(
@@ -119,7 +124,7 @@ def structure(rng: random.Random, tree: Tree) -> str | None:
             ]
         )
         tree.put(path, text[:at] + junk + text[at:])
-        return f"garbage {junk!r} {path}"
+        return f"garbage {junk!r} {shown(path)}"
     # a DOCTYPE: entity expansion (billion laughs) or an external entity must not be honoured
     doctype = rng.choice(
         [
@@ -133,7 +138,7 @@ def structure(rng: random.Random, tree: Tree) -> str | None:
     body = re.sub(r"<\?xml[^>]*\?>\s*", "", text, count=1)
     body = re.sub(r'(<robot\b[^>]*\bname=")', r"\1" + entity, body, count=1)
     tree.put(path, doctype + "\n" + body)
-    return f"doctype {path}"
+    return f"doctype {shown(path)}"
 
 
 def _element_op(rng: random.Random, text: str) -> tuple[str, str] | None:
@@ -227,7 +232,7 @@ def numbers(rng: random.Random, tree: Tree) -> str | None:
         last = match.end()
         used.append(value)
     tree.put(path, "".join(out) + text[last:])
-    return f"numbers {used!r} {path}"
+    return f"numbers {used!r} {shown(path)}"
 
 
 # --- names -------------------------------------------------------------------------------------
@@ -264,7 +269,7 @@ def names(rng: random.Random, tree: Tree) -> str | None:
     else:
         text = text.replace(f'name="{old}"', f'name="{new}"', 1)
     tree.put(path, text)
-    return f"names {old!r} -> {new[:40]!r} {path}"
+    return f"names {old!r} -> {new[:40]!r} {shown(path)}"
 
 
 # --- encodings ---------------------------------------------------------------------------------
@@ -360,7 +365,7 @@ def encoding(rng: random.Random, tree: Tree) -> str | None:
         head = f'<?xml version="1.0" encoding="{declared}"?>\n'
         data = f"{head}<!-- é ü ロボット -->\n{body}".encode()
     tree.nodes[tree.key(path)] = file(data)
-    return f"encoding {op} {path}"
+    return f"encoding {op} {shown(path)}"
 
 
 # --- hostile xacro -----------------------------------------------------------------------------
@@ -432,7 +437,7 @@ def xacro(rng: random.Random, tree: Tree) -> str | None:
         if tree.main != ".":
             tree.main = path
     tree.put(path, text)
-    return f"xacro {name} {path}"
+    return f"xacro {name} {shown(path)}"
 
 
 MUTATIONS = {

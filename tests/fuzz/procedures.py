@@ -255,8 +255,11 @@ def concurrent(ctx: Context, first: Invocation, second: Invocation) -> list[Fail
     execute.reap_orphans()
     for invocation, outcome in zip((first, second), outcomes, strict=False):
         ctx.record(invocation, outcome)
+        # told as concurrent: what two writers at once do to each other (issue 19 item 1)
         failures += [
-            f for f in check_outcome(invocation, outcome, ctx.limits) if f.kind != "injection"
+            Failure(f.kind, f"{f.detail} (concurrent)", f.message)
+            for f in check_outcome(invocation, outcome, ctx.limits)
+            if f.kind != "injection"
         ]
     final = robot_state(root)
     pair = f"{label(first)} + {label(second)}"
