@@ -26,7 +26,7 @@ from fuzz.checks import Failure
 from fuzz.execute import Limits
 from fuzz.layouts import add_outside
 from fuzz.mutate import mutate
-from fuzz.plan import Invocation, make_plan
+from fuzz.plan import Invocation, every, make_plan
 from fuzz.seeds import seed as seed_tree
 from fuzz.shrink import shrink
 from fuzz.tree import WORK, Tree, dumps
@@ -38,7 +38,7 @@ class Profile:
 
     big_links: tuple[int, ...] = (300, 1000, 2000, 5000)
     real_share: float = 0.03  # runs through the installed console scripts
-    interrupt_share: float = 0.08  # writers SIGKILLed at a random moment
+    interrupt_share: float = 0.2  # the first writer that edits is SIGKILLed at a random moment
     concurrent_share: float = 0.03  # two writers at once
     limits: Limits = Limits()  # noqa: RUF009 - frozen: one shared default is fine
     shrink_seconds: float = 120.0  # per failure signature and worker; 0: no shrinking
@@ -46,7 +46,14 @@ class Profile:
 
 
 #: the bounded run of the test suite: small robots, xacro expansions cut at 5 s, no shrinking
-CI = Profile(big_links=(300, 1000), limits=Limits(xacro_limits="timeout=5"), shrink_seconds=0.0)
+CI = Profile(
+    big_links=(300, 1000),
+    real_share=0.05,
+    interrupt_share=0.2,
+    concurrent_share=0.05,
+    limits=Limits(xacro_limits="timeout=5"),
+    shrink_seconds=0.0,
+)
 #: the long run (INERTIA_KIT_FUZZ_INPUTS): everything at its defaults
 LONG = Profile()
 
@@ -55,7 +62,10 @@ def generate(seed: int | str, index: int, profile: Profile) -> tuple[Tree, rando
     rng = random.Random(f"{seed}/{index}")
     tree = seed_tree(rng, profile.big_links)
     add_outside(tree)
-    mutate(rng, tree, rng.choice([0, 1, 1, 1, 2, 2, 3, 4]))
+    # an input whose writers are SIGKILLed or run two at once: mostly whole robots, which
+    # writers edit (what is to be interrupted must be written)
+    writing = every(index, profile.interrupt_share, 2) or every(index, profile.concurrent_share, 3)
+    mutate(rng, tree, rng.choice([0, 0, 0, 1] if writing else [0, 1, 1, 1, 2, 2, 3, 4]))
     return tree, rng
 
 
@@ -108,8 +118,7 @@ def check_input(
         coverage += invocation.coverage()
         failures, written = procedures.writer(ctx, invocation)
         add(failures, invocation, "writer")
-        if plan.interrupt and written is not None:  # the first writer that edited
-            plan.interrupt = False
+        if invocation is plan.interrupt and written is not None:
             coverage.append(f"interrupted {invocation.program}")
             add(procedures.interrupted(ctx, invocation, written), invocation, "interrupted")
     if plan.concurrent:

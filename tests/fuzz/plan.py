@@ -8,6 +8,7 @@ input gets a lint in one of the output formats, a writing command (``--fix``, fi
 
 from __future__ import annotations
 
+import dataclasses
 import random
 from dataclasses import dataclass, field
 from pathlib import PurePosixPath
@@ -16,6 +17,7 @@ from fuzz.mutate import SPECIALS, robot_files
 from fuzz.tree import Tree
 from inertia_kit.lint import catalog
 
+PROGRAMS = ("inertia-lint", "inertia-fill", "inertia-kit")
 LINT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
 #: how each format's stdout is checked: text (escaped lines), json, xml
 FORMAT_KIND = {
@@ -75,7 +77,7 @@ class Plan:
     writers: list[Invocation] = field(
         default_factory=list
     )  # each run twice: the 2nd changes nothing
-    interrupt: bool = False  # the first writer that edits is run again, SIGKILLed mid-run
+    interrupt: Invocation | None = None  # a writer that, if it edits, is run again and SIGKILLed
     concurrent: tuple[Invocation, Invocation] | None = None  # two writers at once
 
 
@@ -240,7 +242,9 @@ def _number(rng: random.Random) -> str:
     return rng.choice(SPECIALS) if rng.random() < 0.3 else f"{rng.uniform(-1, 2):.3g}"
 
 
-def other(rng: random.Random, tree: Tree, kind: str | None = None) -> Invocation | None:
+def other(
+    rng: random.Random, tree: Tree, kind: str | None = None, turn: int | None = None
+) -> Invocation | None:
     robot = _file(tree)
     kind = kind or rng.choice(OTHER_KINDS)
     common = _common(rng, tree)
@@ -280,7 +284,8 @@ def other(rng: random.Random, tree: Tree, kind: str | None = None) -> Invocation
         )
         return Invocation("inertia-lint", ("--explain", code), ("lint --explain",))
     if kind == "mass":
-        shape = rng.choice(sorted(MASS_SHAPES))
+        shapes = sorted(MASS_SHAPES)
+        shape = rng.choice(shapes) if turn is None else shapes[turn % len(shapes)]
         args = ["mass", shape]
         for flag, count in MASS_SHAPES[shape]:
             args += [flag, *(_number(rng) for _ in range(count))]
@@ -377,7 +382,7 @@ def other(rng: random.Random, tree: Tree, kind: str | None = None) -> Invocation
     )
 
 
-def _every(index: int, share: float, offset: int) -> bool:
+def every(index: int, share: float, offset: int) -> bool:
     """One input in ``1/share``, spread evenly by the index (a small run covers it too)."""
     return share > 0 and index % max(1, round(1 / share)) == offset % max(1, round(1 / share))
 
@@ -401,31 +406,43 @@ def make_plan(
     kind = OTHER_KINDS[index % len(OTHER_KINDS)]
     if tree.get("review.html") is not None:  # links planted at the outputs: write them
         kind = rng.choice(["view", "fill-o", kind])
-    extra = other(rng, tree, kind)
+    extra = other(rng, tree, kind, turn=index // len(OTHER_KINDS))
     if extra is not None:
         plan.plain.append(extra)
     if rng.random() < 0.85:
-        plan.writers.append(writer(rng, tree, WRITER_KINDS[index % len(WRITER_KINDS)]))
-    if _every(index, real_share, 1):
-        pick = rng.choice(plan.plain + plan.writers)
-        real = Invocation(
-            pick.program,
-            pick.args,
-            pick.covers,
-            pick.stdin,
-            pick.writes,
-            pick.output,
-            pick.output_kind,
-            pick.stdout_kind,
-            real=True,
-        )
+        # by index // 3: not in step with the every-fifth interrupted input
+        plan.writers.append(writer(rng, tree, WRITER_KINDS[index // 3 % len(WRITER_KINDS)]))
+    if every(index, real_share, 1):
+        # each program in turn, as installed: the console script in a process of its own
+        period = max(1, round(1 / real_share))
+        wanted = PROGRAMS[index // period % len(PROGRAMS)]
+        runs = plan.plain + plan.writers
+        if not any(i.program == wanted for i in runs):
+            made = {
+                "inertia-lint": lambda: lint(rng, tree),
+                "inertia-fill": lambda: writer(rng, tree, "fill"),
+                "inertia-kit": lambda: other(rng, tree, "mass"),
+            }[wanted]()
+            runs = [made]
+        pick = rng.choice([i for i in runs if i.program == wanted] or runs)
+        real = dataclasses.replace(pick, real=True)
         (plan.writers if real.writes else plan.plain).append(real)
     # a plain lint that a configuration turns into a writer is checked as one
     plan.writers += [i for i in plan.plain if i.writes]
     plan.plain = [i for i in plan.plain if not i.writes]
-    if plan.writers and _every(index, interrupt_share, 2):
-        plan.interrupt = True
-    if _every(index, concurrent_share, 3) and tree.main != ".":
+    if every(index, interrupt_share, 2):
+        # one more writer, the kind that edits most robots: fill --fix all, or lint's unsafe
+        # fixes, in turn; it is SIGKILLed when it edits
+        period = max(1, round(1 / interrupt_share))
+        if index // period % 2:
+            killed = writer(rng, tree, "unsafe")
+        else:
+            killed = Invocation(
+                "inertia-fill", ("--fix", "all", *_paths(tree)), ("fill --fix all",), writes=True
+            )
+        plan.writers.append(killed)
+        plan.interrupt = killed
+    if every(index, concurrent_share, 3) and tree.main != ".":
         plan.concurrent = (writer(rng, tree), writer(rng, tree))
     return plan
 

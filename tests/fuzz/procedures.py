@@ -16,10 +16,11 @@ from __future__ import annotations
 
 import os
 import random
-import shutil
 import stat
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from kit import remove_tree
 
 from fuzz import execute
 from fuzz.checks import (
@@ -34,7 +35,7 @@ from fuzz.checks import (
 )
 from fuzz.execute import Limits, Outcome
 from fuzz.plan import Invocation
-from fuzz.tree import WORK, Tree, changes, snapshot
+from fuzz.tree import WORK, Tree, changes, entries, snapshot
 
 State = frozenset  # of (key, bytes): the robot files of a folder
 
@@ -63,31 +64,19 @@ class Context:
 
 
 def remove(path: Path) -> None:
-    """``path`` and all below it, unreadable folders included."""
-    if not os.path.lexists(path):
-        return
-    for folder, dirs, _files in os.walk(path):
-        for name in dirs:
-            full = os.path.join(folder, name)
-            if not os.path.islink(full):
-                os.chmod(full, 0o700)
-    shutil.rmtree(path, ignore_errors=True)
+    """``path`` and all below it, unreadable and 1000-deep folders included."""
+    remove_tree(path)
 
 
 def robot_state(root: Path) -> State:
     """The bytes of every robot file (regular, not a link) in ``root/work``."""
     found = []
-    for folder, _dirs, files in os.walk(root / WORK):
-        for name in files:
-            path = os.path.join(folder, name)
-            key = os.path.relpath(path, root)
-            if not is_robot(key):
-                continue
+    for path, info in entries(root / WORK):
+        key = os.path.relpath(path, root)
+        if is_robot(key) and stat.S_ISREG(info.st_mode) and info.st_size <= 64 << 20:
             try:
-                info = os.lstat(path)
-                if stat.S_ISREG(info.st_mode) and info.st_size <= 64 << 20:
-                    with open(path, "rb") as stream:
-                        found.append((key, stream.read()))
+                with open(path, "rb") as stream:
+                    found.append((key, stream.read()))
             except OSError:
                 continue
     return frozenset(found)

@@ -19,10 +19,13 @@ from fuzz.known import KNOWN_OPEN, known_open
 from fuzz.plan import COVERAGE
 
 #: the CI run: inputs, and how many processes run them
-CI_INPUTS = 240
+CI_INPUTS = 200
 CI_WORKERS = 2
 
-pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the harness forks its runs")
+pytestmark = [
+    pytest.mark.skipif(not hasattr(os, "fork"), reason="the harness forks its runs"),
+    pytest.mark.slow,  # about a minute on 2 cores
+]
 
 
 def test_fuzz_run_finds_nothing_but_the_known_open_classes(tmp_path):

@@ -19,6 +19,7 @@ import hashlib
 import json
 import os
 import stat
+from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -117,14 +118,14 @@ class Tree:
     def materialise(self, root: Path) -> None:
         """Write the tree below ``root`` (made, empty or missing), and the standard folders."""
         for folder in (WORK, OUTSIDE, CACHE, HOME):
-            (root / folder).mkdir(parents=True, exist_ok=True)
+            make_folders(root / folder)
         folders = []
         for key in sorted(self.nodes, key=lambda k: k.count("/")):
             node = self.nodes[key]
             path = root / key
-            path.parent.mkdir(parents=True, exist_ok=True)
+            make_folders(path.parent)
             if node.kind == "dir":
-                path.mkdir(exist_ok=True)
+                make_folders(path)
                 folders.append((path, node.mode))
                 continue
             if os.path.lexists(path):  # a later node over an earlier one's path
@@ -167,6 +168,16 @@ class Tree:
         return sum(len(n.data) + len(n.target) + 1 for n in self.nodes.values())
 
 
+def make_folders(path: Path) -> None:
+    """``path`` and its missing parents, without recursion (Path.mkdir's: 1100 deep)."""
+    missing = []
+    while not os.path.isdir(path):
+        missing.append(path)
+        path = path.parent
+    for folder in reversed(missing):
+        os.mkdir(folder)
+
+
 # --- snapshots -------------------------------------------------------------------------------
 
 #: files larger than this are recorded by size and mtime, not by their hash
@@ -181,19 +192,28 @@ class Seen:
     size: int = 0
 
 
-def snapshot(root: Path) -> dict[str, Seen]:
-    """Every path below ``root`` (relative), as seen without following a link or opening a FIFO."""
-    seen: dict[str, Seen] = {}
-    for folder, dirs, files in os.walk(root, followlinks=False):
-        for name in dirs + files:
-            path = os.path.join(folder, name)
-            key = os.path.relpath(path, root)
+def entries(root: Path) -> Iterator[tuple[str, os.stat_result]]:
+    """Every path below ``root`` and its lstat, without recursion (a folder may be 1100 deep)."""
+    stack = [os.fspath(root)]
+    while stack:
+        folder = stack.pop()
+        try:
+            found = list(os.scandir(folder))
+        except OSError:
+            continue
+        for entry in found:
             try:
-                info = os.lstat(path)
+                info = entry.stat(follow_symlinks=False)
             except OSError:
                 continue
-            seen[key] = _seen(path, info)
-    return seen
+            yield entry.path, info
+            if stat.S_ISDIR(info.st_mode):
+                stack.append(entry.path)
+
+
+def snapshot(root: Path) -> dict[str, Seen]:
+    """Every path below ``root`` (relative), as seen without following a link or opening a FIFO."""
+    return {os.path.relpath(path, root): _seen(path, info) for path, info in entries(root)}
 
 
 def _seen(path: str, info: os.stat_result) -> Seen:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from kit import remove_tree
+
 from inertia_kit.lint.discovery import ROBOT_FILE, Discovery, expand_paths
 
 REPO = Path(__file__).resolve().parents[2]
@@ -110,4 +112,7 @@ def test_a_folder_a_thousand_deep_is_walked_with_its_ignore_files(tmp_path):
             (deep / ".gitignore").write_text("skipped.urdf\n")
     for name in ("kept.urdf", "skipped.urdf"):
         (deep / name).write_text("<robot/>")
-    assert [path.name for path in expand_paths([tmp_path])] == ["kept.urdf"]
+    try:
+        assert [path.name for path in expand_paths([tmp_path])] == ["kept.urdf"]
+    finally:
+        remove_tree(tmp_path / "a")  # pytest's clean-up recurses
