@@ -133,10 +133,11 @@ _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029]")
 
 
 def _injected(text: str, *, controls: bool) -> str | None:
+    """What in ``text`` could start a line of its own or drive a terminal, or None."""
     if controls:
         found = _CONTROL.search(text)
         if found is not None:
-            return f"raw {found.group(0)!r}"
+            return f"raw U+{ord(found.group(0)):04X}"
     for line in text.split("\n"):
         if line.lstrip().startswith(CANARY):
             return "a line break before a name"
@@ -149,24 +150,12 @@ def check_streams(invocation: Invocation, outcome: Outcome, out: str, err: str) 
     # stderr is text for every command; stdout is text for the text formats
     what = _injected(err, controls=True)
     if what is not None:
-        found.append(
-            Failure(
-                "injection",
-                f"{command} stderr: {what.split(' ')[0] if what.startswith('raw') else what}",
-                _context(err, what),
-            )
-        )
+        found.append(Failure("injection", f"{command} stderr: {what}", _context(err, what)))
     kind = invocation.stdout_kind
     if kind in ("text", "markdown", "diff"):
-        what = _injected(out, controls=kind != "diff")
+        what = _injected(out, controls=kind != "diff")  # a diff shows the file's own bytes
         if what is not None:
-            found.append(
-                Failure(
-                    "injection",
-                    f"{command} stdout: {what.split(' ')[0] if what.startswith('raw') else what}",
-                    _context(out, what),
-                )
-            )
+            found.append(Failure("injection", f"{command} stdout: {what}", _context(out, what)))
     if outcome.stdout_size <= KEEP_BYTES and out.strip():
         problem = _unparsable(outcome.stdout, kind)
         if problem:

@@ -82,10 +82,6 @@ def robot_state(root: Path) -> State:
     return frozenset(found)
 
 
-def _short(what: str) -> str:
-    return what.split(" ")[0] if what.startswith("raw") else what
-
-
 def _output(invocation: Invocation, root: Path, outcome: Outcome) -> list[Failure]:
     """The ``-o`` file of a run that succeeded: it parses as its kind; text has no injection."""
     if not invocation.output or outcome.exit not in (0, 1):
@@ -101,7 +97,7 @@ def _output(invocation: Invocation, root: Path, outcome: Outcome) -> list[Failur
             [
                 Failure(
                     "injection",
-                    f"{label(invocation)} -o file: {_short(what)}",
+                    f"{label(invocation)} -o file: {what}",
                     what,
                 )
             ]

@@ -19,8 +19,8 @@ def test_an_input_is_the_same_for_the_same_seed_and_index():
 
 def test_an_injected_line_and_a_raw_control_character_are_seen():
     assert _injected(f"robot.urdf:3: link `a\n{CANARY}::error::x`", controls=True)
-    assert _injected("name `a\x1b[31m`", controls=True) == "raw '\\x1b'"
-    assert _injected("name `a\u2028b`", controls=True) == "raw '\\u2028'"
+    assert _injected("name `a\x1b[31m`", controls=True) == "raw U+001B"
+    assert _injected("name `a\u2028b`", controls=True) == "raw U+2028"
     assert _injected(f"name `a\\n{CANARY}` and\ttabs\n", controls=True) is None
     assert _injected("+ a diff line with\x0c", controls=False) is None
 
