@@ -294,7 +294,10 @@ def _environment(root: Path, tree: Tree, limits: Limits) -> dict[str, str]:
 
 
 def _streams(root: Path, folder: Path, stdin: str | None) -> None:
-    source = os.open(root / WORK / stdin if stdin else os.devnull, os.O_RDONLY)
+    try:
+        source = os.open(root / WORK / stdin if stdin else os.devnull, os.O_RDONLY)
+    except OSError:  # a shrunk input without the file: the command reads nothing
+        source = os.open(os.devnull, os.O_RDONLY)
     os.dup2(source, 0)
     for fd, name in ((1, "stdout"), (2, "stderr")):
         target = os.open(folder / name, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
