@@ -2,7 +2,7 @@
 A robot in a folder that may not be searched (mode 0o444: its names can be listed, nothing in it
 looked at): every command says it cannot read it (exit 2), none has an internal error. pathlib's
 ``exists``/``is_file``/``is_dir`` raise PermissionError there, where os.path's answer no; the
-fuzz run found seven places (issue 19). As root, the commands run in a child that obeys file
+fuzz run found eight places (issue 19). As root, the commands run in a child that obeys file
 modes (kit.permissions).
 """
 
@@ -24,6 +24,7 @@ COMMANDS = [
     ["fill", "-o", "filled.urdf", "urdf/robot.urdf"],
     ["report", "urdf/robot.urdf"],
     ["view", "-o", "review.html", "urdf/robot.urdf"],
+    ["mass", "mesh", "urdf/robot.urdf"],
 ]
 
 
@@ -49,5 +50,6 @@ def test_a_robot_in_a_folder_that_may_not_be_searched_is_an_input_error(
         folder.chmod(0o755)
     assert "internal error" not in output and "Traceback" not in output, output
     assert code in (0, 2), output  # a folder walk that cannot look in it finds nothing there
-    if "." not in args:
+    if "." not in args and "mesh" not in args:
         assert (code, "Permission denied" in output) == (2, True), output
+    assert code == 2 or "." in args, output
