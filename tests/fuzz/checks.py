@@ -113,6 +113,8 @@ def check_outcome(invocation: Invocation, outcome: Outcome, limits: Limits) -> l
         where = place[1] if place else "?"
         line = next((x for x in err.splitlines() if "internal error" in x), internal.group(0))
         cls = "memory" if kind == "MemoryError" else "internal-error"
+        if "[Errno 27]" in line:  # EFBIG: a write past the harness's RLIMIT_FSIZE
+            cls, kind, where = "huge-output", label(invocation), "the file size limit"
         found.append(Failure(cls, f"{kind} at {where}", line[:300]))
     elif place is not None:
         found.append(Failure("traceback", f"{place[0]} at {place[1]}", err[-300:]))
