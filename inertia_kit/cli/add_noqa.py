@@ -27,7 +27,7 @@ def writable_under(paths: Sequence[str]) -> Callable[[str], bool]:
     """
     here = Path.cwd().resolve()
     given = [_standing(p) for p in paths]
-    roots = [p if p.is_dir() else p.parent for p in given]
+    roots = [p if os.path.isdir(p) else p.parent for p in given]
     if all(p.is_relative_to(here) for p in given):
         roots.append(here)
 

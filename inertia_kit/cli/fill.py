@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -192,7 +193,7 @@ def fill(
     try:
         if not paths:
             raise UsageError("give URDF files or folders to fill")
-        if output is not None and (len(paths) != 1 or Path(paths[0]).is_dir()):
+        if output is not None and (len(paths) != 1 or os.path.isdir(paths[0])):
             raise UsageError(f"-o takes exactly one file PATH, got {', '.join(paths)}")
         if output is not None and not (show_diff or check):
             try:

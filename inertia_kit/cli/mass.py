@@ -214,6 +214,8 @@ def _parse_scale(text: str) -> tuple[float, float, float]:
         values *= 3
     if len(values) != 3:
         raise UsageError(f"--scale takes one or three numbers, got {len(values)}")
+    if 0 in values:  # a zero factor flattens the mesh: no volume (a negative one mirrors it)
+        raise UsageError(f"--scale takes non-zero factors (a negative one mirrors), got {text!r}")
     return values[0], values[1], values[2]
 
 

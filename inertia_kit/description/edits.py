@@ -109,7 +109,12 @@ def decode_source(original: bytes, path: str | Path) -> SourceText:
     else:
         declared = _DECLARED_ENCODING.match(original)
         if declared:
+            from inertia_kit.description.xmlparse import reads_declared
+
             encoding = declared.group(1).decode("ascii").lower()
+            if not reads_declared(encoding) and _is_utf8(original):
+                # the parser read it as UTF-8, and told positions in those characters
+                encoding = "utf-8"
         elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
             encoding = "utf-16-le" if original[0] else "utf-16-be"
     try:
@@ -119,6 +124,14 @@ def decode_source(original: bytes, path: str | Path) -> SourceText:
     if bom + text.encode(encoding) != original:
         raise InputError(f"does not round-trip through {encoding}; refusing to edit", path)
     return SourceText(str(path), original, text, encoding, bom)
+
+
+def _is_utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def apply_edits(text: str, edits: Iterable[Edit]) -> tuple[str, list[Edit]]:
@@ -180,7 +193,7 @@ def real_target(path: str | Path) -> Path:
     Raises ``InputError`` for a link that leads nowhere (dangling, or a loop of links).
     """
     target = Path(path)
-    if not target.is_symlink():
+    if not os.path.islink(target):
         return target
     try:
         return target.resolve(strict=True)
@@ -488,10 +501,10 @@ def _set_mode(handle: int, name: str, mode: int) -> None:
 
 def _state(target: Path, create: bool, shown: str | Path) -> tuple[bytes | None, int]:
     """The file's bytes (``None``: to be created) and the permission bits to write with."""
-    if target.is_dir():
+    if os.path.isdir(target):
         raise InputError("is a folder, not a file; nothing was written", shown)
-    if create and not target.exists():
-        if not target.parent.is_dir():
+    if create and not os.path.exists(target):
+        if not os.path.isdir(target.parent):
             raise InputError(f"no folder {str(target.parent)!r} to write into", shown)
         umask = os.umask(0)
         os.umask(umask)

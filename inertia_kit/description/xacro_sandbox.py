@@ -39,6 +39,8 @@ from inertia_kit.errors import InputError
 GRACE = 1.0
 
 _HEADER = struct.Struct("<Q")
+#: poll's longest wait, ms (a C int): a longer time limit (``timeout = 1e9``) is waited in steps
+_LONGEST_POLL = 1 << 30
 
 
 @dataclass(frozen=True)
@@ -159,7 +161,8 @@ def run(
             left = deadline - time.monotonic()
             if left <= 0:
                 raise TimedOut()
-            if poller.poll(None if left == math.inf else max(1, math.ceil(left * 1000))):
+            wait = None if left == math.inf else min(max(1, math.ceil(left * 1000)), _LONGEST_POLL)
+            if poller.poll(wait):
                 chunk = os.read(read_end, 1 << 20)
                 if not chunk:
                     break
@@ -242,8 +245,8 @@ def _limit_resources(timeout: float, memory_mb: int) -> None:  # pragma: no cove
         _, hard = resource.getrlimit(kind)
         if hard != resource.RLIM_INFINITY:
             soft = min(soft, hard)
-        # a platform that refuses: the parent's deadline still holds
-        with contextlib.suppress(ValueError, OSError):
+        # a platform that refuses, or a limit past what it holds: the parent's deadline holds
+        with contextlib.suppress(ValueError, OSError, OverflowError):
             resource.setrlimit(kind, (soft, hard))
 
     if timeout:

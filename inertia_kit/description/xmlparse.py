@@ -6,6 +6,7 @@ and every element's start tag located by line and column, which lxml does not gi
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -266,6 +267,21 @@ def element_locator(
 
 def _is_wide(data: bytes) -> bool:
     return data.startswith(_WIDE_STARTS)
+
+
+@functools.cache
+def reads_declared(encoding: str) -> bool:
+    """
+    Whether :func:`parse_xml` decodes a file by its declared ``encoding``: libxml2 knows it.
+    One it does not know (``cp500``, ``latin-1`` as a name) is read as UTF-8, as TinyXML2 does.
+    """
+    try:
+        fromstring(f'<?xml version="1.0" encoding="{encoding}"?><a/>'.encode("ascii"))
+    except etree.XMLSyntaxError as error:
+        return "Unsupported encoding" not in str(error.msg)
+    except (ValueError, LookupError, UnicodeError):
+        return False
+    return True
 
 
 def _tolerate_declaration(data: bytes) -> tuple[bytes, str | None]:

@@ -9,6 +9,7 @@ sources.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -42,7 +43,7 @@ def output_source(
     from inertia_kit.description.reads import as_loaded
     from inertia_kit.description.safexml import read_bounded
 
-    if output.exists() and path.exists() and output.resolve() == path.resolve():
+    if os.path.exists(output) and os.path.exists(path) and output.resolve() == path.resolve():
         raise InputError("-o names the input file itself; give another output file", path)
     if needs_expansion(read_bounded(path)):
         text, robot = _expanded(path, output, package_paths, xacro_args, xacro_limits)

@@ -8,6 +8,7 @@ file's package; an included file that is a link into another package is not edit
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -45,7 +46,7 @@ class Files:
         path = Path(path).resolve()
         reads = {} if reads is None else reads
         for folder in path.parents:
-            if (folder / "package.xml").is_file():
+            if os.path.isfile(folder / "package.xml"):
                 return cls(folder, reads=reads)
         return cls(path.parent, reads=reads)
 
@@ -55,7 +56,7 @@ class Files:
 
     def outside(self, path: str) -> str:
         """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target)."""
-        if Path(path).is_symlink():
+        if os.path.islink(path):
             return f"outside {self.root} (it is a symbolic link to {Path(path).resolve()})"
         return f"outside {self.root}"
 

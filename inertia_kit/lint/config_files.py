@@ -65,6 +65,7 @@ def find_config(folder: str | Path) -> Path | None:
     """The configuration file that applies in ``folder``: the nearest, looking upward."""
     folder = Path(os.path.abspath(folder))
     for candidate in (folder, *folder.parents):
+        # os.path.isfile: False for a folder we may not search (Path.is_file raises there)
         own = candidate / CONFIG_NAME
         if _is_config_file(own):
             return own
@@ -77,9 +78,10 @@ def find_config(folder: str | Path) -> Path | None:
 def _is_config_file(path: Path) -> bool:
     """Whether ``path`` is a file to read; ``ConfigError`` for one that exists but is not a
     regular file (a named pipe would block the read, ``/dev/zero`` never ends)."""
-    if path.is_file():
+    # os.path's: False, not PermissionError, in a folder that may not be searched
+    if os.path.isfile(path):
         return True
-    if path.exists():
+    if os.path.exists(path):
         from inertia_kit.reading import check_regular
 
         try:

@@ -44,7 +44,7 @@ class Discovery:
             from inertia_kit.lint.config_files import ConfigFinder
 
             self.config = ConfigFinder()
-        configured = self.config.for_folder(path) if path.is_dir() else self.config.for_file(path)
+        configured = self.config.for_folder(path) if _is_dir(path) else self.config.for_file(path)
         if configured.path not in self._by_config:
             self._by_config[configured.path] = exclusion(
                 configured,
@@ -54,6 +54,12 @@ class Discovery:
                 force_exclude=self.force_exclude,
             )
         return self._by_config[configured.path]
+
+
+def _is_dir(path: Path) -> bool:
+    # os.path's answer: False for what cannot be looked at (a file in a folder we may not
+    # search), where Path.is_dir raises; reading the file then says why
+    return os.path.isdir(path)
 
 
 def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None) -> Iterator[Path]:
@@ -69,7 +75,7 @@ def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None
         rules = discovery.for_path(path)
         if rules.excludes_given(path):
             continue
-        found = _robot_files(path, rules) if path.is_dir() else [path]
+        found = _robot_files(path, rules) if _is_dir(path) else [path]
         for file in found:
             key = os.path.normcase(os.path.abspath(file))
             if key not in seen:
@@ -77,9 +83,38 @@ def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None
                 yield file
 
 
+def _walk(top: str) -> Iterator[tuple[str, list[str], list[str]]]:
+    """
+    ``os.walk(top)`` (top-down, links to folders listed but not entered, unreadable folders
+    passed over) without recursion: Python 3.11's recurses, and a tree 1000 folders deep was a
+    RecursionError. The caller may prune ``folders`` in place, as with os.walk.
+    """
+    stack = [top]
+    while stack:
+        here = stack.pop()
+        folders: list[str] = []
+        names: list[str] = []
+        try:
+            with os.scandir(here) as entries:
+                for entry in entries:
+                    try:
+                        is_folder = entry.is_dir()
+                    except OSError:
+                        is_folder = False
+                    (folders if is_folder else names).append(entry.name)
+        except OSError:
+            continue
+        yield here, folders, names
+        stack.extend(
+            path
+            for path in (os.path.join(here, name) for name in reversed(folders))
+            if not os.path.islink(path)
+        )
+
+
 def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
     files = []
-    for top, folders, names in os.walk(folder):
+    for top, folders, names in _walk(os.fspath(folder)):
         if top != os.fspath(folder) and not IGNORE_MARKERS.isdisjoint(names):
             folders[:] = []  # colcon skips this folder (a folder given is walked all the same)
             continue
@@ -93,4 +128,4 @@ def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
             and not is_stand_in(name)  # another run's robot read from stdin
             and not rules.excluded(Path(top, name), folder=False)
         )
-    return sorted(f for f in files if f.is_file())
+    return sorted(f for f in files if os.path.isfile(f))

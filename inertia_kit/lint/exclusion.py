@@ -19,7 +19,7 @@ holding ``COLCON_IGNORE``, ``AMENT_IGNORE`` or ``CATKIN_IGNORE`` is skipped, as 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -97,7 +97,7 @@ class Exclusion:
         holding an :data:`IGNORE_MARKERS` file too (the walk sees those in the folder's names).
         """
         path = Path(path)
-        if markers and folder and any((path / marker).is_file() for marker in IGNORE_MARKERS):
+        if markers and folder and any(os.path.isfile(path / marker) for marker in IGNORE_MARKERS):
             return True
         if self.defaults and folder and _default_excluded(path):
             return True
@@ -115,7 +115,7 @@ class Exclusion:
             return False
         absolute = Path(os.path.abspath(path))
         rules = Exclusion(self.defaults, self.patterns, respect_gitignore=False)
-        if rules.excluded(absolute, absolute.is_dir()):
+        if rules.excluded(absolute, os.path.isdir(absolute)):
             return True
         here = Path(os.getcwd())
         return any(
@@ -131,8 +131,8 @@ def _default_excluded(folder: Path) -> bool:
         return True
     if name not in _WORKSPACE_OUTPUT:
         return False
-    return (folder.parent / "src").is_dir() or any(
-        (folder / mark).exists() for mark in _COLCON_WRITES
+    return os.path.isdir(folder.parent / "src") or any(
+        os.path.exists(folder / mark) for mark in _COLCON_WRITES
     )
 
 
@@ -180,6 +180,7 @@ class GitIgnores:
     def __init__(self) -> None:
         self._roots: dict[Path, Path | None] = {}
         self._specs: dict[Path, Any] = {}
+        self._layers_of: dict[Path, tuple[tuple[Path, Any], ...]] = {}
 
     def ignored(self, path: Path, folder: bool) -> bool:
         absolute = Path(os.path.abspath(path))
@@ -188,26 +189,49 @@ class GitIgnores:
             return False
         verdict = None
         for base, spec in self._layers(root, absolute.parent):
-            if spec is None:
-                continue
             relative = absolute.relative_to(base).as_posix() + ("/" if folder else "")
             verdict = _last_match(spec, relative, verdict)
         return bool(verdict)
 
     def _root(self, folder: Path) -> Path | None:
-        if folder not in self._roots:
-            if (folder / ".git").exists():
-                self._roots[folder] = folder
+        # upward without recursion, each folder met remembered: a walk of a folder thousands
+        # deep asks once per folder (a recursion was a RecursionError at a depth of 1000)
+        chain = []
+        here = folder
+        while here not in self._roots:
+            if os.path.exists(here / ".git"):
+                self._roots[here] = here
+            elif here.parent == here:
+                self._roots[here] = None
             else:
-                parent = folder.parent
-                self._roots[folder] = None if parent == folder else self._root(parent)
-        return self._roots[folder]
+                chain.append(here)
+                here = here.parent
+        for each in chain:
+            self._roots[each] = self._roots[here]
+        return self._roots[here]
 
-    def _layers(self, root: Path, folder: Path) -> Iterable[tuple[Path, Any]]:
-        exclude = root / ".git" / "info" / "exclude"
-        yield root, self._read(exclude, in_tree=False)
-        for each in (*reversed(folder.relative_to(root).parents), folder.relative_to(root)):
-            yield root / each, self._read(root / each / ".gitignore", in_tree=True)
+    def _layers(self, root: Path, folder: Path) -> tuple[tuple[Path, Any], ...]:
+        """
+        The ignore files that apply in ``folder`` (below ``root``), from the top: each folder's
+        list is its parent's and its own ``.gitignore``, made once, so that a walk's cost is
+        linear in its folders, not in their depth times their number.
+        """
+        chain = []
+        here = folder
+        while here not in self._layers_of and here != root:
+            chain.append(here)
+            here = here.parent
+        if here not in self._layers_of:  # the root: .git/info/exclude, then its .gitignore
+            found = ((root, self._read(root / ".git" / "info" / "exclude", in_tree=False)),)
+            found += ((root, self._read(root / ".gitignore", in_tree=True)),)
+            self._layers_of[root] = tuple(layer for layer in found if layer[1] is not None)
+        layers = self._layers_of[here]
+        for each in reversed(chain):
+            spec = self._read(each / ".gitignore", in_tree=True)
+            if spec is not None:
+                layers = (*layers, (each, spec))
+            self._layers_of[each] = layers
+        return layers
 
     def _read(self, file: Path, in_tree: bool) -> Any:
         """

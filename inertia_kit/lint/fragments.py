@@ -92,13 +92,13 @@ def repository_root(file: str | Path) -> tuple[Path, str]:
 
     folder = Path(os.path.abspath(file)).parent
     for candidate in (folder, *folder.parents):
-        if (candidate / ".git").exists():
+        if os.path.exists(candidate / ".git"):
             return candidate, "the git top level"
     config = find_config(folder)
     if config is not None:
         return config.parent, f"the folder of {config.name}"
     for candidate in (folder, *folder.parents):
-        if (candidate / "package.xml").is_file():
+        if os.path.isfile(candidate / "package.xml"):
             return candidate, "the package root"
     return folder, "the file's folder (no git repository, configuration or package.xml)"
 

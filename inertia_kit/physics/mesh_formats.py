@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import threading
 from collections.abc import Iterator
 from pathlib import Path
@@ -116,8 +117,9 @@ def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
 def _readable(path: str | Path) -> tuple[Path, str]:
     """The file and its lower-case suffix; ``MeshError`` when it is missing or not a mesh."""
     file = Path(path)
-    if not file.is_file():
-        what = "is a directory, not a mesh file" if file.is_dir() else "does not exist"
+    # os.path: False in a folder that may not be searched, where Path.is_file raises
+    if not os.path.isfile(file):
+        what = "is a directory, not a mesh file" if os.path.isdir(file) else "does not exist"
         raise MeshError(
             path, "not-found", f"the mesh file {what}; check the path and the package it names"
         )

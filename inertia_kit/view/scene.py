@@ -11,6 +11,7 @@ analyse it (:func:`~inertia_kit.analysis.links.analyse`).
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -64,7 +65,7 @@ def build_scene(
     from inertia_kit.lint.paths import lint_paths
 
     file = Path(path)
-    if file.is_dir():
+    if os.path.isdir(file):
         raise InputError("is a folder: give one robot file (.urdf or .xacro)", file)
     if triangle_budget < 1:
         raise ConfigError(

@@ -351,3 +351,34 @@ def test_without_following_links_the_name_itself_is_replaced(tmp_path):
     edits.write_atomic(link, b"{}", create=True, follow_symlinks=False)
     assert target.read_bytes() == b"#!/bin/sh\n"
     assert not link.is_symlink() and link.read_bytes() == b"{}"
+
+
+def test_read_source_decodes_as_the_parser_an_encoding_libxml2_does_not_know(tmp_path):
+    """
+    ``encoding="cp500"`` (EBCDIC) on UTF-8 bytes: the parser reads them as UTF-8 and tells
+    lines of that text; decoded as cp500 the file had one line (fuzz input 119).
+    """
+    path = tmp_path / "r.urdf"
+    path.write_bytes(
+        '<?xml version="1.0" encoding="cp500"?>\n<robot name="é">\n</robot>\n'.encode()
+    )
+    source = read_source(path)
+    assert (source.encoding, source.text[source.offset(2, 1)]) == ("utf-8", "<")
+    assert source.encode(source.text) == path.read_bytes()
+
+
+def test_a_robot_declaring_an_encoding_libxml2_does_not_know_is_linted(tmp_path):
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import main
+
+    path = tmp_path / "r.urdf"
+    path.write_bytes(
+        b'<?xml version="1.0" encoding="cp500"?>\n<robot>\n  <link>\n  </link>\n'
+        b'  <link name="l1">\n    <inertial><mass value="-nan"/><inertia/></inertial>\n'
+        b'    <collision><geometry><box size="0.2 0.4 0.5"/></geometry></collision>\n'
+        b"  </link>\n  <joint>\n  </joint>\n</robot>\n"
+    )
+    result = CliRunner().invoke(main, ["lint", "--engine", "mujoco", str(path)])
+    assert result.exit_code == 1, result.output
+    assert "internal error" not in result.output

@@ -113,3 +113,8 @@ def test_the_child_leaves_the_parents_objects_out_of_its_collections():
     before = gc.get_freeze_count()
     assert run(gc.get_freeze_count) > before
     assert gc.get_freeze_count() == before
+
+
+def test_limits_too_large_to_wait_or_set_are_no_error():
+    """``timeout = 1e9`` in [tool.inertia-kit.xacro]: poll takes no such wait (fuzz input 156)."""
+    assert run(lambda: "done", timeout=1e12, memory_mb=1 << 60) == "done"

@@ -6,15 +6,36 @@ The shared test kit: where the repository is, and the builders the tests share.
 - ``kit.moments``: mass and moments of solid boxes, cylinders and spheres, from closed forms.
 - ``kit.meshes``: triangles of a box, and the STL and OBJ files written from triangles.
 
-``write`` puts any of them in a file.
+``write`` puts any of them in a file; ``remove_tree`` removes a folder however deep.
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent.parent
 EXAMPLES = REPO / "examples"
+
+
+def remove_tree(path: Path) -> None:
+    """
+    ``path`` and all below it, without recursion (shutil.rmtree recurses: a folder 1000 deep is
+    a RecursionError), unreadable folders included.
+    """
+    stack = [(os.fspath(path), False)]
+    while stack:
+        here, emptied = stack.pop()
+        if os.path.islink(here) or not os.path.isdir(here):
+            if os.path.lexists(here):
+                os.unlink(here)
+        elif emptied:
+            os.rmdir(here)
+        else:
+            os.chmod(here, 0o700)
+            stack.append((here, True))
+            with os.scandir(here) as entries:
+                stack.extend((entry.path, False) for entry in entries)
 
 
 def write(path: Path, content: str | bytes) -> Path:

@@ -74,3 +74,18 @@ def test_bad_toml_and_missing_or_misplaced_tables(tmp_path):
     latin.write_bytes(b'select = ["\xe9"]\n')
     with pytest.raises(ConfigError, match="not UTF-8"):
         load_config(latin)
+
+
+def test_a_folder_that_may_not_be_searched_holds_no_configuration(tmp_path):
+    """The nearest readable one applies (Path.is_file raised there: fuzz input 72)."""
+    from kit.permissions import obeying_permissions
+
+    write(tmp_path / ".inertia-kit.toml", "ignore = ['IN025']\n")
+    hidden = tmp_path / "hidden"
+    write(hidden / ".inertia-kit.toml", "ignore = ['IN020']\n")
+    hidden.chmod(0)
+    try:
+        found = obeying_permissions(lambda: find_config(hidden))
+    finally:
+        hidden.chmod(0o755)
+    assert found == tmp_path / ".inertia-kit.toml"

@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+from kit import remove_tree
+
 from inertia_kit.lint.discovery import ROBOT_FILE, Discovery, expand_paths
 
 REPO = Path(__file__).resolve().parents[2]
@@ -74,3 +76,43 @@ def test_patterns_outside_their_base_match_names_only(tmp_path, monkeypatch):
 def test_a_stand_in_for_stdin_is_never_walked(tmp_path):
     _files(tmp_path, ".inertia-kit-stdin-0a1b2c3d-robot.urdf", "robot.urdf")
     assert _found(tmp_path) == ["robot.urdf"]
+
+
+def test_a_file_in_a_folder_that_may_not_be_searched_is_given_as_it_is(tmp_path):
+    """
+    Path.is_dir raises on it (EACCES) where os.path.isdir says no: the file is given on, and
+    reading it says why it cannot be read (it was an internal error: fuzz input 61).
+    """
+    from kit.permissions import obeying_permissions
+
+    folder = tmp_path / "urdf"
+    folder.mkdir()
+    (folder / "robot.urdf").write_text("<robot/>")
+    (tmp_path / "pyproject.toml").write_text("[tool.inertia-kit]\nignore = ['IN025']\n")
+    folder.chmod(0o444)  # its names can be listed, not looked at
+    try:
+        given = obeying_permissions(lambda: list(expand_paths([folder / "robot.urdf"])))
+    finally:
+        folder.chmod(0o755)
+    assert given == [folder / "robot.urdf"]
+
+
+def test_a_folder_a_thousand_deep_is_walked_with_its_ignore_files(tmp_path):
+    """
+    Python 3.11's os.walk recursed (a RecursionError at a depth of 1000: an internal error),
+    and each file's ignore files were looked up through all its folders (a 600-deep folder took
+    40 s); a .gitignore half way down still applies below it.
+    """
+    (tmp_path / ".git").mkdir()
+    deep = tmp_path
+    for depth in range(1100):
+        deep = deep / "a"
+        deep.mkdir()
+        if depth == 550:
+            (deep / ".gitignore").write_text("skipped.urdf\n")
+    for name in ("kept.urdf", "skipped.urdf"):
+        (deep / name).write_text("<robot/>")
+    try:
+        assert [path.name for path in expand_paths([tmp_path])] == ["kept.urdf"]
+    finally:
+        remove_tree(tmp_path / "a")  # pytest's clean-up recurses

@@ -99,9 +99,12 @@ def _suite(path: str, cases: list[ET.Element]) -> ET.Element:
 
 
 def _case(name: str, path: str, line: int | None = None, column: int | None = None) -> ET.Element:
-    # classname: the path without its suffixes, as ruff's (robots/arm.urdf.xacro -> robots/arm)
+    # classname: the path without its suffixes, as ruff's (robots/arm.urdf.xacro -> robots/arm);
+    # a hidden file keeps its leading dots (robots/.arm.urdf -> robots/.arm)
     pure = PurePath(path)
-    classname = pure.with_name(pure.name.split(".")[0]).as_posix() if pure.name else path
+    hidden = len(pure.name) - len(pure.name.lstrip("."))
+    stem = pure.name[:hidden] + pure.name[hidden:].split(".")[0]
+    classname = pure.with_name(stem).as_posix() if stem.strip(".") else path
     case = ET.Element("testcase", name=name, classname=classname, file=path)
     if line is not None:
         case.set("line", str(line))

@@ -2,9 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from click.testing import CliRunner
 from kit.junit import valid
 from output_kit import NO_FINDINGS, NOTE, SUMMARY, lint, no_findings
 
+from inertia_kit.cli import main
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.output import render
 
@@ -88,3 +92,23 @@ def test_junit_escapes_markup_and_shows_what_xml_cannot_hold():
     # XML 1.0 cannot hold U+0001, even as a reference: shown as its escape
     assert case[0].get("message") == 'x <y> "z"\\x01 &'
     assert case[0].text == 'line 3, x <y> "z"\\x01 &'
+
+
+def test_junit_names_the_class_of_a_hidden_file_by_its_dotted_stem():
+    """A file whose name starts with a dot (and ``-``'s stand-in) is a class, not a crash."""
+    findings = [
+        Finding(path, 3, 1, "IN097", "n", Severity.ERROR, "m")
+        for path in ("robots/.arm.urdf", ".cart.urdf.xacro", "..urdf")
+    ]
+    root = valid(render(findings, "junit"))
+    classes = [suite[0].get("classname") for suite in root]
+    assert classes == ["..urdf", ".cart", "robots/.arm"]
+
+
+def test_junit_reads_a_robot_from_stdin(robots, monkeypatch):
+    """The stand-in of ``-`` is a hidden file beside the one it stands for (fuzz input 11)."""
+    robot = (Path("robots") / "arm.urdf").read_bytes()
+    runner = CliRunner()
+    result = runner.invoke(main, ["lint", "--output-format", "junit", "-"], input=robot)
+    assert result.exit_code in (0, 1) and "internal error" not in result.output
+    valid(result.stdout)
