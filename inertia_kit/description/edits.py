@@ -98,7 +98,9 @@ def decode_source(original: bytes, path: str | Path) -> SourceText:
     """``original``, the bytes of the file ``path``, as text to edit (see :func:`read_source`)."""
     bom = b""
     encoding = "utf-8"
-    for mark, name in (
+    for mark, name in (  # UTF-32's marks first: UTF-32-LE's begins with UTF-16-LE's
+        (codecs.BOM_UTF32_LE, "utf-32-le"),
+        (codecs.BOM_UTF32_BE, "utf-32-be"),
         (codecs.BOM_UTF8, "utf-8"),
         (codecs.BOM_UTF16_LE, "utf-16-le"),
         (codecs.BOM_UTF16_BE, "utf-16-be"),

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.output.common import UNLINTED, location, message, unlinted_name
+from inertia_kit.printable import UNPRINTABLE, escape
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
@@ -21,8 +23,22 @@ def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalEr
 
 
 def _escape_data(text: str) -> str:
-    """A workflow command's message (GitHub's ``escapeData``)."""
-    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    """
+    A workflow command's message (GitHub's ``escapeData``). CR and LF are GitHub's to escape
+    (the annotation shows them as line breaks); every other character that could break or
+    disguise the log line (ESC, C1 controls, U+2028, bidirectional controls) is shown as its
+    escape, as in the text formats: GitHub would write it raw into the log (where a colour
+    code can hide text).
+    """
+    shown = UNPRINTABLE.sub(_shown, text)
+    return shown.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def _shown(match: re.Match[str]) -> str:
+    char = match.group()
+    # a lone surrogate is a byte of a file name that is no UTF-8: written as that byte (as the
+    # runner reads the file's name), where it disguises nothing
+    return char if char in "\r\n" or "\ud800" <= char <= "\udfff" else escape(char)
 
 
 def _escape_property(text: str) -> str:
