@@ -382,3 +382,16 @@ def test_a_robot_declaring_an_encoding_libxml2_does_not_know_is_linted(tmp_path)
     result = CliRunner().invoke(main, ["lint", "--engine", "mujoco", str(path)])
     assert result.exit_code == 1, result.output
     assert "internal error" not in result.output
+
+
+@pytest.mark.parametrize("codec", ["utf-32-le", "utf-32-be"])
+def test_read_source_reads_utf32_by_its_own_mark(tmp_path, codec):
+    """UTF-32-LE's mark begins with UTF-16-LE's: read as UTF-16 the offsets were of another text
+    (an internal error for a fix on such a file; fuzz input 56 of seed ci)."""
+    mark = codecs.BOM_UTF32_LE if codec.endswith("le") else codecs.BOM_UTF32_BE
+    path = tmp_path / "r.urdf"
+    path.write_bytes(mark + '<?xml version="1.0"?>\n<robot name="é"/>\n'.encode(codec))
+    source = read_source(path)
+    assert (source.encoding, source.bom) == (codec, mark)
+    assert source.text[source.offset(2, 1)] == "<"
+    assert source.encode(source.text) == path.read_bytes()
