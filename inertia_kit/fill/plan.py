@@ -13,6 +13,7 @@ perhaps a macro body or a macro call), and the links refused with their reasons.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -232,6 +233,7 @@ def plan_robot(
     from inertia_kit.fixes.files import key
     from inertia_kit.fixes.sites import Files
     from inertia_kit.lint.fixing import robot_fixes
+    from inertia_kit.lint.stand_in import is_stand_in
 
     names = frozenset(link.name for link in robot.links)
     if robot.fragment:
@@ -243,7 +245,9 @@ def plan_robot(
             input_path=input_path,
         )
     analysis = analyse(robot)
-    files = Files.for_input(source.path, dict(robot.reads))
+    files = Files.for_input(
+        source.path, dict(robot.reads), only_itself=is_stand_in(os.path.basename(source.path))
+    )
     files.add(source)
     fixes = robot_fixes(
         analysis,

@@ -37,25 +37,42 @@ class Files:
     sources: dict[str, SourceText] = field(default_factory=dict)
     # what the load read (description.reads): a file is edited only as the load read it
     reads: Mapping[str, str | None] = field(default_factory=dict)
+    # the one file edits may touch, if only one: a robot read from stdin, whose fixed text is
+    # printed (no other file is written, as a formatter reading stdin writes none)
+    only: Path | None = None
     _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
     _positions: dict[int, tuple[str, int, int]] = field(default_factory=dict)  # id -> where
 
     @classmethod
-    def for_input(cls, path: str | Path, reads: Mapping[str, str | None] | None = None) -> Files:
-        """The files a fix of the robot ``path`` may edit; ``reads``: what its load read."""
+    def for_input(
+        cls,
+        path: str | Path,
+        reads: Mapping[str, str | None] | None = None,
+        *,
+        only_itself: bool = False,
+    ) -> Files:
+        """The files a fix of the robot ``path`` may edit; ``reads``: what its load read;
+        ``only_itself``: ``path`` alone (a robot read from stdin)."""
         path = Path(path).resolve()
         reads = {} if reads is None else reads
+        only = path if only_itself else None
         for folder in path.parents:
             if os.path.isfile(folder / "package.xml"):
-                return cls(folder, reads=reads)
-        return cls(path.parent, reads=reads)
+                return cls(folder, reads=reads, only=only)
+        return cls(path.parent, reads=reads, only=only)
 
     def editable(self, path: str) -> bool:
-        """Whether ``path`` is inside ``root``; a symbolic link by the file it points to."""
-        return Path(path).resolve().is_relative_to(self.root)
+        """Whether ``path`` is inside ``root`` (a symbolic link by the file it points to), and
+        is the one file of :attr:`only` when there is one."""
+        resolved = Path(path).resolve()
+        if self.only is not None:
+            return resolved == self.only
+        return resolved.is_relative_to(self.root)
 
     def outside(self, path: str) -> str:
         """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target)."""
+        if self.only is not None:
+            return "not the robot read from stdin (only its text is fixed and printed)"
         if os.path.islink(path):
             return f"outside {self.root} (it is a symbolic link to {Path(path).resolve()})"
         return f"outside {self.root}"

@@ -289,8 +289,11 @@ def _with_fixes(
     """
     from inertia_kit.fixes.files import Files
     from inertia_kit.lint.fixing import attach, plan_fixes
+    from inertia_kit.lint.stand_in import is_stand_in
 
-    files = Files.for_input(path, dict(analysis.robot.reads))
+    files = Files.for_input(
+        path, dict(analysis.robot.reads), only_itself=is_stand_in(os.path.basename(path))
+    )
     try:
         files.source(str(path))
     except ChangedWhileEditing:

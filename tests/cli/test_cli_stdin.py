@@ -131,6 +131,31 @@ def test_inertia_fill_prints_the_filled_text(here):
     assert left_behind(here) == []
 
 
+@pytest.mark.parametrize(
+    ("command", "args"),
+    [(fill_main, ("--fix", "all")), (lint_main, ("--fix", "--unsafe-fixes"))],
+    ids=["fill", "lint --fix"],
+)
+def test_fixes_of_the_robot_read_from_stdin_write_no_other_file(here, command, args):
+    """A fix landing in a file the robot includes is not written (the fixed text alone is
+    printed, as a formatter reading stdin writes nothing), and says why (fuzz run)."""
+    xacro = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    part = here / "pkg" / "urdf" / "arm.xacro"
+    arm = link("arm", inertial(-1, 0.01), collision(box(0.1, 0.1, 0.4)))
+    part.write_text(f"<robot {xacro}>{arm}</robot>")
+    top = (
+        f'<robot name="r" {xacro}><xacro:include filename="arm.xacro"/>{link("world")}'
+        f"{joint('world', 'arm')}</robot>"
+    )
+    before = part.read_bytes()
+    result = run(command, top, *args, "--stdin-filename", "pkg/urdf/r.xacro")
+    assert result.exit_code == 1, result.output
+    assert part.read_bytes() == before
+    assert result.stdout_bytes == top.encode()  # nothing of the robot read could take the fix
+    assert "not the robot read from stdin" in result.stderr or "arm.xacro" in result.stderr
+    assert left_behind(here) == []
+
+
 def test_force_exclude_of_the_stdin_filename(here):
     args = ("--force-exclude", "--extend-exclude", "pkg", "--stdin-filename", "pkg/urdf/r.urdf")
     linted = run(lint_main, NEGATIVE_MASS_ARM, *args)
