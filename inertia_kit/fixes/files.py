@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from inertia_kit.errors import InputError
+
 if TYPE_CHECKING:
     from lxml import etree
 
@@ -118,8 +120,13 @@ class Files:
         resolved = str(Path(where.path).resolve())
         if resolved not in self._elements:
             source = self.source(where.path)
-            tree = parse_xml(source.original, where.path)
-            positions = start_tag_positions(source.original, tree) or {}
+            try:
+                tree = parse_xml(source.original, where.path)
+            except InputError:
+                # xacro's parser read it, libxml2 does not (an encoding declared that the bytes
+                # are not): its elements cannot be found, so no fix is placed in it
+                tree = None
+            positions = {} if tree is None else start_tag_positions(source.original, tree) or {}
             self._elements[resolved] = {position: e for e, position in positions.items()}
             for element, (line, column) in positions.items():
                 self._positions[id(element)] = (where.path, line, column)
