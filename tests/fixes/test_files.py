@@ -33,4 +33,4 @@ def test_a_file_libxml2_cannot_parse_gets_no_fix_and_no_internal_error(tmp_path)
         assert result.exit_code == 1, (args, result.output)
     # fill reads the file it writes as declared, and says it cannot
     filled = CliRunner().invoke(main, ["fill", str(path)])
-    assert filled.exit_code == 2 and "cannot decode as utf-16-le" in filled.output
+    assert filled.exit_code == 2 and "cannot decode as utf-16le" in filled.output
