@@ -20,8 +20,9 @@ XACRO_DECLARING_ANOTHER_ENCODING = """<?xml version="1.0" encoding="utf-16le"?>
     </link>
   </xacro:macro>
   <link name="$(arg prefix)base"/>
-  <xacro:box_link name="$(arg prefix)l1" mass="2.5" size="0.1"><origin xyz="0 0 ${0.1/2}"/></xacro:box_link>
-  <xacro:macro name="wrap" params="**body"><xacro:insert_block name="body"/></xacro:macro><xacro:wrap><body><link name="wrapped"/></body></xacro:wrap>
+  <xacro:box_link name="$(arg prefix)l1" mass="2.5" size="0.1">
+    <origin xyz="0 0 ${0.1/2}"/>
+  </xacro:box_link>
 </robot>
 """
 
