@@ -7,24 +7,29 @@ from click.testing import CliRunner
 from inertia_kit.cli import main
 
 #: xacro's parser reads these bytes (UTF-8), libxml2 honours the declaration and cannot
-XACRO_DECLARING_ANOTHER_ENCODING = """<?xml version="1.0" encoding="utf-16le"?>
-<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:arg name="prefix" default=""/>
-  <xacro:property name="pi2"/>
-  <xacro:macro name="box_link" params="name mass:=1 size:=0.1 *origin">
-    <link name="${name}">
-      <inertial><xacro:insert_block name="origin"/><mass/>
-        <inertia/>
-      </inertial>
-      <collision><geometry><box size="${size} ${size} ${size}"/></geometry></collision>
-    </link>
-  </xacro:macro>
-  <link name="$(arg prefix)base"/>
-  <xacro:box_link name="$(arg prefix)l1" mass="2.5" size="0.1">
-    <origin xyz="0 0 ${0.1/2}"/>
-  </xacro:box_link>
-</robot>
-"""
+# the fuzz reproducer's bytes as they were (libxml2's error depends on their number)
+XACRO_DECLARING_ANOTHER_ENCODING = (
+    '<?xml version="1.0" encoding="utf-16le"?>\n'
+    '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    '  <xacro:arg name="prefix" default=""/>\n'
+    '  <xacro:property name="pi2"/>\n'
+    '  <xacro:macro name="box_link" params="name mass:=1 size:=0.1 *origin">\n'
+    '    <link name="${name}">\n'
+    '      <inertial><xacro:insert_block name="origin"/><mass/>\n'
+    "        <inertia/>\n"
+    "      </inertial>\n"
+    '      <collision><geometry><box size="${size} ${size}'
+    ' ${size}"/></geometry></collision>\n'
+    "    </link>\n"
+    "  </xacro:macro>\n"
+    '  <link name="$(arg prefix)base"/>\n'
+    '  <xacro:box_link name="$(arg prefix)l1" mass="2.5" size="0.1"><origin xyz="0 0'
+    ' ${0.1/2}"/></xacro:box_link>\n'
+    '  <xacro:macro name="wrap" params="**body"><xacro:insert_block'
+    ' name="body"/></xacro:macro><xacro:wrap><body><link'
+    ' name="wrapped"/></body></xacro:wrap>\n'
+    "</robot>\n"
+)
 
 
 def test_a_file_libxml2_cannot_parse_gets_no_fix_and_no_internal_error(tmp_path):
