@@ -226,10 +226,20 @@ def test_urdf_declaring_an_unknown_encoding_is_read_as_tinyxml2_reads_it(tmp_pat
     path = write(tmp_path / "robot.urdf", text)
     result = CliRunner().invoke(lint_main, ["--select", "IN002", str(path)])
     assert result.exit_code == 0, result.output
-    # fill edits the text in its own encoding, which it cannot know: refused, naming the file
-    result = CliRunner().invoke(fill_main, ["--fix", "all", str(path)])
-    assert result.exit_code == 2
-    assert f"error: {path}: cannot decode as no-such-encoding" in result.stderr
+    # fill edits the text as the parser read it (UTF-8, the declaration ignored): the bytes
+    # outside the edit, the declaration and the non-ASCII comment kept
+    arm = text[text.index('  <link name="arm">') : text.index("</link>\n  <joint") + 8]
+    box = '<geometry><box size="0.1 0.2 0.3"/></geometry>'
+    bare = f'  <link name="arm"><collision>{box}</collision></link>\n'
+    original = text.replace("<!-- arm -->", "<!-- ärm -->").replace(arm, bare).encode("utf-8")
+    path.write_bytes(original)
+    result = CliRunner().invoke(fill_main, ["--density", "1000", str(path)])
+    assert result.exit_code == 1 and "Filled 1 link" in result.output, result.output
+    written = path.read_bytes()
+    head, tail = original.split(bare.encode())
+    assert written.startswith(head) and written.endswith(tail)
+    assert b'<mass value="6"/>' in written
+    written.decode("utf-8")
 
 
 def test_a_sphere_at_the_edge_of_float32_no_warning(tmp_path):

@@ -67,9 +67,18 @@ def test_every_command_is_linear_in_the_links(tmp_path, monkeypatch, kind, shape
     lint_in_process(monkeypatch)
     make = urdf if kind == "urdf" else xacro
     command, arguments = COMMANDS[name]
-    spent = {}
-    for links in (1000, 5000):
-        robot = write(tmp_path / f"{shape}{links}.{kind}", make(links, shape))
-        spent[links] = run(command, arguments, robot, tmp_path)
+    texts = {links: make(links, shape) for links in (1000, 5000)}
+
+    def measure() -> dict[int, float]:  # each run on a fresh copy: --fix and fill write theirs
+        robots = {n: write(tmp_path / f"{shape}{n}.{kind}", text) for n, text in texts.items()}
+        return {n: run(command, arguments, robot, tmp_path) for n, robot in robots.items()}
+
+    spent = measure()
     assert spent[5000] < BOUND, spent
+    if spent[5000] / spent[1000] >= RATIO:
+        # measured again, the lesser time of each size kept: a neighbour on the machine (the
+        # other pytest-xdist worker) once made one 5000-link run take 30 % longer; a quadratic
+        # step is as slow the second time
+        again = measure()
+        spent = {n: min(spent[n], again[n]) for n in spent}
     assert spent[5000] / spent[1000] < RATIO, spent
