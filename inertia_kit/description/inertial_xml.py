@@ -48,6 +48,21 @@ def inertial_values(
     return values
 
 
+def exact_values(properties: MassProperties, rpy: ArrayLike = (0.0, 0.0, 0.0)) -> dict[str, float]:
+    """
+    The mass and the six tensor entries :func:`inertial_values` writes for ``properties`` with
+    ``<origin rpy>`` = ``rpy``, before they are rounded to text.
+    """
+    from inertia_kit.physics.frames import rpy_matrix
+
+    rotation = rpy_matrix(rpy)
+    tensor = rotation.T @ properties.cleaned().inertia @ rotation
+    values = {"mass": float(properties.mass)}
+    for name, (i, j) in TENSOR.items():
+        values[name] = float(tensor[i, j])
+    return values
+
+
 def as_written(properties: MassProperties, digits: int = DIGITS) -> MassProperties:
     """
     ``properties`` as a file holds them once written, and as the next run reads them back: the

@@ -64,6 +64,8 @@ class Decision:
 def decide(target: Target) -> Decision | None:
     """The axes that change the fewest values: the ``<inertial>``'s own, else (a link of one
     turned shape) the shape's; ``None`` for a link without an ``<inertial>``."""
+    from inertia_kit.description.inertial_xml import exact_values
+
     inertial = target.link.link.inertial
     if inertial is None:
         return None
@@ -78,7 +80,7 @@ def decide(target: Target) -> Decision | None:
     best: Decision | None = None
     for rpy, shape in candidates:
         texts = new_texts(target.properties, rpy)
-        changed = tuple(differing(inertial, texts))
+        changed = tuple(differing(inertial, texts, exact_values(target.properties, rpy)))
         copied = {}
         if shape is not None:
             copied["rpy"] = shape

@@ -9,6 +9,8 @@ again, is ``0.0191441``: left alone, so a second run finds nothing to do.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -57,11 +59,17 @@ def declared_texts(inertial: Inertial) -> dict[str, str | None]:
     return texts
 
 
-def differing(inertial: Inertial, new: dict[str, str]) -> list[str]:
+def differing(
+    inertial: Inertial, new: dict[str, str], exact: Mapping[str, float] | None = None
+) -> list[str]:
     """
     The names of the values whose text would change. A product of inertia within rounding
     noise of zero (:data:`~inertia_kit.description.inertial_xml.PRODUCT_FLOOR` of the largest
-    moment to be written) is the zero that would be written, whatever digits it has.
+    moment to be written) is the zero that would be written, whatever digits it has. With
+    ``exact``, the new values before rounding: a declared value that is one of the two
+    roundings of a new value lying on the midpoint between them (within float noise) is kept,
+    whichever way this run's arithmetic rounds it (the run that wrote it computed the tie
+    along another path, and rounded it the other way).
     """
     from inertia_kit.description.inertial_xml import PRODUCT_FLOOR
 
@@ -74,6 +82,8 @@ def differing(inertial: Inertial, new: dict[str, str]) -> list[str]:
         if old[name] == new[name]:
             continue
         value = getattr(inertial, name, None)
+        if exact is not None and name in exact and _rounds_to(value, exact[name]):
+            continue
         if (
             name in ("ixy", "ixz", "iyz")
             and new[name] == "0"
@@ -83,6 +93,16 @@ def differing(inertial: Inertial, new: dict[str, str]) -> list[str]:
             continue
         changed.append(name)
     return changed
+
+
+def _rounds_to(declared, exact: float) -> bool:
+    """Whether ``declared`` is ``exact`` rounded to DIGITS digits, either way on a tie."""
+    from inertia_kit.description.inertial_xml import DIGITS
+
+    if not isinstance(declared, float) or not math.isfinite(exact) or exact == 0:
+        return False
+    unit = 10.0 ** (math.floor(math.log10(abs(exact))) - DIGITS + 1)
+    return abs(declared - exact) <= 0.5 * unit * (1 + 1e-6)
 
 
 def same_vector(text: str, values) -> bool:
