@@ -271,3 +271,13 @@ def test_a_floating_child_with_a_vanishing_moment_under_every_engine(tmp_path, t
         result = lint(path, "--engine", engine, "--output-format", "json")
         assert result.exit_code == 1, result.output
         assert only(result, "IN004")  # the value itself
+
+
+@pytest.mark.parametrize(("rule", "option"), [("IN020", "factor_below"), ("IN073", "factor")])
+def test_a_factor_below_one_is_refused_naming_the_key(tmp_path, rule, option):
+    """factor_below = 0 divided by zero (an internal error; found by the fuzz run)."""
+    write(tmp_path / "pyproject.toml", f"[tool.inertia-kit.rules.{rule}]\n{option} = 0.0\n")
+    path = write(tmp_path / "robot.urdf", moving(inertial(1, 0.01), visual(box(1, 1, 1))))
+    result = CliRunner().invoke(lint_main, [str(path)])
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    assert f"rules.{rule}.{option}`: expected a number from 1 up, got 0.0" in result.stderr
