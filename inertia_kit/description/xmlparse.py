@@ -226,14 +226,20 @@ def start_tag_positions(
         return None
     lines = line_starts(data)
     positions: dict[etree._Element, tuple[int, int]] = {}
+    # columns counted on from the previous element of the same line: a minified robot on one
+    # line decoded from its start for each element was quadratic
+    last_line, last_offset, last_column = 0, 0, 1
     for offset, element in zip(starts, elements, strict=True):
         name = _qualified_name(element)
         if not data.startswith(b"<" + name, offset):
             return None
         line = line_of(lines, offset)
-        begin = lines[line - 1] if line > 1 else len(_BOM) * data.startswith(_BOM)
-        column = len(data[begin:offset].decode(encoding, "replace")) + 1
-        positions[element] = (line, column)
+        if line != last_line:
+            last_line, last_column = line, 1
+            last_offset = lines[line - 1] if line > 1 else len(_BOM) * data.startswith(_BOM)
+        last_column += len(data[last_offset:offset].decode(encoding, "replace"))
+        last_offset = offset
+        positions[element] = (line, last_column)
     return positions
 
 
