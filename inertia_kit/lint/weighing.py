@@ -11,7 +11,8 @@ error and says the share:
 - to a warning: the values are wrong, but cannot make the robot misbehave (Unitree Go1's 1e-5 kg
   camera frames with a 1e-6 kg·m² tensor on a 5.2 kg trunk);
 - to info when the link adds nothing at all (``<mass value="0"/>`` with a zero tensor on a fixed
-  frame): every engine loads it as it loads a link without ``<inertial>``, which no rule flags.
+  frame): every engine loads it as it loads a link without ``<inertial>``, which no rule flags;
+  it offers no fix then (``inertia-fill --fix invalid`` would give the frame its geometry's mass).
 
 A configured severity always wins; warnings are left as they are.
 """
@@ -32,7 +33,8 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
     found = share(robot, finding.link)
     if found is None or not found.negligible:
         return finding
-    level = Severity.INFO if found.massless else Severity.WARNING
-    return dataclasses.replace(
-        finding, severity=level, message=f"{finding.message}; {found.text()}"
-    )
+    message = f"{finding.message}; {found.text()}"
+    if found.massless:
+        # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
+        return dataclasses.replace(finding, severity=Severity.INFO, message=message, wants=None)
+    return dataclasses.replace(finding, severity=Severity.WARNING, message=message)

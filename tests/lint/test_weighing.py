@@ -124,3 +124,22 @@ def test_the_trunk_itself_is_not_lowered_by_the_frames_it_carries(lint):
         link("camera", inertial(1e-5, 1e-8)),
     )
     assert on(lint(wrong, "IN023"), "trunk")["IN023"].severity is Severity.ERROR
+
+
+def test_a_massless_frame_is_left_as_it_is_by_fill(tmp_path):
+    # a massless collision shell welded to the trunk (Unitree A1's `FL_thigh_shoulder`):
+    # inertia-fill --fix invalid gave it the 0.17 kg of its cylinder while IN002 was an error
+    from click.testing import CliRunner
+
+    from inertia_kit.cli.fill import fill_command
+
+    shell = inertial(0, 0) + collision(box(0.05, 0.05, 0.05))
+    path = tmp_path / "robot.urdf"
+    path.write_text(trunk_with(("shell", shell, "fixed")))
+    before = path.read_bytes()
+    result = CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)])
+    assert result.exit_code == 0, result.output
+    assert path.read_bytes() == before
+    # the same shell on a moving joint needs its mass
+    path.write_text(trunk_with(("shell", shell, "revolute")))
+    assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 1
