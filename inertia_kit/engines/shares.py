@@ -138,12 +138,15 @@ def share(robot: RobotAnalysis, name: str) -> Share | None:
     if not (math.isfinite(body.mass) and np.isfinite(body.inertia).all()):
         return None
     # what the link adds about the body's centre of mass, along each of its principal axes
-    added = np.asarray(own.inertia) + shift_tensor(own.mass, np.asarray(own.com) - body.com)
-    moments, axes = np.linalg.eigh(np.asarray(body.inertia, dtype=np.float64))
+    with np.errstate(all="ignore"):  # a value near the float range: inf, judged below
+        added = np.asarray(own.inertia) + shift_tensor(own.mass, np.asarray(own.com) - body.com)
+        moments, axes = np.linalg.eigh(np.asarray(body.inertia, dtype=np.float64))
+        parts = [float(axes[:, k] @ added @ axes[:, k]) for k in range(3)]
     fractions = []
-    for k in range(3):
-        part = float(axes[:, k] @ added @ axes[:, k])
-        if part <= 0:
+    for k, part in enumerate(parts):
+        if not math.isfinite(part):
+            fractions.append(math.inf)
+        elif part <= 0:
             fractions.append(0.0)
         elif moments[k] > 0:
             fractions.append(part / float(moments[k]))

@@ -133,3 +133,22 @@ def test_a_frame_on_a_body_with_no_moment_about_an_axis(tmp_path):
     found = share(analysed(tmp_path, *parts), "frame")
     assert not found.negligible
     assert math.isinf(found.inertia) or found.inertia > NEGLIGIBLE
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        inertial(1e300, 1e300),
+        inertial(1e-5, 1e-6, xyz=(1e200, 0, 0)),
+        inertial(5e-324, 5e-324),
+        inertial(1e-5, 1e-6, xyz=("nan", 0, 0)),
+    ],
+    ids=["huge", "far", "subnormal", "nan-origin"],
+)
+def test_values_near_the_float_range_never_crash_nor_warn(tmp_path, body):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        found = share(analysed(tmp_path, *trunk_with(body)), "frame")
+    assert found is None or not found.negligible or found.mass < NEGLIGIBLE

@@ -183,7 +183,9 @@ def _volume(link: LinkAnalysis) -> tuple[float, Geometry] | None:
         if any(s.mesh is not None and not s.mesh.closed for s in geometry.solids):
             return None
         corners = geometry.corners
-        if corners is None or float(np.ptp(corners, axis=0).max()) > MAX_EXTENT:
+        with np.errstate(all="ignore"):
+            extent = None if corners is None else float(np.ptp(corners, axis=0).max())
+        if extent is None or not extent <= MAX_EXTENT:  # not: a NaN extent is not judged
             return None
         found.append((geometry.volume, geometry))
     return min(found, key=lambda item: item[0]) if found else None
