@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+from inertia_kit.description.model import WORLD
 from inertia_kit.engines.drake_reading import could_be_physically_valid
 from inertia_kit.engines.lumping import lumped
 from inertia_kit.physics.formatting import fmt
@@ -59,6 +60,9 @@ class Share:
       The largest fraction the link adds to a principal moment of the lumped body about the
       body's centre of mass (its own tensor and its mass's parallel-axis term, along each
       principal axis of the body).
+    static : bool
+      The link is welded to the world, which engines never move (``body`` is ``world``, its
+      mass infinite): told only for a massless frame.
     """
 
     link: str
@@ -66,6 +70,7 @@ class Share:
     body_mass: float
     mass: float
     inertia: float
+    static: bool = False  # welded to the world: never integrated (then a massless frame only)
 
     @property
     def negligible(self) -> bool:
@@ -82,8 +87,11 @@ class Share:
             f"the body `{self.body}` it is welded into ({fmt(self.body_mass, 4)} kg), which is "
             "what every engine integrates"
         )
+        frame = "engines load it as a frame without <inertial>"
+        if self.static:
+            return f"it is welded to the world, which engines never move: {frame}"
         if self.massless:
-            return f"it adds nothing to {body}: engines load it as a frame without <inertial>"
+            return f"it adds nothing to {body}: {frame}"
         return (
             f"it adds {_percent(self.mass)} of the mass and {_percent(self.inertia)} of the "
             f"inertia of {body}"
@@ -123,15 +131,20 @@ def _head(group: tuple[LinkAnalysis, ...]) -> LinkAnalysis:
 def share(robot: RobotAnalysis, name: str) -> Share | None:
     """
     The share of its lumped body the link ``name`` carries; ``None`` when there is no body to
-    judge it by: the link is alone, welded to the world (never integrated), its values are not
-    accepted as written (:func:`accepted_as_written`), or the other links of its group carry no
-    mass.
+    judge it by: the link is alone, its values are not accepted as written
+    (:func:`accepted_as_written`), or the other links of its group carry no mass. A link welded
+    to the world (never integrated) has a share only as a massless frame (``static``).
     """
     link = robot.by_name.get(name)
     group = robot.group_of(name)
-    if link is None or len(group) < 2 or robot.welded_to_world(name):
+    if link is None or len(group) < 2 or name == WORLD:
         return None
     own = accepted_as_written(link)
+    if robot.welded_to_world(name):
+        # static: a massless frame there is a frame; other values are the rules' to judge
+        if own is None or own.mass != 0:
+            return None
+        return Share(name, WORLD, math.inf, 0.0, 0.0, static=True)
     body = lumped(robot, name)  # in the link's frame, its own values included
     if own is None or body is None or not body.mass - own.mass > 0:
         return None

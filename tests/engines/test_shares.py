@@ -152,3 +152,12 @@ def test_values_near_the_float_range_never_crash_nor_warn(tmp_path, body):
         warnings.simplefilter("error")
         found = share(analysed(tmp_path, *trunk_with(body)), "frame")
     assert found is None or not found.negligible or found.mass < NEGLIGIBLE
+
+
+def test_a_massless_frame_welded_to_the_world_is_a_static_frame(tmp_path):
+    # Universal Robots' `base`: mass 0, a zero tensor, welded to `base_link`, welded to `world`
+    found = share(analysed(tmp_path, *trunk_with(inertial(0, 0), world=True)), "frame")
+    assert found.static and found.massless and found.body == "world"
+    assert "welded to the world" in found.text()
+    # with a tensor on its zero mass it is not a frame (Drake puts a 1 kg sphere there)
+    assert share(analysed(tmp_path, *trunk_with(inertial(0, 1e-6), world=True)), "frame") is None

@@ -143,3 +143,13 @@ def test_a_massless_frame_is_left_as_it_is_by_fill(tmp_path):
     # the same shell on a moving joint needs its mass
     path.write_text(trunk_with(("shell", shell, "revolute")))
     assert CliRunner().invoke(fill_command, ["--fix", "invalid", str(path)]).exit_code == 1
+
+
+def test_a_massless_frame_welded_to_the_world_is_no_error(lint):
+    text = trunk_with(("base", inertial(0, 0), "fixed")).replace(
+        '<joint name="j_trunk" type="revolute">', '<joint name="j_trunk" type="fixed">'
+    )
+    assert '<joint name="j_trunk" type="fixed">' in text
+    (finding,) = [f for f in lint(text, "IN002") if f.link == "base"]
+    assert finding.severity is Severity.INFO
+    assert "it is welded to the world, which engines never move" in finding.message
