@@ -57,7 +57,7 @@ from typing import Any
 from inertia_kit.errors import ConfigError
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Severity
-from inertia_kit.lint.options import Option, convert, type_name
+from inertia_kit.lint.options import Option, convert, out_of_range, type_name
 
 KEYS = (
     "select",
@@ -347,6 +347,9 @@ class _Where:
         ok, converted = convert(value, option.type)
         if not ok:
             self.fail(key, f"expected {type_name(option.type)}, got {_shown(value)}")
+        wrong = out_of_range(converted, option)
+        if wrong:
+            self.fail(key, wrong)
         return converted
 
     def positive(self, value: Any, key: str) -> float:

@@ -26,6 +26,9 @@ class Option:
     type: Any  # what a configured value must be (see the module docstring)
     default: Any  # the value when the configuration sets none
     help: str  # one line; the rule's document says more under "## Options"
+    #: a number option's smallest value (no rule's number means anything below zero; a factor
+    #: below 1 inverts its test, and 0 would divide by zero)
+    minimum: float = 0.0
 
 
 _TYPE_NAMES = {float: "a number", int: "an integer", bool: "true or false", str: "a string"}
@@ -40,6 +43,17 @@ def type_name(kind: Any) -> str:
     if isinstance(kind, tuple):
         return " or ".join(type_name(k) for k in kind)
     return _TYPE_NAMES.get(kind, getattr(kind, "__name__", str(kind)))
+
+
+def out_of_range(value: Any, option: Option) -> str | None:
+    """Why ``value``, already of the option's type, cannot be its value; ``None`` if it can."""
+    if option.type not in (float, int) or isinstance(value, bool):
+        return None
+    if value != value:  # TOML's nan
+        return "expected a number, got nan"
+    if value < option.minimum:
+        return f"expected a number from {option.minimum:g} up, got {value!r}"
+    return None
 
 
 def convert(value: Any, kind: Any) -> tuple[bool, Any]:

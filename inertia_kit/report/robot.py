@@ -87,8 +87,8 @@ def render(
     """
     The report as ``text`` (aligned columns), ``markdown`` or ``json``. Names, paths and values
     from the files are escaped in the text formats (:func:`~inertia_kit.printable.printable`);
-    ``redaction`` (``--redact-env``) keeps values out of the JSON (a text format is redacted as
-    text, by the caller).
+    ``redaction`` (``--redact-env``) keeps values out of the JSON and out of each table cell
+    before the columns are aligned (the rest of a text format is redacted by the caller).
     """
     rows = link_rows(robot)
     if output_format == "json":
@@ -132,9 +132,18 @@ def render(
         )
     name = robot.name or "unnamed robot"
     footer = printable(f"total mass: {fmt(total_mass(rows), 6)} kg over {len(rows)} links ({name})")
+    table = _redacted(table, redaction)
     if output_format == "markdown":
         return "\n".join([*_markdown_table(table), "", f"**{footer}**"])
     return "\n".join([*_text_table(table), footer])
+
+
+def _redacted(table: list[list[str]], redaction: Redaction | None) -> list[list[str]]:
+    """``table`` with the values kept out cell by cell, before the columns are aligned (the
+    caller's redaction of the whole text would leave them misaligned)."""
+    if redaction is None:
+        return table
+    return [[redaction.text(cell) for cell in row] for row in table]
 
 
 def _markdown_table(table: list[list[str]]) -> list[str]:
@@ -249,6 +258,7 @@ def render_lumped(
                     else ", ".join(fmt(x, 4) for x in body["principal_moments"]),
                 ]
             )
+        table = _redacted(table, redaction)
         notes = [f"{b['body']}: {b['note']}" for b in record["bodies"] if b["note"]]
         dropped = [
             f"{d['link']}"

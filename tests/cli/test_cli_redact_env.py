@@ -136,6 +136,17 @@ def test_report(robots, output_format, lumped):
     assert code == 0 and not seen(out, err)
     if output_format == "json":
         json.loads(out)
+    if output_format == "text":  # the columns aligned on the redacted cells
+        lines = out.splitlines()
+        for at, rule in enumerate(lines):
+            if not rule.startswith("--"):
+                continue
+            starts = [i for i, c in enumerate(rule) if c == "-" and i and rule[i - 1] == " "]
+            for line in lines[at + 1 :]:
+                footer = line.startswith(("total", "dropped", "note")) or " bodies from " in line
+                if not line.strip() or footer:
+                    break
+                assert all(line[i - 2 : i] == "  " and line[i] != " " for i in starts), line
     code, out, err = run("report", "--redact-env", "broken.urdf.xacro")
     assert code == 2 and not seen(out, err) and "***/parts.xacro" in err
 

@@ -357,9 +357,12 @@ def other(
     if kind == "stdin-lint":
         fmt = rng.choice(LINT_FORMATS)
         name = ["--stdin-filename", robot] if rng.random() < 0.7 else []
+        # `fix = true` in a configuration makes `lint -` print the fixed text, not the format
+        # (as ruff does): lint --fix - has its own kind
+        no_fix = ["--no-fix"] if config_fixes(tree) else []
         return Invocation(
             "inertia-lint",
-            ("--output-format", fmt, *name, "-"),
+            ("--output-format", fmt, *no_fix, *name, "-"),
             ("lint -",),
             stdin=robot,
             stdout_kind=FORMAT_KIND[fmt],

@@ -130,6 +130,14 @@ def test_every_key_of_pyproject(tmp_path):
             "`tool.inertia-kit.rules.IN098.limit`: expected a number, got true",
         ),
         (
+            "[tool.inertia-kit.rules.IN098]\nlimit = nan\n",
+            "`tool.inertia-kit.rules.IN098.limit`: expected a number, got nan",
+        ),
+        (
+            "[tool.inertia-kit.rules.IN098]\nlimit = -1\n",
+            "`tool.inertia-kit.rules.IN098.limit`: expected a number from 0 up, got -1.0",
+        ),
+        (
             "[tool.inertia-kit.rules.IN098]\ncount = 1.5\n",
             "`tool.inertia-kit.rules.IN098.count`: expected an integer, got 1.5",
         ),

@@ -30,8 +30,16 @@ SUMMARY = (
     "than a factor about some axis"
 )
 OPTIONS = (
-    Option("factor", float, 2.5, "flag a moment more than this many times the geometry's"),
-    Option("factor_below", float, 5.0, "flag a moment less than 1/factor_below of the geometry's"),
+    Option(
+        "factor", float, 2.5, "flag a moment more than this many times the geometry's", minimum=1.0
+    ),
+    Option(
+        "factor_below",
+        float,
+        5.0,
+        "flag a moment less than 1/factor_below of the geometry's",
+        minimum=1.0,
+    ),
 )
 
 # A slip that forensics recognises (analysis.forensics: about another point, other axes, a

@@ -19,7 +19,13 @@ SUMMARY = (
     "collision shapes' bounding box unless URDF_USE_INERTIA_FROM_FILE"
 )
 OPTIONS = (
-    Option("factor", float, 2.0, "how far the computed tensor may differ from the declared one"),
+    Option(
+        "factor",
+        float,
+        2.0,
+        "how far the computed tensor may differ from the declared one",
+        minimum=1.0,
+    ),
     Option("use_inertia_from_file", bool, False, "predict a load with URDF_USE_INERTIA_FROM_FILE"),
 )
 
