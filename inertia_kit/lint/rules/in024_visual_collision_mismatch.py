@@ -1,5 +1,4 @@
-"""
-IN024 visual-collision-mismatch: the collision geometry is not where or how big the visual is.
+"""IN024 visual-collision-mismatch: the collision geometry is not where or how big the visual is.
 
 Two tests. The same shape drawn and collided (the same primitive and dimensions, or the same
 mesh file and scale) at poses that differ beyond rounding is misplaced, whatever the overlap
@@ -66,6 +65,10 @@ RIGHT_COM = 0.25
 RIGHT_TENSOR = 0.3
 
 
+def _length(metres: float) -> str:
+    return f"{fmt(metres, 3)} m" if abs(metres) >= 1 else f"{fmt(1000 * metres, 3)} mm"
+
+
 def likely_right(link: LinkAnalysis, pair: Pair) -> tuple[str | None, str]:
     """
     (``visual`` or ``collision`` or ``None``, the basis): which placement the declared
@@ -87,9 +90,9 @@ def likely_right(link: LinkAnalysis, pair: Pair) -> tuple[str | None, str]:
         kind = min(near, key=near.__getitem__)
         if near[kind] <= RIGHT_COM:
             return kind, (
-                f"the declared centre of mass lies {fmt(near[kind] * apart * 1000, 3)} mm from "
-                f"the {kind}'s centroid, {fmt(near[_other(kind)] * apart * 1000, 3)} mm from "
-                f"the {_other(kind)}'s"
+                f"the declared centre of mass lies {_length(near[kind] * apart)} from the "
+                f"{kind}'s centroid, {_length(near[_other(kind)] * apart)} from the "
+                f"{_other(kind)}'s"
             )
         return None, ""
     scale = float(np.linalg.norm(declared.inertia))
@@ -112,10 +115,6 @@ def likely_right(link: LinkAnalysis, pair: Pair) -> tuple[str | None, str]:
 
 def _other(kind: str) -> str:
     return "collision" if kind == "visual" else "visual"
-
-
-def _length(metres: float) -> str:
-    return f"{fmt(metres, 3)} m" if abs(metres) >= 1 else f"{fmt(1000 * metres, 3)} mm"
 
 
 def _misplaced(link: LinkAnalysis, pair: Pair, ctx: RuleContext) -> Finding:
