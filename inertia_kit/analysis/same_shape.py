@@ -192,32 +192,28 @@ def _primitive_distance(kind: str, dims: tuple[float, ...], a: NDArray, b: NDArr
     return worst
 
 
-def _to_surface(points: NDArray[np.float64], triangles: NDArray[np.float64]) -> NDArray:
-    """(k,) distance of each point to the nearest of ``triangles`` (n, 3, 3)."""
+def _to_surface(point: NDArray[np.float64], triangles: NDArray[np.float64]) -> float:
+    """Distance of ``point`` to the nearest of ``triangles`` (n, 3, 3)."""
     a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
     normal = np.cross(b - a, c - a)
     area2 = np.einsum("ij,ij->i", normal, normal)
     flat = area2 > 0
     unit = np.where(flat[:, None], normal / np.sqrt(np.where(flat, area2, 1.0))[:, None], 0.0)
-    found = np.empty(len(points))
-    for i, p in enumerate(points):
-        # the foot of the perpendicular, when it falls inside the triangle
-        height = np.einsum("ij,ij->i", p - a, unit)
-        foot = p - height[:, None] * unit
-        inside = flat.copy()
-        for u, v in ((a, b), (b, c), (c, a)):
-            inside &= np.einsum("ij,ij->i", np.cross(v - u, foot - u), normal) >= 0
-        best = np.min(np.abs(height[inside]), initial=np.inf)
-        for u, v in ((a, b), (b, c), (c, a)):
-            edge = v - u
-            length2 = np.einsum("ij,ij->i", edge, edge)
-            t = np.clip(
-                np.einsum("ij,ij->i", p - u, edge) / np.where(length2 > 0, length2, 1.0), 0, 1
-            )
-            gap = p - (u + t[:, None] * edge)
-            best = min(best, float(np.sqrt(np.einsum("ij,ij->i", gap, gap).min())))
-        found[i] = best
-    return found
+    # the foot of the perpendicular, when it falls inside the triangle
+    height = np.einsum("ij,ij->i", point - a, unit)
+    foot = point - height[:, None] * unit
+    inside = flat.copy()
+    for u, v in ((a, b), (b, c), (c, a)):
+        inside &= np.einsum("ij,ij->i", np.cross(v - u, foot - u), normal) >= 0
+    best = float(np.min(np.abs(height[inside]), initial=np.inf))
+    # else the nearest point of an edge
+    for u, v in ((a, b), (b, c), (c, a)):
+        edge = v - u
+        length2 = np.einsum("ij,ij->i", edge, edge)
+        t = np.einsum("ij,ij->i", point - u, edge) / np.where(length2 > 0, length2, 1.0)
+        gap = point - (u + np.clip(t, 0.0, 1.0)[:, None] * edge)
+        best = min(best, float(np.sqrt(np.einsum("ij,ij->i", gap, gap).min())))
+    return best
 
 
 def _samples(vertices: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -236,21 +232,24 @@ def _mesh_distance(
     How far the mesh (``triangles``, its own frame) placed at ``a`` lies from itself placed at
     ``b``: the largest distance of a sampled vertex of either placement from the other's
     surface, stopping at the first beyond ``tolerance`` (enough to decide; a lower bound).
+    A vertex that lands on a vertex is on the surface; for the others only the triangles
+    whose bounding box comes nearer than the nearest vertex are measured.
     """
-    vertices = _samples(np.unique(triangles.reshape(-1, 3), axis=0))
+    vertices = np.unique(triangles.reshape(-1, 3), axis=0)
+    low, high = triangles.min(axis=1), triangles.max(axis=1)
     moved = np.linalg.inv(b) @ a
     worst = 0.0
     for turn in (moved, np.linalg.inv(moved)):
-        points = _placed(vertices, turn)
-        # a vertex landing on a vertex is on the surface: only the others are measured
-        for chunk in np.array_split(points, max(1, len(points) // 50)):
-            near = np.array([np.sqrt(((vertices - p) ** 2).sum(axis=1).min()) for p in chunk])
-            off = chunk[near > tolerance]
-            if len(off):
-                found = float(_to_surface(off, triangles).max())
-                worst = max(worst, found)
-                if worst > tolerance:
-                    return worst
+        for point in _placed(_samples(vertices), turn):
+            nearest = float(np.sqrt(((vertices - point) ** 2).sum(axis=1).min()))
+            if nearest <= tolerance:
+                continue
+            gap = np.maximum(np.maximum(low - point, point - high), 0.0)
+            near = np.einsum("ij,ij->i", gap, gap) <= nearest**2
+            found = min(nearest, _to_surface(point, triangles[near])) if near.any() else nearest
+            worst = max(worst, found)
+            if worst > tolerance:
+                return worst
     return worst
 
 
@@ -365,10 +364,11 @@ def read_triangles_in_metres(solid: Solid) -> NDArray[np.float64] | None:
     if solid.mesh is None:
         return None
     try:
-        triangles, unit_scale = read_triangles(solid.mesh.path)
+        triangles, _ = read_triangles(solid.mesh.path)
     except (MeshError, OSError, ValueError):
         return None
-    return triangles * (unit_scale * np.asarray(solid.mesh.scale))
+    # the unit the solid was computed in, so that its bounds and these triangles agree
+    return triangles * (solid.mesh.unit_scale * np.asarray(solid.mesh.scale))
 
 
 def pair_shapes(
