@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from inertia_kit.analysis.bounds import Hull, MomentExcess, moment_excess
+from inertia_kit.analysis.bounds import Hull, Kind, MomentExcess, moment_excess
 from inertia_kit.description import model
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
@@ -45,6 +45,7 @@ from inertia_kit.physics.frames import rpy_matrix
 if TYPE_CHECKING:
     from inertia_kit.analysis.geometry import Solid
     from inertia_kit.analysis.links import LinkAnalysis
+    from inertia_kit.physics.mass import MassProperties
 
 # the most a written number is taken to be rounded by, relative to it
 ROUNDING_CAP = 0.05
@@ -139,6 +140,10 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     """
     The firmness of the link's :attr:`~LinkAnalysis.excess` (see the module docstring);
     ``None`` without one.
+
+    Both kinds of bound are weighed (moments about axes, second moments along directions): when
+    the excess reported is not firm but the other kind is beyond its bound firmly, that one is
+    the verdict (:attr:`Firmness.excess` is then of the other kind than the link's).
     """
     excess = link.excess
     declared = link.declared
@@ -149,35 +154,55 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     if not solids or any(s.hull is None for s in solids):
         return None
     written = [s.hull for s in solids]
-    grown = [_enlarged(s) for s in solids]
-    found = moment_excess(declared, Hull.union(grown))  # type: ignore[arg-type]
-    if found is None:
-        return None
-    mass = declared.mass
-    raised = found.bound * (1.0 + rounding(mass) / mass)
-    lowered = found.moment - _moment_rounding(inertial, found.axis)
-    margin = MomentExcess(found.axis, lowered, raised, found.r_max)
+    grown = Hull.union([_enlarged(s) for s in solids])
     weak = _weak(link)
+    margin = _margin(declared, inertial, grown, excess.kind)
+    if margin is None:
+        return None
+    if not margin.ratio > (GROSS if weak else 1.0):
+        other: Kind = "along" if excess.kind == "about" else "about"
+        beyond = moment_excess(declared, Hull.union(written), other)  # type: ignore[arg-type]
+        firm = _margin(declared, inertial, grown, other)
+        if beyond is not None and firm is not None and firm.ratio > (GROSS if weak else 1.0):
+            excess, margin = beyond, firm
     if weak or margin.ratio > 1.0:
         return Firmness(excess, margin, weak, (), ())  # the allowances decide nothing
     # what each allowance alone takes off the excess, for the message: a size of one shape
     # (the others as written), the mass, the <inertia> values, a mesh's facets
+    mass = declared.mass
     shares: dict[str, float] = {}
     for i, solid in enumerate(solids):
         for text, hull in _one_at_a_time(solid):
             hulls = [*written[:i], hull, *written[i + 1 :]]
-            alone = moment_excess(declared, Hull.union(hulls))  # type: ignore[arg-type]
+            alone = moment_excess(declared, Hull.union(hulls), excess.kind)  # type: ignore[arg-type]
             if alone is not None and alone.ratio > 0:
                 shares[text] = max(shares.get(text, 0.0), excess.ratio / alone.ratio - 1.0)
     shares[f"mass {fmt(mass)} kg"] = rounding(mass) / mass
-    if found.moment > 0:
-        shares["<inertia> values"] = 1.0 - lowered / found.moment
+    found_moment = margin.moment + _moment_rounding(inertial, margin)
+    if found_moment > 0:
+        shares["<inertia> values"] = 1.0 - margin.moment / found_moment
     counted = sorted(
         ((share, text) for text, share in shares.items() if share >= 1e-3), reverse=True
     )
     rounded = tuple(t for _, t in counted if not t.startswith("facets "))
     facets = tuple(t.removeprefix("facets ") for _, t in counted if t.startswith("facets "))
     return Firmness(excess, margin, weak, rounded[:3], facets)
+
+
+def _margin(
+    declared: MassProperties, inertial: model.Inertial, grown: Hull, kind: Kind
+) -> MomentExcess | None:
+    """
+    The worst axis of ``kind`` on the ``grown`` hull, with the mass rounded up and the moment
+    rounded down (the bound raised, the moment lowered: in the tensor's favour).
+    """
+    found = moment_excess(declared, grown, kind)
+    if found is None:
+        return None
+    mass = declared.mass
+    raised = found.bound * (1.0 + rounding(mass) / mass)
+    lowered = found.moment - _moment_rounding(inertial, found)
+    return dataclasses.replace(found, moment=lowered, bound=raised)
 
 
 def _weak(link: LinkAnalysis) -> tuple[str, ...]:
@@ -225,7 +250,7 @@ def _grown_box(solid: Solid) -> Hull:
     corners = solid.corners
     assert corners is not None
     centre = corners.mean(axis=0)
-    return Hull(centre + (1.0 + FACETS) * (corners - centre))
+    return Hull.of_box(centre + (1.0 + FACETS) * (corners - centre))
 
 
 def _enlarged(solid: Solid) -> Hull:
@@ -260,18 +285,22 @@ def _one_at_a_time(solid: Solid) -> list[tuple[str, Hull]]:
     return []
 
 
-def _moment_rounding(inertial: model.Inertial, axis: np.ndarray) -> float:
-    """How much the written ``<inertia>`` values' rounding can move the moment about ``axis``."""
+def _moment_rounding(inertial: model.Inertial, excess: MomentExcess) -> float:
+    """
+    How much the written ``<inertia>`` values' rounding can move the moment of ``excess``: it
+    is ``Σᵢⱼ Wᵢⱼ Iᵢⱼ`` (:attr:`MomentExcess.weights`), so each value moves it by its
+    weight, in the axes of ``<inertial><origin rpy>``, times its rounding.
+    """
     values = inertial.tensor_values()
     if not all(isinstance(v, float) for v in values.values()):
         return 0.0
     rpy = inertial.origin.rpy
     rotation = rpy_matrix(rpy) if isinstance(rpy, tuple) else np.eye(3)
-    b = np.abs(rotation.T @ np.asarray(axis, dtype=np.float64))  # the axis in <inertia>'s axes
+    weights = np.abs(rotation.T @ excess.weights @ rotation)  # in <inertia>'s axes
     h = {name: rounding(value) for name, value in values.items()}  # type: ignore[arg-type]
     pairs = {"ixx": (0, 0), "iyy": (1, 1), "izz": (2, 2), "ixy": (0, 1), "ixz": (0, 2)}
     pairs["iyz"] = (1, 2)
     total = 0.0
     for name, (i, j) in pairs.items():
-        total += (1.0 if i == j else 2.0) * b[i] * b[j] * h[name]
+        total += (1.0 if i == j else 2.0) * weights[i, j] * h[name]
     return total
