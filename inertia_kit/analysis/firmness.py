@@ -98,6 +98,9 @@ class Firmness:
       ``mass 0.089 kg``, ``<inertia> values``); else empty.
     facets : tuple of str
       Likewise, the meshes whose facets count (file names).
+    centre : str
+      For a second moment along a direction, when it decides the verdict: where the declared
+      centre of mass lies, in words (its distances to the geometry's two ends); else empty.
     """
 
     excess: MomentExcess
@@ -105,6 +108,7 @@ class Firmness:
     weak: tuple[str, ...]
     rounded: tuple[str, ...]
     facets: tuple[str, ...]
+    centre: str = ""
 
     @property
     def firm(self) -> bool:
@@ -125,6 +129,8 @@ class Firmness:
             allowances.append("rounding of the written " + _listed(self.rounded))
         if self.facets:
             allowances.append("the facets of " + _listed(tuple(f"`{n}`" for n in self.facets)))
+        if self.centre:
+            allowances.append(self.centre)
         over = 100.0 * (self.excess.ratio - 1.0)
         return (
             f"{fmt(over, 2)}% over is within what {' and '.join(allowances) or 'rounding'} can "
@@ -186,7 +192,14 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     )
     rounded = tuple(t for _, t in counted if not t.startswith("facets "))
     facets = tuple(t.removeprefix("facets ") for _, t in counted if t.startswith("facets "))
-    return Firmness(excess, margin, weak, rounded[:3], facets)
+    centre = ""
+    low, high = excess.sides
+    if excess.kind == "along" and (0.5 * (low + high)) ** 2 > (1.0 + 1e-3) * low * high:
+        centre = (
+            f"a centre of mass off its declared place ({fmt(low, 3)} m and {fmt(high, 3)} m "
+            "from the geometry's two ends)"
+        )
+    return Firmness(excess, margin, weak, rounded[:3], facets, centre)
 
 
 def _margin(
@@ -195,12 +208,21 @@ def _margin(
     """
     The worst axis of ``kind`` on the ``grown`` hull, with the mass rounded up and the moment
     rounded down (the bound raised, the moment lowered: in the tensor's favour).
+
+    Along a direction the bound is also taken whatever the centre of mass: ``m w² / 4`` for a
+    hull ``w`` wide along it (Popoviciu; the Bhatia–Davis bound at its largest, the COM
+    midway). A CAD export's centre of mass and its meshes often disagree by millimetres, and
+    near one end of the geometry the Bhatia–Davis bound moves with the COM as fast as the COM
+    moves; an error must not rest on it (a COM outside its geometry is IN021's).
     """
     found = moment_excess(declared, grown, kind)
     if found is None:
         return None
     mass = declared.mass
-    raised = found.bound * (1.0 + rounding(mass) / mass)
+    bound = found.bound
+    if kind == "along":
+        bound = mass * (0.5 * sum(found.sides)) ** 2
+    raised = bound * (1.0 + rounding(mass) / mass)
     lowered = found.moment - _moment_rounding(inertial, found)
     return dataclasses.replace(found, moment=lowered, bound=raised)
 

@@ -198,3 +198,56 @@ def test_a_tensor_that_is_no_rigid_body_far_from_its_geometry(lint):
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         assert lint(moving(body), "IN023") == []
+
+
+# --- second moments along a direction (Bhatia–Davis) ---------------------------------------------
+
+AXLE_Y = "1.5707963267948966 0 0"
+
+
+def test_a_wheel_with_the_axial_formula_on_every_axis_is_impossible(lint):
+    """The issue's wheel: r = 0.05 m, 0.02 m wide, axle along y, ixx = iyy = izz = ½ m r²:
+    ∫y² dm = (ixx + izz - iyy)/2 = ¼ m r² against m (0.01 m)², 6.25 times over."""
+    mass, radius, width = 1.0, 0.05, 0.02
+    axial = mass * radius**2 / 2
+    wheel = collision(cylinder(radius, width), rpy=AXLE_Y)
+    (finding,) = lint(moving(wheel + inertial(mass, axial, axial, axial)), "IN023")
+    assert finding.severity == Severity.ERROR
+    assert finding.expected["kind"] == "along"
+    assert finding.expected["axis"] == pytest.approx([0.0, 1.0, 0.0])
+    assert finding.expected["max"] == pytest.approx(mass * (width / 2) ** 2)
+    assert finding.expected["sides"] == pytest.approx([width / 2, width / 2])
+    assert finding.expected["uniform"] == pytest.approx(mass * width**2 / 12)
+    assert finding.message.startswith(
+        "link `arm`: the second moment along y, ∫y² dm = (ixx + izz - iyy)/2 = 0.000625 kg·m², "
+        "is more than the 0.0001 kg·m² any 1 kg inside its collision cylinder"
+    )
+    assert "\n" not in finding.message and "Bhatia–Davis" in finding.help
+    # the wheel's own tensor passes: ixx = izz = m (3 r² + w²)/12
+    across = mass * (3 * radius**2 + width**2) / 12
+    assert lint(moving(wheel + inertial(mass, across, axial, across)), "IN023") == []
+
+
+def test_a_thin_ring_on_the_rim_is_the_limit_of_both_kinds(lint):
+    """A ring of radius r in the mid-plane: ∫y² dm = 0, iyy = m r², ixx = izz = ½ m r²."""
+    mass, radius = 1.0, 0.05
+    ring = inertial(mass, mass * radius**2 / 2, mass * radius**2, mass * radius**2 / 2)
+    assert lint(moving(collision(cylinder(radius, 0.02), rpy=AXLE_Y) + ring), "IN023") == []
+
+
+def test_an_off_centre_com_tightens_the_bound_but_only_warns(lint):
+    """COM 8 mm from the centre plane of a 20 mm wheel: at most m × 0.018 × 0.002 along y,
+    but m (0.01 m)² with the COM midway: an error must not rest on where the COM is written."""
+    mass = 1.0
+    wheel = collision(cylinder(0.05, 0.02), rpy=AXLE_Y)
+    # ∫y² dm = (ixx + izz - iyy)/2 = 7.5e-05: beyond 3.6e-05, within 1e-04
+    body = wheel + inertial(mass, 0.0012, 0.00225, 0.0012, xyz="0 0.008 0")
+    (finding,) = lint(moving(body), "IN023")
+    assert finding.expected["kind"] == "along"
+    assert finding.expected["max"] == pytest.approx(mass * 0.018 * 0.002)
+    assert finding.severity == Severity.WARNING
+    assert "a centre of mass off its declared place (0.018 m and 0.002 m" in finding.message
+    # ∫y² dm = 3e-04, 3 times m (0.01 m)²: wherever the COM is, impossible
+    beyond = wheel + inertial(mass, 0.0012, 0.0018, 0.0012, xyz="0 0.008 0")
+    (finding,) = lint(moving(beyond), "IN023")
+    assert finding.severity == Severity.ERROR
