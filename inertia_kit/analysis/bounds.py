@@ -391,6 +391,9 @@ def _about(declared: MassProperties, tensor: NDArray[np.float64], hull: Hull) ->
 _FIRST_STEP = 0.1
 _LAST_STEP = 1e-5
 _MAX_STEPS = 200
+# a centre of mass closer than this to the hull's end, relative to its width, is on it: no
+# written value is that precise, and the bound there (nearly 0) is IN021's business
+_ON_BOUNDARY = 1e-6
 
 
 def _along(
@@ -401,7 +404,8 @@ def _along(
     (u·c + h(-u))`` (:meth:`Hull.spread`); ``None`` when ``Σ`` is not positive semidefinite
     (the tensor breaks the triangle inequality: it is no body's at all, IN010's finding, and has
     no second moments to bound) or when the centre of mass is not inside the hull along every
-    direction checked (the bound is then void, and a COM outside its geometry is IN021's).
+    direction checked, or on its boundary to within a millionth of its width (the bound is then
+    void or 0, and a COM outside or at the edge of its geometry is IN021's).
 
     The bound depends on ``u``, so the worst direction is no eigenvector. Checked: the link
     axes, the principal axes of ``Σ`` (those of ``I``), the hull's part axes
@@ -421,10 +425,11 @@ def _along(
         return None
 
     def ratios(u: NDArray[np.float64]) -> NDArray[np.float64]:
-        bound = hull.spread(com, u)
+        high, low = hull.half_widths(com, u), hull.half_widths(com, -u)
+        inside = np.minimum(low, high) > _ON_BOUNDARY * (low + high)
         values = np.einsum("ij,jk,ik->i", u, second, u)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(bound > 0, values / bound, np.inf)
+            return np.where(inside, values / (low * high), np.inf)
 
     axes = np.eye(3)
     starts = np.concatenate((axes, declared.principal_axes.T, hull.normals, _DIRECTIONS))

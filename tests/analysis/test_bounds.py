@@ -270,6 +270,9 @@ def test_no_second_moment_bound_without_a_rigid_body_or_with_the_com_outside():
     outside = MassProperties(1.0, np.array([0.5, 0, 0]), np.eye(3) * 1e-3)
     assert moment_excess(outside, hull, "along") is None
     assert moment_excess(outside, hull, "about") is not None
+    # Allegro's finger bases: the COM at the joint, on the end face of the box (a bound of 0)
+    on_face = MassProperties(1.0, np.array([0.0, 0.0, 0.1 - 1e-16]), np.eye(3) * 1e-3)
+    assert moment_excess(on_face, hull, "along") is None
 
 
 def test_box_hulls_carry_their_face_normals():
