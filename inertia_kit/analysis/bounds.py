@@ -429,7 +429,7 @@ def _along(
         inside = np.minimum(low, high) > _ON_BOUNDARY * (low + high)
         values = np.einsum("ij,jk,ik->i", u, second, u)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(inside, values / (low * high), np.inf)
+            return np.where(inside, values / (mass * low * high), np.inf)
 
     axes = np.eye(3)
     starts = np.concatenate((axes, declared.principal_axes.T, hull.normals, _DIRECTIONS))

@@ -281,3 +281,16 @@ def test_box_hulls_carry_their_face_normals():
     np.testing.assert_allclose(np.abs(hull.normals @ turn[:3, :3]), np.eye(3), atol=1e-12)
     both = Hull.union([hull, Hull.of_part(Part.cylinder(0.1, 0.2))])
     assert both.normals.shape == (4, 3)
+
+
+@pytest.mark.parametrize("mass", [0.01, 1.0, 1000.0])
+def test_a_link_axis_is_reported_only_when_beyond_whatever_the_mass(mass):
+    """A 45°-turned thin slab: its worst direction is no link axis, and with any mass the link
+    axes (within their bounds) must not be preferred to it."""
+    width = 0.01
+    turn = transform(rpy=(0, 0, math.pi / 4))
+    hull = Hull.of_part(Part.box((0.4, width, 0.4), turn))
+    declared = MassProperties(mass, np.zeros(3), np.eye(3) * mass * 2e-4)  # Σ = 1e-4 m E
+    excess = moment_excess(declared, hull, "along")
+    assert axis_name(excess.axis) is None
+    assert excess.ratio == pytest.approx(1e-4 / (width / 2) ** 2, rel=1e-6)
