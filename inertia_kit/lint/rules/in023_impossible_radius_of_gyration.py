@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 
 import numpy as np
@@ -79,6 +80,9 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         # the firm one of the two kinds of bound when the link's own is not (analysis.firmness)
         excess = firmness.excess
     axis, name, words = _direction(excess.axis)
+    if excess.kind == "along" and float(axis @ excess.axis) < 0:
+        # the sides are towards -u and +u: the direction turned round swaps them
+        excess = dataclasses.replace(excess, axis=axis, sides=excess.sides[::-1])
     expected = link.expected
     result: dict[str, object] = {
         "kind": excess.kind,

@@ -251,8 +251,14 @@ def test_an_off_centre_com_tightens_the_bound_but_only_warns(lint):
     (finding,) = lint(moving(body), "IN023")
     assert finding.expected["kind"] == "along"
     assert finding.expected["max"] == pytest.approx(mass * 0.018 * 0.002)
+    assert finding.expected["sides"] == pytest.approx([0.018, 0.002])  # towards -y, +y
+    assert finding.expected["max_with_rounding"] > mass * 0.01**2  # the COM anywhere
     assert finding.severity == Severity.WARNING
     assert "a centre of mass off its declared place (0.018 m and 0.002 m" in finding.message
+    mirrored = wheel + inertial(mass, 0.0012, 0.00225, 0.0012, xyz="0 -0.008 0")
+    (finding,) = lint(moving(mirrored), "IN023")
+    assert finding.expected["axis"] == pytest.approx([0.0, 1.0, 0.0])
+    assert finding.expected["sides"] == pytest.approx([0.002, 0.018])
     # ∫y² dm = 3e-04, 3 times m (0.01 m)²: wherever the COM is, impossible
     beyond = wheel + inertial(mass, 0.0012, 0.0018, 0.0012, xyz="0 0.008 0")
     (finding,) = lint(moving(beyond), "IN023")
