@@ -172,18 +172,25 @@ def _unit(v):
 
 @st.composite
 def hull_and_masses(draw):
-    """A box (any pose) or a random convex polytope, and point masses inside its hull."""
+    """A box or a capsule (any pose) or a random convex polytope, and point masses inside."""
     rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
-    if draw(st.booleans()):
-        size = rng.uniform(0.001, 1.0, 3)
-        pose = transform(rng.uniform(-1, 1, 3), rng.uniform(-np.pi, np.pi, 3))
-        hull = Hull.of_part(Part.box(size, pose))
-    else:
+    kind = draw(st.sampled_from(["box", "polytope", "capsule"]))
+    pose = transform(rng.uniform(-1, 1, 3), rng.uniform(-np.pi, np.pi, 3))
+    if kind == "box":
+        hull = Hull.of_part(Part.box(rng.uniform(0.001, 1.0, 3), pose))
+    elif kind == "polytope":
         hull = Hull(rng.normal(size=(int(rng.integers(4, 12)), 3)) * rng.uniform(0.01, 1.0, 3))
+    else:
+        hull = Hull.of_part(Part.capsule(*rng.uniform(0.001, 0.5, 2), pose))
     count = int(rng.integers(1, 7))
-    # convex combinations of the vertices: every point of the polytope is one
+    # convex combinations of the ball centres (every point of their hull is one), each moved
+    # by less than the balls' radius (a capsule's radius is the same at both ends)
     weights = rng.dirichlet(np.full(len(hull.points), 0.3), size=count)
-    points = weights @ hull.points
+    offsets = rng.normal(size=(count, 3))
+    offsets *= (rng.uniform(0, 1, count) * hull.radii.min() / np.linalg.norm(offsets, axis=1))[
+        :, None
+    ]
+    points = weights @ hull.points + offsets
     masses = rng.uniform(0.01, 2.0, count)
     return hull, points, masses
 
@@ -211,7 +218,10 @@ def test_two_point_masses_at_the_support_points_reach_the_bound(case, raw, share
     hull, _, _ = case
     u = _unit(raw)
     along = hull.points @ u
-    low, high = hull.points[np.argmin(along)], hull.points[np.argmax(along)]
+    first, last = np.argmin(along - hull.radii), np.argmax(along + hull.radii)
+    low = hull.points[first] - hull.radii[first] * u
+    high = hull.points[last] + hull.radii[last] * u
+    along = np.array([low @ u, high @ u])
     body = MassProperties(share, low) + MassProperties(1.0 - share, high)
     value = float(u @ second_moment_from_inertia(body.inertia) @ u)
     bound = body.mass * float(hull.spread(body.com, u[None, :])[0])
