@@ -344,7 +344,7 @@ def moment_excess(
     mass, com, tensor = declared.mass, declared.com, declared.inertia
     if not (mass > 0 and np.isfinite(com).all() and np.isfinite(tensor).all()):
         return None
-    tensor = 0.5 * (tensor + tensor.T)
+    tensor = 0.5 * tensor + 0.5 * tensor.T  # no overflow near the largest float
     about = None if kind == "along" else _about(declared, tensor, hull)
     along = None if kind == "about" else _along(declared, tensor, hull)
     if about is None or along is None:
@@ -420,7 +420,10 @@ def _along(
     wrong one. A link axis beyond the bound is reported in preference, as for moments.
     """
     mass, com = declared.mass, declared.com
-    second = 0.5 * np.trace(tensor) * np.eye(3) - tensor
+    with np.errstate(over="ignore", invalid="ignore"):
+        second = 0.5 * np.trace(tensor) * np.eye(3) - tensor
+    if not np.isfinite(second).all():
+        return None  # a tensor near the largest float: no second moment to compare
     if np.linalg.eigvalsh(second)[0] < -1e-12 * float(np.abs(second).max()):
         return None
 
@@ -428,8 +431,9 @@ def _along(
         high, low = hull.half_widths(com, u), hull.half_widths(com, -u)
         inside = np.minimum(low, high) > _ON_BOUNDARY * (low + high)
         values = np.einsum("ij,jk,ik->i", u, second, u)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(inside, values / (mass * low * high), np.inf)
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            ratio = values / (mass * low * high)
+        return np.where(inside & np.isfinite(ratio), ratio, np.inf)
 
     axes = np.eye(3)
     starts = np.concatenate((axes, declared.principal_axes.T, hull.normals, _DIRECTIONS))

@@ -304,3 +304,24 @@ def test_a_link_axis_is_reported_only_when_beyond_whatever_the_mass(mass):
     excess = moment_excess(declared, hull, "along")
     assert axis_name(excess.axis) is None
     assert excess.ratio == pytest.approx(1e-4 / (width / 2) ** 2, rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    "inertia, com",
+    [
+        (np.diag([1e308] * 3), (0.0, 0.0, 0.0)),  # its trace overflows
+        (np.diag([1e308] * 3), (1e300, 0.0, 0.0)),
+        (np.eye(3), (1e300, 0.0, 0.0)),  # the COM's distances overflow
+        (np.zeros((3, 3)), (0.0, 0.0, 0.0)),
+    ],
+)
+def test_extreme_values_give_no_second_moment_bound_and_no_warning(inertia, com):
+    """Found by hand: eigvalsh of a tensor whose trace overflowed raised LinAlgError."""
+    import warnings
+
+    hull = Hull.of_part(Part.box((1.0, 1.0, 1.0)))
+    declared = MassProperties(1.0, np.array(com), inertia)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        found = moment_excess(declared, hull, "along")
+    assert found is None or found.moment == 0.0
