@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from inertia_kit.analysis.bounds import Hull, MomentExcess, moment_excess
+from inertia_kit.analysis.bounds import Hull, Kind, MomentExcess, moment_excess
 from inertia_kit.description import model
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
@@ -45,6 +45,7 @@ from inertia_kit.physics.frames import rpy_matrix
 if TYPE_CHECKING:
     from inertia_kit.analysis.geometry import Solid
     from inertia_kit.analysis.links import LinkAnalysis
+    from inertia_kit.physics.mass import MassProperties
 
 # the most a written number is taken to be rounded by, relative to it
 ROUNDING_CAP = 0.05
@@ -97,6 +98,9 @@ class Firmness:
       ``mass 0.089 kg``, ``<inertia> values``); else empty.
     facets : tuple of str
       Likewise, the meshes whose facets count (file names).
+    centre : str
+      For a second moment along a direction, when it decides the verdict: where the declared
+      centre of mass lies, in words (its distances to the geometry's two ends); else empty.
     """
 
     excess: MomentExcess
@@ -104,6 +108,7 @@ class Firmness:
     weak: tuple[str, ...]
     rounded: tuple[str, ...]
     facets: tuple[str, ...]
+    centre: str = ""
 
     @property
     def firm(self) -> bool:
@@ -124,6 +129,8 @@ class Firmness:
             allowances.append("rounding of the written " + _listed(self.rounded))
         if self.facets:
             allowances.append("the facets of " + _listed(tuple(f"`{n}`" for n in self.facets)))
+        if self.centre:
+            allowances.append(self.centre)
         over = 100.0 * (self.excess.ratio - 1.0)
         return (
             f"{fmt(over, 2)}% over is within what {' and '.join(allowances) or 'rounding'} can "
@@ -139,6 +146,10 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     """
     The firmness of the link's :attr:`~LinkAnalysis.excess` (see the module docstring);
     ``None`` without one.
+
+    Both kinds of bound are weighed (moments about axes, second moments along directions): when
+    the excess reported is not firm but the other kind is beyond its bound firmly, that one is
+    the verdict (:attr:`Firmness.excess` is then of the other kind than the link's).
     """
     excess = link.excess
     declared = link.declared
@@ -149,35 +160,71 @@ def firmness(link: LinkAnalysis) -> Firmness | None:
     if not solids or any(s.hull is None for s in solids):
         return None
     written = [s.hull for s in solids]
-    grown = [_enlarged(s) for s in solids]
-    found = moment_excess(declared, Hull.union(grown))  # type: ignore[arg-type]
-    if found is None:
-        return None
-    mass = declared.mass
-    raised = found.bound * (1.0 + rounding(mass) / mass)
-    lowered = found.moment - _moment_rounding(inertial, found.axis)
-    margin = MomentExcess(found.axis, lowered, raised, found.r_max)
+    grown = Hull.union([_enlarged(s) for s in solids])
     weak = _weak(link)
+    margin = _margin(declared, inertial, grown, excess.kind)
+    if margin is None:
+        return None
+    if not margin.ratio > (GROSS if weak else 1.0):
+        other: Kind = "along" if excess.kind == "about" else "about"
+        beyond = moment_excess(declared, Hull.union(written), other)  # type: ignore[arg-type]
+        firm = _margin(declared, inertial, grown, other)
+        if beyond is not None and firm is not None and firm.ratio > (GROSS if weak else 1.0):
+            excess, margin = beyond, firm
     if weak or margin.ratio > 1.0:
         return Firmness(excess, margin, weak, (), ())  # the allowances decide nothing
     # what each allowance alone takes off the excess, for the message: a size of one shape
     # (the others as written), the mass, the <inertia> values, a mesh's facets
+    mass = declared.mass
     shares: dict[str, float] = {}
     for i, solid in enumerate(solids):
         for text, hull in _one_at_a_time(solid):
             hulls = [*written[:i], hull, *written[i + 1 :]]
-            alone = moment_excess(declared, Hull.union(hulls))  # type: ignore[arg-type]
+            alone = moment_excess(declared, Hull.union(hulls), excess.kind)  # type: ignore[arg-type]
             if alone is not None and alone.ratio > 0:
                 shares[text] = max(shares.get(text, 0.0), excess.ratio / alone.ratio - 1.0)
     shares[f"mass {fmt(mass)} kg"] = rounding(mass) / mass
-    if found.moment > 0:
-        shares["<inertia> values"] = 1.0 - lowered / found.moment
+    found_moment = margin.moment + _moment_rounding(inertial, margin)
+    if found_moment > 0:
+        shares["<inertia> values"] = 1.0 - margin.moment / found_moment
     counted = sorted(
         ((share, text) for text, share in shares.items() if share >= 1e-3), reverse=True
     )
     rounded = tuple(t for _, t in counted if not t.startswith("facets "))
     facets = tuple(t.removeprefix("facets ") for _, t in counted if t.startswith("facets "))
-    return Firmness(excess, margin, weak, rounded[:3], facets)
+    centre = ""
+    low, high = excess.sides
+    if excess.kind == "along" and (0.5 * (low + high)) ** 2 > (1.0 + 1e-3) * low * high:
+        centre = (
+            f"a centre of mass off its declared place ({fmt(low, 3)} m and {fmt(high, 3)} m "
+            "from the geometry's two ends)"
+        )
+    return Firmness(excess, margin, weak, rounded[:3], facets, centre)
+
+
+def _margin(
+    declared: MassProperties, inertial: model.Inertial, grown: Hull, kind: Kind
+) -> MomentExcess | None:
+    """
+    The worst axis of ``kind`` on the ``grown`` hull, with the mass rounded up and the moment
+    rounded down (the bound raised, the moment lowered: in the tensor's favour).
+
+    Along a direction the bound is also taken whatever the centre of mass: ``m w² / 4`` for a
+    hull ``w`` wide along it (Popoviciu; the Bhatia–Davis bound at its largest, the COM
+    midway). A CAD export's centre of mass and its meshes often disagree by millimetres, and
+    near one end of the geometry the Bhatia–Davis bound moves with the COM as fast as the COM
+    moves; an error must not rest on it (a COM outside its geometry is IN021's).
+    """
+    found = moment_excess(declared, grown, kind)
+    if found is None:
+        return None
+    mass = declared.mass
+    bound = found.bound
+    if kind == "along":
+        bound = mass * (0.5 * sum(found.sides)) ** 2
+    raised = bound * (1.0 + rounding(mass) / mass)
+    lowered = found.moment - _moment_rounding(inertial, found)
+    return dataclasses.replace(found, moment=lowered, bound=raised)
 
 
 def _weak(link: LinkAnalysis) -> tuple[str, ...]:
@@ -225,7 +272,7 @@ def _grown_box(solid: Solid) -> Hull:
     corners = solid.corners
     assert corners is not None
     centre = corners.mean(axis=0)
-    return Hull(centre + (1.0 + FACETS) * (corners - centre))
+    return Hull.of_box(centre + (1.0 + FACETS) * (corners - centre))
 
 
 def _enlarged(solid: Solid) -> Hull:
@@ -260,18 +307,22 @@ def _one_at_a_time(solid: Solid) -> list[tuple[str, Hull]]:
     return []
 
 
-def _moment_rounding(inertial: model.Inertial, axis: np.ndarray) -> float:
-    """How much the written ``<inertia>`` values' rounding can move the moment about ``axis``."""
+def _moment_rounding(inertial: model.Inertial, excess: MomentExcess) -> float:
+    """
+    How much the written ``<inertia>`` values' rounding can move the moment of ``excess``: it
+    is ``Σᵢⱼ Wᵢⱼ Iᵢⱼ`` (:attr:`MomentExcess.weights`), so each value moves it by its
+    weight, in the axes of ``<inertial><origin rpy>``, times its rounding.
+    """
     values = inertial.tensor_values()
     if not all(isinstance(v, float) for v in values.values()):
         return 0.0
     rpy = inertial.origin.rpy
     rotation = rpy_matrix(rpy) if isinstance(rpy, tuple) else np.eye(3)
-    b = np.abs(rotation.T @ np.asarray(axis, dtype=np.float64))  # the axis in <inertia>'s axes
+    weights = np.abs(rotation.T @ excess.weights @ rotation)  # in <inertia>'s axes
     h = {name: rounding(value) for name, value in values.items()}  # type: ignore[arg-type]
     pairs = {"ixx": (0, 0), "iyy": (1, 1), "izz": (2, 2), "ixy": (0, 1), "ixz": (0, 2)}
     pairs["iyz"] = (1, 2)
     total = 0.0
     for name, (i, j) in pairs.items():
-        total += (1.0 if i == j else 2.0) * b[i] * b[j] * h[name]
+        total += (1.0 if i == j else 2.0) * weights[i, j] * h[name]
     return total

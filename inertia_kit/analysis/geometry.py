@@ -58,7 +58,7 @@ class Solid:
         if self.part is not None:
             return Hull.of_part(self.part)
         if self.corners is not None:
-            return Hull(self.corners)
+            return Hull.of_box(self.corners)
         return None
 
 

@@ -108,7 +108,9 @@ def test_beyond_the_bound_only_within_rounding_or_on_visual_geometry_is_a_warnin
     """A tensor far from a cylinder's and 2.3 % beyond what its mass can have inside it: an
     error only when no rounding of the written numbers explains that, on collision geometry."""
     along_x = "0 1.5707963267948966 0"
-    far = inertial(0.089, 0.000111842, 0.000111842, 0.000111842)  # 2× the uniform iyy
+    # iyy 2.6 times the uniform 3.02e-05; along the axle (x) ∫x² dm = (iyy + izz - ixx)/2 =
+    # 8.6e-06, within the 0.089 × 0.01² = 8.9e-06 the cylinder's 0.02 m allow (IN023)
+    far = inertial(0.089, 0.000111842, 8e-05, 4.9e-05)
     rounded = cylinder(0.035, 0.02)
     (finding,) = lint(moving(collision(rounded, rpy=along_x) + far), "IN020")
     assert finding.severity == Severity.WARNING
@@ -120,7 +122,7 @@ def test_beyond_the_bound_only_within_rounding_or_on_visual_geometry_is_a_warnin
     assert finding.severity == Severity.WARNING
     assert "but its only geometry is visual, often a schematic stand-in" in finding.message
     precise = cylinder("0.0349999", "0.0200001")
-    exact = inertial("0.0890001", 0.000111842, 0.000111842, 0.000111842)
+    exact = inertial("0.0890001", 0.000111842, 8e-05, 4.9e-05)
     (finding,) = lint(moving(collision(precise, rpy=along_x) + exact), "IN020")
     assert finding.severity == Severity.ERROR
     assert "no 0.089 kg inside the link's geometry can have it (IN023)" in finding.message

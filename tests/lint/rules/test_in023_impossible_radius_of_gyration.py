@@ -181,9 +181,15 @@ def test_the_installed_unitree_robots_through_the_command():
     rotors = [f for f in json.loads(result.stdout) if f["link"].endswith("_rotor")]
     go1_rotors = [f["severity"] for f in rotors if f["file"] == str(go1)]
     assert go1_rotors == ["warning"] * 12
-    # B1's thigh and calf rotors are 38 % over their 0.05 m cylinders: still errors
-    b1_rotors = Counter(f["severity"] for f in rotors if f["file"] == str(b1))
-    assert b1_rotors == {"error": 8}
+    # B1's thigh and calf rotors are 38 % over their 0.05 m cylinders: still errors; its hip
+    # rotors' ∫x² dm = (iyy + izz - ixx)/2 = 2.315e-05 is 16 % over the 0.199 kg × (0.01 m)²
+    # of their 0.02 m width (6 % more than the rounding of `0.02` allows): errors too
+    b1_rotors = Counter(
+        (f["link"].split("_", 1)[1], f["severity"]) for f in rotors if f["file"] == str(b1)
+    )
+    assert b1_rotors == {("thigh_rotor", "error"): 4, ("calf_rotor", "error"): 4} | {
+        ("hip_rotor", "error"): 4
+    }
 
 
 def test_a_tensor_that_is_no_rigid_body_far_from_its_geometry(lint):
@@ -198,3 +204,62 @@ def test_a_tensor_that_is_no_rigid_body_far_from_its_geometry(lint):
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         assert lint(moving(body), "IN023") == []
+
+
+# --- second moments along a direction (Bhatia–Davis) ---------------------------------------------
+
+AXLE_Y = "1.5707963267948966 0 0"
+
+
+def test_a_wheel_with_the_axial_formula_on_every_axis_is_impossible(lint):
+    """The issue's wheel: r = 0.05 m, 0.02 m wide, axle along y, ixx = iyy = izz = ½ m r²:
+    ∫y² dm = (ixx + izz - iyy)/2 = ¼ m r² against m (0.01 m)², 6.25 times over."""
+    mass, radius, width = 1.0, 0.05, 0.02
+    axial = mass * radius**2 / 2
+    wheel = collision(cylinder(radius, width), rpy=AXLE_Y)
+    (finding,) = lint(moving(wheel + inertial(mass, axial, axial, axial)), "IN023")
+    assert finding.severity == Severity.ERROR
+    assert finding.expected["kind"] == "along"
+    assert finding.expected["axis"] == pytest.approx([0.0, 1.0, 0.0])
+    assert finding.expected["max"] == pytest.approx(mass * (width / 2) ** 2)
+    assert finding.expected["sides"] == pytest.approx([width / 2, width / 2])
+    assert finding.expected["uniform"] == pytest.approx(mass * width**2 / 12)
+    assert finding.message.startswith(
+        "link `arm`: the second moment along y, ∫y² dm = (ixx + izz - iyy)/2 = 0.000625 kg·m², "
+        "is more than the 0.0001 kg·m² any 1 kg inside its collision cylinder"
+    )
+    assert "\n" not in finding.message and "Bhatia–Davis" in finding.help
+    # the wheel's own tensor passes: ixx = izz = m (3 r² + w²)/12
+    across = mass * (3 * radius**2 + width**2) / 12
+    assert lint(moving(wheel + inertial(mass, across, axial, across)), "IN023") == []
+
+
+def test_a_thin_ring_on_the_rim_is_the_limit_of_both_kinds(lint):
+    """A ring of radius r in the mid-plane: ∫y² dm = 0, iyy = m r², ixx = izz = ½ m r²."""
+    mass, radius = 1.0, 0.05
+    ring = inertial(mass, mass * radius**2 / 2, mass * radius**2, mass * radius**2 / 2)
+    assert lint(moving(collision(cylinder(radius, 0.02), rpy=AXLE_Y) + ring), "IN023") == []
+
+
+def test_an_off_centre_com_tightens_the_bound_but_only_warns(lint):
+    """COM 8 mm from the centre plane of a 20 mm wheel: at most m × 0.018 × 0.002 along y,
+    but m (0.01 m)² with the COM midway: an error must not rest on where the COM is written."""
+    mass = 1.0
+    wheel = collision(cylinder(0.05, 0.02), rpy=AXLE_Y)
+    # ∫y² dm = (ixx + izz - iyy)/2 = 7.5e-05: beyond 3.6e-05, within 1e-04
+    body = wheel + inertial(mass, 0.0012, 0.00225, 0.0012, xyz="0 0.008 0")
+    (finding,) = lint(moving(body), "IN023")
+    assert finding.expected["kind"] == "along"
+    assert finding.expected["max"] == pytest.approx(mass * 0.018 * 0.002)
+    assert finding.expected["sides"] == pytest.approx([0.018, 0.002])  # towards -y, +y
+    assert finding.expected["max_with_rounding"] > mass * 0.01**2  # the COM anywhere
+    assert finding.severity == Severity.WARNING
+    assert "a centre of mass off its declared place (0.018 m and 0.002 m" in finding.message
+    mirrored = wheel + inertial(mass, 0.0012, 0.00225, 0.0012, xyz="0 -0.008 0")
+    (finding,) = lint(moving(mirrored), "IN023")
+    assert finding.expected["axis"] == pytest.approx([0.0, 1.0, 0.0])
+    assert finding.expected["sides"] == pytest.approx([0.002, 0.018])
+    # ∫y² dm = 3e-04, 3 times m (0.01 m)²: wherever the COM is, impossible
+    beyond = wheel + inertial(mass, 0.0012, 0.0018, 0.0012, xyz="0 0.008 0")
+    (finding,) = lint(moving(beyond), "IN023")
+    assert finding.severity == Severity.ERROR

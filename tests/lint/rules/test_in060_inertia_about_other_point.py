@@ -27,7 +27,10 @@ def test_tensor_about_the_link_origin_fires_with_the_corrected_tensor(lint):
     assert [f.code for f in findings] == ["IN060"]
     finding = findings[0]
     transverse, _, axial = cylinder_moments(2.0, 0.1, 0.1)
-    assert finding.severity == Severity.WARNING and finding.link == "arm"
+    # about the COM the written tensor has ∫z² dm = m l²/12 + m (l/2)² = m l²/3, more than the
+    # m (l/2)² any mass in the drum's length can have (IN023's bound along a direction)
+    assert finding.severity == Severity.ERROR and finding.link == "arm"
+    assert finding.message.endswith("as written no mass inside the geometry can have it (IN023)")
     assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.05)" in finding.message
     assert "2 kg × (0.05 m)²" in finding.message
     expected = finding.expected
