@@ -25,6 +25,8 @@ _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\
 # common "unlimited"); every other number must be usable in mass-property arithmetic
 _COMPARED_ONLY = frozenset({"limit", "dynamics", "mimic"})
 # values other values are divided by: a tiny one is unusable too (physics/numbers.py)
+# what a second child of a <geometry> must be to be a second shape: URDF's, and those engines add
+_SHAPES = frozenset({"box", "cylinder", "sphere", "mesh", "capsule", "ellipsoid", "plane", "cdf"})
 _SCALES = frozenset({("mass", "value"), ("inertia", "ixx"), ("inertia", "iyy"), ("inertia", "izz")})
 
 
@@ -81,7 +83,9 @@ class Builder:
     def child(self, element: etree._Element, tag: str) -> etree._Element | None:
         return next((child for child in element if self.tag(child) == tag), None)
 
-    def single(self, element: etree._Element, tag: str) -> etree._Element | None:
+    def single(
+        self, element: etree._Element, tag: str, kind: str | None = None
+    ) -> etree._Element | None:
         """
         The ``<tag>`` child the engines read where URDF allows one: the first, as urdfdom's
         TinyXML ``FirstChildElement``, Drake and PyBullet read it; each later one is recorded
@@ -89,10 +93,17 @@ class Builder:
         """
         found = self.children(element, tag)
         for extra in found[1:]:
-            self.duplicate(found[0], extra, tag, self.tag(element) or "")
+            self.duplicate(found[0], extra, tag, self.tag(element) or "", kind)
         return found[0] if found else None
 
-    def duplicate(self, read: etree._Element, extra: etree._Element, tag: str, parent: str):
+    def duplicate(
+        self,
+        read: etree._Element,
+        extra: etree._Element,
+        tag: str,
+        parent: str,
+        kind: str | None = None,
+    ):
         mine, theirs = dict(self.written(read)), dict(self.written(extra))
         if parent == "geometry":  # two shapes: which shape is the first difference
             mine = {"shape": etree.QName(read).localname, **mine}
@@ -103,7 +114,9 @@ class Builder:
             if _canonical(mine.get(what)) != _canonical(theirs.get(what))
         )
         self.duplicates.append(
-            model.Duplicate(tag, parent, self.source_of(read), self.source_of(extra), differences)
+            model.Duplicate(
+                tag, parent, self.source_of(read), self.source_of(extra), differences, kind
+            )
         )
 
     def written(self, element: etree._Element, prefix: str = "") -> list[tuple[str, str]]:
@@ -259,8 +272,8 @@ class Builder:
         return model.Shape(
             kind,
             element.get("name"),
-            self.origin(self.single(element, "origin")),
-            self.geometry(self.single(element, "geometry"), element),
+            self.origin(self.single(element, "origin", kind)),
+            self.geometry(self.single(element, "geometry", kind), element),
             self.source_of(element),
         )
 
@@ -269,7 +282,9 @@ class Builder:
             return model.Unknown(None, self.source_of(owner), absent=True)
         shapes = [child for child in element if isinstance(child.tag, str)]
         for extra in shapes[1:]:  # urdfdom, MuJoCo, Drake and PyBullet read the first shape
-            self.duplicate(shapes[0], extra, etree.QName(extra).localname, "geometry")
+            local = etree.QName(extra).localname
+            if local in _SHAPES:  # not a misplaced <material>, which is no second shape
+                self.duplicate(shapes[0], extra, local, "geometry", self.tag(owner))
         shape = shapes[0] if shapes else None
         if shape is None:
             return model.Unknown(None, self.source_of(element))

@@ -167,7 +167,8 @@ class Duplicate:
     """
     A second (third, ...) element where URDF allows one: a second ``<inertial>`` in a link, a
     second ``<mass>``, ``<inertia>`` or ``<origin>`` in an ``<inertial>``, a second ``<origin>``
-    or ``<geometry>`` in a ``<visual>``/``<collision>``, a second shape in a ``<geometry>``.
+    or ``<geometry>`` in a ``<visual>``/``<collision>``, a second shape (``<box>``, ``<mesh>``, ...;
+    not any element: a misplaced ``<material>`` is no shape) in a ``<geometry>``.
     urdfdom (TinyXML ``FirstChildElement``), Drake and PyBullet read the first and ignore this
     one silently; MuJoCo refuses the file except for a second shape. ``differences`` are the
     values that differ, ``(what, read, ignored)`` as written (``("mass", "2", "5")``); empty
@@ -179,6 +180,7 @@ class Duplicate:
     read: Source  # the element the engines read (the first)
     ignored: Source  # this one
     differences: tuple[tuple[str, str, str], ...] = ()
+    kind: str | None = None  # visual or collision, for what is in or under one
 
 
 @dataclass(frozen=True)

@@ -42,7 +42,7 @@ def _where(source: Source, other: Source) -> str:
 def _engines(duplicate: Duplicate) -> str:
     """What each engine does with it (measured: see the rule's document)."""
     first = "urdfdom (ROS, Gazebo), Drake and PyBullet read the first and ignore this one silently"
-    if duplicate.parent == "geometry":
+    if duplicate.parent == "geometry" and duplicate.kind != "visual":
         return first.replace("urdfdom (ROS, Gazebo),", "urdfdom (ROS, Gazebo), MuJoCo,")
     if not _refused(duplicate):
         return first + "; MuJoCo's importer drops visuals"
@@ -58,7 +58,7 @@ def _what(duplicate: Duplicate) -> str:
 
 def _refused(duplicate: Duplicate) -> bool:
     """MuJoCo's schema refuses a repeated element; its importer drops visuals first."""
-    return duplicate.parent not in ("geometry", "visual")
+    return duplicate.parent != "geometry" and duplicate.kind != "visual"
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
@@ -77,7 +77,7 @@ def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
         says = "the same values"
     # a visual's duplicate changes no physics: what a person sees, and geometry-derived values
     # only where the link has no collision
-    severity = Severity.ERROR if differences and duplicate.parent != "visual" else Severity.WARNING
+    severity = Severity.ERROR if differences and duplicate.kind != "visual" else Severity.WARNING
     readers = "urdfdom, Drake and PyBullet" if _refused(duplicate) else "the engines"
     listed = "; ".join(differences) if differences else "none: both say the same"
     if differences:

@@ -163,6 +163,14 @@ def test_a_second_origin_in_a_collision_is_an_error_in_a_visual_a_warning(lint):
     assert "MuJoCo refuses" not in visual[0].message  # its URDF import drops visuals
 
 
+def test_a_second_shape_in_a_visual_is_a_warning_and_a_material_there_no_shape(lint):
+    visual = '<visual><geometry><box size="0.1 0.2 0.3"/>{}</geometry></visual>\n'
+    (finding,) = in006(lint, robot(inertial(3.0) + BOX + visual.format('<sphere radius="1"/>')))
+    assert finding.severity == Severity.WARNING
+    # pybullet_data's racecar writes <material> inside a visual's <geometry>
+    assert in006(lint, robot(inertial(3.0) + BOX + visual.format('<material name="g"/>'))) == []
+
+
 def test_several_visuals_and_collisions_are_allowed(lint):
     assert in006(lint, robot(inertial(3.0) + BOX + BOX)) == []
 
