@@ -29,6 +29,19 @@ TEXT_FIX = Safety.SAFE
 SHOWN = 2
 
 
+def _apart(read: Source, ignored: Source) -> tuple[Source, Source]:
+    """
+    Where the two differ: the elements themselves, or, when one macro body line made both
+    (``<xacro:inertial_of m="2"/>`` called twice in a link), the innermost calls that differ.
+    """
+    pairs = [(read, ignored)]
+    pairs += list(zip(reversed(read.calls), reversed(ignored.calls), strict=False))
+    for a, b in pairs:
+        if (a.path, a.line, a.column) != (b.path, b.line, b.column):
+            return a, b
+    return read, ignored
+
+
 def _where(source: Source, other: Source) -> str:
     """``line 12`` in the same file as ``other`` (``line 12:40`` on the same line), else
     ``path:12``."""
@@ -67,7 +80,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
 
 
 def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
-    read, ignored = duplicate.read, duplicate.ignored
+    read, ignored = _apart(duplicate.read, duplicate.ignored)
     differences = [f"{what} {mine} vs {theirs}" for what, mine, theirs in duplicate.differences]
     if differences:
         shown = ", ".join(differences[:SHOWN])
@@ -91,7 +104,7 @@ def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
         f"link `{name}`: {_what(duplicate)} ({_where(ignored, read)}) ignored, {readers} read "
         f"{_where(read, ignored)}{', MuJoCo refuses the file' if _refused(duplicate) else ''}: "
         f"{says}",
-        ignored,
+        duplicate.ignored,
         link=name,
         severity=severity,
         help=f"{_engines(duplicate)}. Read: {read}; ignored: {ignored}. Differences (read vs "

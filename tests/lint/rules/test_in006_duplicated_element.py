@@ -280,3 +280,30 @@ def test_drake_reads_the_first_as_inertia_kit_does(tag, tmp_path):
     assert tuple(body.get_com()) == pytest.approx(ours.origin.xyz)
     about_com = body.Shift(body.get_com()).CalcRotationalInertia().get_moments()
     assert tuple(about_com) == pytest.approx((ours.ixx, ours.iyy, ours.izz))
+
+
+CALLED_TWICE = """<?xml version="1.0"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="box_inertial" params="m">
+    <inertial>
+      <mass value="${m}"/>
+      <inertia ixx="${m*0.01}" ixy="0" ixz="0" iyy="${m*0.01}" iyz="0" izz="${m*0.01}"/>
+    </inertial>
+  </xacro:macro>
+  <link name="a">
+    <xacro:box_inertial m="2"/>
+    <xacro:box_inertial m="4"/>
+  </link>
+</robot>
+"""
+
+
+def test_xacro_one_macro_line_made_both_the_calls_are_named(tmp_path):
+    path = write(tmp_path, CALLED_TWICE, "m.urdf.xacro")
+    result = CliRunner().invoke(
+        lint_main, ["--select", "IN006", "--output-format", "json", str(path)]
+    )
+    (finding,) = json.loads(result.stdout)
+    assert finding["line"] == 11
+    assert "second `<inertial>` (line 11)" in finding["message"]
+    assert "read line 10" in finding["message"] and "mass 2 vs 4" in finding["message"]
