@@ -8,7 +8,7 @@ from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import lines
 from inertia_kit.description.edits import Edit, read_source
 from inertia_kit.description.model import Duplicate, Source
-from inertia_kit.description.xmlspan import element_span
+from inertia_kit.description.xmlspan import Span, element_span, tokens
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -118,8 +118,9 @@ def _removal(duplicate: Duplicate) -> Fix | None:
     """
     The edit that removes the ignored element (with its line when nothing else stands on it),
     only when it is written character for character as the one read (whitespace aside), both
-    in the same file and outside any macro: a macro body's duplicate may say the same for one
-    call and differ for another, and a text that is not the one linted gets no edit.
+    in the same file, in the same element and outside any macro: a macro body's duplicate may
+    say the same for one call and differ for another, one inside an ``<xacro:if>`` may be the
+    only one in another configuration, and a text that is not the one linted gets no edit.
     """
     read, ignored = duplicate.read, duplicate.ignored
     if read.calls or ignored.calls or read.path != ignored.path or None in (
@@ -133,8 +134,10 @@ def _removal(duplicate: Duplicate) -> Fix | None:
         gone = element_span(text, source.offset(ignored.line, ignored.column))
     except (InputError, ValueError, IndexError):
         return None
-    if kept.tag != gone.tag or _words(text[kept.start : kept.end]) != _words(
-        text[gone.start : gone.end]
+    if (
+        kept.tag != gone.tag
+        or _words(text[kept.start : kept.end]) != _words(text[gone.start : gone.end])
+        or not _siblings(text, kept, gone)
     ):
         return None
     start, end = gone.start, gone.end
@@ -148,6 +151,25 @@ def _removal(duplicate: Duplicate) -> Fix | None:
         (Edit(ignored.path, start, end, ""),),
         TEXT_FIX,
     )
+
+
+def _siblings(text: str, first: Span, second: Span) -> bool:
+    """
+    Whether ``second`` follows ``first`` in the same element of the text: in xacro, not one
+    of them inside an ``<xacro:if>`` the other is outside of (a configuration without the
+    first would lose the element with the second).
+    """
+    if second.start < first.end:
+        return False
+    depth = 0
+    for token in tokens(text[first.end : second.start]):
+        if token.group(1) is not None:  # an end tag
+            depth -= 1
+            if depth < 0:
+                return False
+        elif token.group(2) is not None and not token.group(4):  # a start tag, not empty
+            depth += 1
+    return depth == 0
 
 
 def _words(text: str) -> list[str]:

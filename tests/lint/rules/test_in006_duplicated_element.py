@@ -307,3 +307,28 @@ def test_xacro_one_macro_line_made_both_the_calls_are_named(tmp_path):
     assert finding["line"] == 11
     assert "second `<inertial>` (line 11)" in finding["message"]
     assert "read line 10" in finding["message"] and "mass 2 vs 4" in finding["message"]
+
+
+def test_xacro_no_removal_when_one_is_in_a_condition_the_other_is_not(tmp_path):
+    block = inertial(3.0)
+    text = (
+        '<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:arg name="light" default="true"/>\n<link name="arm">\n'
+        f'<xacro:if value="$(arg light)">{block}</xacro:if>\n{block}{BOX}</link>\n</robot>\n'
+    )
+    path = write(tmp_path, text, "c.urdf.xacro")
+    result = CliRunner().invoke(
+        lint_main, ["--select", "IN006", "--output-format", "json", str(path)]
+    )
+    (finding,) = json.loads(result.stdout)
+    assert finding["severity"] == "warning"
+    # with light:=false the second is the only <inertial>: removing it would lose it
+    assert finding["fix"] is None
+    # written side by side in the same element, the second goes
+    plain = text.replace('<xacro:if value="$(arg light)">', "").replace("</xacro:if>", "")
+    path.write_text(plain)
+    result = CliRunner().invoke(
+        lint_main, ["--select", "IN006", "--output-format", "json", str(path)]
+    )
+    (finding,) = json.loads(result.stdout)
+    assert finding["fix"]["safety"] == "safe"
