@@ -25,8 +25,10 @@ SUMMARY = (
 # for urdfdom, Drake and PyBullet, and lets MuJoCo load the file
 TEXT_FIX = Safety.SAFE
 
-# differences named in the message; the rest are counted there and listed in the help
+# differences named in the message, the weightiest first (the mass, then the tensor, then the
+# centre of mass); the rest are counted there and listed in the help
 SHOWN = 2
+WEIGHT = ("shape", "mass", "inertia", "ixx", "iyy", "izz", "ixy", "ixz", "iyz", "origin", "xyz")
 
 
 def _apart(read: Source, ignored: Source) -> tuple[Source, Source]:
@@ -69,6 +71,11 @@ def _what(duplicate: Duplicate) -> str:
     return f"second `<{duplicate.tag}>`{holder}"
 
 
+def _weight(difference: tuple[str, str, str]) -> int:
+    first = difference[0].split()[0]
+    return WEIGHT.index(first) if first in WEIGHT else len(WEIGHT)
+
+
 def _refused(duplicate: Duplicate) -> bool:
     """MuJoCo's schema refuses a repeated element; its importer drops visuals first."""
     return duplicate.parent != "geometry" and duplicate.kind != "visual"
@@ -81,7 +88,10 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
 
 def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
     read, ignored = _apart(duplicate.read, duplicate.ignored)
-    differences = [f"{what} {mine} vs {theirs}" for what, mine, theirs in duplicate.differences]
+    differences = [
+        f"{what} {mine} vs {theirs}"
+        for what, mine, theirs in sorted(duplicate.differences, key=_weight)
+    ]
     if differences:
         shown = ", ".join(differences[:SHOWN])
         more = len(differences) - SHOWN
