@@ -25,7 +25,19 @@ _NUMBER = re.compile(r"\s*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?\
 # common "unlimited"); every other number must be usable in mass-property arithmetic
 _COMPARED_ONLY = frozenset({"limit", "dynamics", "mimic"})
 # values other values are divided by: a tiny one is unusable too (physics/numbers.py)
+# what a second child of a <geometry> must be to be a second shape: URDF's, and those engines add
+_SHAPES = frozenset({"box", "cylinder", "sphere", "mesh", "capsule", "ellipsoid", "plane", "cdf"})
 _SCALES = frozenset({("mass", "value"), ("inertia", "ixx"), ("inertia", "iyy"), ("inertia", "izz")})
+
+
+def _canonical(text: str | None) -> tuple | str | None:
+    """A written value as compared: numbers by value (``0`` is ``0.0``), words as written."""
+    if text is None:
+        return None
+    parts = text.split()
+    if parts and all(_NUMBER.fullmatch(p) for p in parts):
+        return tuple(float(p) for p in parts)
+    return text.strip()
 
 
 class Builder:
@@ -47,6 +59,8 @@ class Builder:
         self.order: dict[etree._Element, int] = {}
         self.located: dict[int, tuple[etree._Element, str]] = {}
         self.namespace: str | None = None  # the root's default namespace, if it declares one
+        # the link being read: its elements after the first where URDF allows one (link())
+        self.duplicates: list[model.Duplicate] = []
 
     # --- children -------------------------------------------------------------------------
 
@@ -68,6 +82,68 @@ class Builder:
 
     def child(self, element: etree._Element, tag: str) -> etree._Element | None:
         return next((child for child in element if self.tag(child) == tag), None)
+
+    def single(
+        self, element: etree._Element, tag: str, kind: str | None = None
+    ) -> etree._Element | None:
+        """
+        The ``<tag>`` child the engines read where URDF allows one: the first, as urdfdom's
+        TinyXML ``FirstChildElement``, Drake and PyBullet read it; each later one is recorded
+        as a :class:`~inertia_kit.description.model.Duplicate` of the link being read.
+        """
+        found = self.children(element, tag)
+        for extra in found[1:]:
+            self.duplicate(found[0], extra, tag, self.tag(element) or "", kind)
+        return found[0] if found else None
+
+    def duplicate(
+        self,
+        read: etree._Element,
+        extra: etree._Element,
+        tag: str,
+        parent: str,
+        kind: str | None = None,
+    ):
+        mine, theirs = dict(self.written(read)), dict(self.written(extra))
+        if parent == "geometry":  # two shapes: which shape is the first difference
+            mine = {"shape": etree.QName(read).localname, **mine}
+            theirs = {"shape": tag, **theirs}
+        differences = tuple(
+            (what, mine.get(what, "absent"), theirs.get(what, "absent"))
+            for what in dict.fromkeys([*mine, *theirs])
+            if _canonical(mine.get(what)) != _canonical(theirs.get(what))
+        )
+        self.duplicates.append(
+            model.Duplicate(
+                tag, parent, self.source_of(read), self.source_of(extra), differences, kind
+            )
+        )
+
+    def written(self, element: etree._Element, prefix: str = "") -> list[tuple[str, str]]:
+        """
+        What an element says, as an engine reading it would: ``(what, text)`` for each of its
+        attributes (``value`` named by its element alone: ``mass``) and, recursively, of the
+        first child of each tag; a ``<geometry>``'s first shape only.
+        """
+        said = []
+        for attribute, text in element.attrib.items():
+            if attribute == "value":  # <mass value>: "mass"
+                name = prefix or self.tag(element) or attribute
+            else:
+                name = f"{prefix} {attribute}".strip()
+            said.append((name, text))
+        children = [c for c in element if self.tag(c) is not None]
+        if self.tag(element) == "geometry":
+            children = children[:1]
+            if children:
+                said.append((f"{prefix} shape".strip(), self.tag(children[0]) or ""))
+        seen: set[str] = set()
+        for child in children:
+            tag = self.tag(child) or ""
+            if tag not in seen:
+                seen.add(tag)
+                said.extend(self.written(child, f"{prefix} {tag}".strip()))
+        return said
 
     # --- numbers ------------------------------------------------------------------------
 
@@ -168,21 +244,23 @@ class Builder:
         )
 
     def link(self, element: etree._Element) -> model.Link:
-        inertial = self.child(element, "inertial")
+        self.duplicates = []
+        inertial = self.single(element, "inertial")
         return model.Link(
             element.get("name", ""),
             None if inertial is None else self.inertial(inertial),
             tuple(self.shape(e, "visual") for e in self.children(element, "visual")),
             tuple(self.shape(e, "collision") for e in self.children(element, "collision")),
             self.source_of(element),
+            tuple(self.duplicates),
         )
 
     def inertial(self, element: etree._Element) -> model.Inertial:
-        mass = self.child(element, "mass")
-        inertia = self.child(element, "inertia")
+        mass = self.single(element, "mass")
+        inertia = self.single(element, "inertia")
         values = {name: self.number(inertia, name) for name in model.Inertial.TENSOR}
         return model.Inertial(
-            self.origin(self.child(element, "origin")),
+            self.origin(self.single(element, "origin")),
             self.number(mass, "value"),
             source=self.source_of(element),
             mass_source=None if mass is None else self.source_of(mass),
@@ -194,15 +272,20 @@ class Builder:
         return model.Shape(
             kind,
             element.get("name"),
-            self.origin(self.child(element, "origin")),
-            self.geometry(self.child(element, "geometry"), element),
+            self.origin(self.single(element, "origin", kind)),
+            self.geometry(self.single(element, "geometry", kind), element),
             self.source_of(element),
         )
 
     def geometry(self, element: etree._Element | None, owner: etree._Element) -> model.Geometry:
         if element is None:
             return model.Unknown(None, self.source_of(owner), absent=True)
-        shape = next((child for child in element if isinstance(child.tag, str)), None)
+        shapes = [child for child in element if isinstance(child.tag, str)]
+        for extra in shapes[1:]:  # urdfdom, MuJoCo, Drake and PyBullet read the first shape
+            local = etree.QName(extra).localname
+            if local in _SHAPES:  # not a misplaced <material>, which is no second shape
+                self.duplicate(shapes[0], extra, local, "geometry", self.tag(owner))
+        shape = shapes[0] if shapes else None
         if shape is None:
             return model.Unknown(None, self.source_of(element))
         source = self.source_of(shape)

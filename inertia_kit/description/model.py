@@ -163,12 +163,35 @@ class Inertial:
 
 
 @dataclass(frozen=True)
+class Duplicate:
+    """
+    A second (third, ...) element where URDF allows one: a second ``<inertial>`` in a link, a
+    second ``<mass>``, ``<inertia>`` or ``<origin>`` in an ``<inertial>``, a second ``<origin>``
+    or ``<geometry>`` in a ``<visual>``/``<collision>``, a second shape (``<box>``, ``<mesh>``, ...;
+    not any element: a misplaced ``<material>`` is no shape) in a ``<geometry>``.
+    urdfdom (TinyXML ``FirstChildElement``), Drake and PyBullet read the first and ignore this
+    one silently; MuJoCo refuses the file except for a second shape. ``differences`` are the
+    values that differ, ``(what, read, ignored)`` as written (``("mass", "2", "5")``); empty
+    when the two elements say the same.
+    """
+
+    tag: str  # the duplicated element's tag; a shape's is "shape"
+    parent: str  # the element that holds both: link, inertial, visual, collision, geometry
+    read: Source  # the element the engines read (the first)
+    ignored: Source  # this one
+    differences: tuple[tuple[str, str, str], ...] = ()
+    kind: str | None = None  # visual or collision, for what is in or under one
+
+
+@dataclass(frozen=True)
 class Link:
     name: str
     inertial: Inertial | None
     visuals: tuple[Shape, ...]
     collisions: tuple[Shape, ...]
     source: Source
+    # elements after the first where URDF allows one, which every reader but MuJoCo ignores
+    duplicates: tuple[Duplicate, ...] = ()
 
 
 @dataclass(frozen=True)

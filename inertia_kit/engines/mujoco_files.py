@@ -84,7 +84,10 @@ def parse_refusals(robot: RobotAnalysis) -> list[Prediction]:
     found = []
     for link in robot.links:
         inertial = link.link.inertial
-        problem = None if inertial is None else _unreadable(inertial)
+        problem = _repeated(link.link, ("inertial",), "link") or (
+            None if inertial is None else _unreadable(inertial, link.link)
+        )
+        problem = problem or _repeated(link.link, ("origin", "geometry"), "collision")
         if problem is None:
             continue
         message, tag, source = problem
@@ -93,7 +96,12 @@ def parse_refusals(robot: RobotAnalysis) -> list[Prediction]:
                 "parse",
                 link.name,
                 message,
-                f"link `{link.name}`: its `<{tag}>` cannot be read",
+                f"link `{link.name}`: "
+                + (
+                    f"a second `<{tag}>`"
+                    if message.startswith("repeated")
+                    else f"its `<{tag}>` cannot be read"
+                ),
                 source,
                 {"tag": tag, "line": None if source is None else source.line},
             )
@@ -101,16 +109,45 @@ def parse_refusals(robot: RobotAnalysis) -> list[Prediction]:
     return found
 
 
-def _unreadable(inertial: model.Inertial) -> tuple[str, str, model.Source | None] | None:
-    """MuJoCo's message, the tag it names and where, for the first value it cannot read."""
+def _repeated(
+    link: model.Link, tags: tuple[str, ...], parent: str
+) -> tuple[str, str, model.Source | None] | None:
+    """
+    MuJoCo's refusal of a second ``<tag>`` in a ``<parent>`` (it allows one; measured:
+    ``repeated element: 'inertial'``), at the second one.
+    """
+    for duplicate in link.duplicates:
+        if duplicate.parent == parent and duplicate.tag in tags:
+            return f"repeated element: '{duplicate.tag}'", duplicate.tag, duplicate.ignored
+    return None
+
+
+def _unreadable(
+    inertial: model.Inertial, link: model.Link
+) -> tuple[str, str, model.Source | None] | None:
+    """
+    MuJoCo's message, the tag it names and where, for the first thing in the ``<inertial>`` it
+    cannot read, in the order it reads (measured): a second ``<origin>``, then the ``<mass>``
+    (a second one first), then the ``<inertia>`` (likewise).
+    """
+
+    def repeated(tag: str) -> tuple[str, str, model.Source | None] | None:
+        return _repeated(link, (tag,), "inertial")
+
+    if found := repeated("origin"):
+        return found
     if inertial.mass_source is None:
         return "missing element: 'mass'", "inertial", inertial.source
+    if found := repeated("mass"):
+        return found
     if inertial.mass is None:
         return "required attribute missing: 'value'", "mass", inertial.mass_source
     if not parseable(inertial.mass):
         return "bad format in attribute 'value'", "mass", inertial.mass_source
     if inertial.inertia_source is None:
         return "missing element: 'inertia'", "inertial", inertial.source
+    if found := repeated("inertia"):
+        return found
     for name in TENSOR_ORDER:
         value = getattr(inertial, name)
         if value is None:

@@ -32,6 +32,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in003_incomplete_inertial,
     in004_invalid_number,
     in005_incomplete_geometry,
+    in006_duplicated_element,
     in010_inertia_not_positive_definite,
     in011_inertia_triangle_inequality,
     in012_inertia_too_small,
