@@ -194,6 +194,52 @@ def _shape_signature(shape: model.Shape) -> tuple | None:
     return None
 
 
+def _exact(shape: model.Shape) -> tuple:
+    """The shape as written, file and signed scale included: equal for the same part."""
+    g = shape.geometry
+    if isinstance(g, model.Mesh):
+        return ("mesh", g.path or g.filename, tuple(g.scale))
+    sizes = tuple(repr(getattr(g, name, None)) for name in ("size", "radius", "length"))
+    return (type(g).__name__, *sizes)
+
+
+def _shape_pose(shape: model.Shape) -> NDArray[np.float64] | None:
+    origin = shape.origin
+    if not isinstance(origin.xyz, tuple) or not isinstance(origin.rpy, tuple):
+        return None
+    return transform(origin.xyz, origin.rpy)
+
+
+def _same_part(
+    left: LinkAnalysis, right: LinkAnalysis, kind: str, left_pose: NDArray, right_pose: NDArray
+) -> NDArray[np.float64] | None:
+    """
+    The rigid motion (4×4, root frame) carrying the left link's shapes onto the right's when
+    they are the same shapes (the same files at the same scale) placed alike: then the right
+    link may be the same part moved (two copies of one drive), whose values are the left's
+    moved, not mirrored. ``None`` when a shape differs (a mirrored mesh file) or the shapes
+    are not placed by one motion.
+    """
+    shapes_a = left.link.collisions if kind == "collision" else left.link.visuals
+    shapes_b = right.link.collisions if kind == "collision" else right.link.visuals
+    if len(shapes_a) != len(shapes_b):
+        return None
+    poses = []
+    for a, b in zip(shapes_a, shapes_b, strict=True):
+        if _exact(a) != _exact(b):
+            return None
+        pose_a, pose_b = _shape_pose(a), _shape_pose(b)
+        if pose_a is None or pose_b is None:
+            return None
+        poses.append((left_pose @ pose_a, right_pose @ pose_b))
+    first_a, first_b = poses[0]
+    motion = first_b @ np.linalg.inv(first_a)
+    for world_a, world_b in poses[1:]:
+        if not np.allclose(motion @ world_a, world_b, atol=1e-6, rtol=1e-4):
+            return None
+    return motion
+
+
 def _signatures(link: LinkAnalysis, kind: str) -> list | None:
     shapes = link.link.collisions if kind == "collision" else link.link.visuals
     found = [_shape_signature(s) for s in shapes]
@@ -218,6 +264,9 @@ class Twins:
     left_pose: NDArray[np.float64]
     right_pose: NDArray[np.float64]
     size: float  # the geometry's size: the largest extent of its bounding boxes, m
+    #: the rigid motion carrying the left link onto the right when they may be the same
+    #: part moved (the same files, placed alike), root frame; ``None`` for mirrored parts
+    motion: NDArray[np.float64] | None = None
 
     def in_root(self, link: LinkAnalysis) -> MassProperties | None:
         """The link's declared mass properties in the root frame, or ``None``."""
@@ -293,7 +342,8 @@ def _geometric_twins(
             return None
     except (ValueError, FloatingPointError, np.linalg.LinAlgError):
         return None
-    return Twins(left, right, plane, left_pose, right_pose, size)
+    motion = _same_part(left, right, kind, left_pose, right_pose)
+    return Twins(left, right, plane, left_pose, right_pose, size, motion)
 
 
 def written_axes(link: LinkAnalysis, pose: NDArray[np.float64]) -> NDArray[np.float64] | None:
@@ -309,8 +359,9 @@ MASS_TOLERANCE = 0.05
 #: the centres of mass, mirrored, may lie this fraction of the link's size apart
 COM_TOLERANCE = 0.05
 #: tensor entries, mirrored and scaled to the same mass, may differ by this fraction of the
-#: largest principal moment: CAD prints 4-6 digits, and twins carry small asymmetric details
-TENSOR_TOLERANCE = 0.05
+#: largest principal moment: values printed to two digits round by up to 3.3 % each (0.015
+#: against 0.016), and twins carry small asymmetric details (a connector, a cable)
+TENSOR_TOLERANCE = 0.10
 
 _NAMES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _INDEX = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
@@ -343,6 +394,17 @@ class Disagreement:
     scale: float  # the largest principal moment, kg·m²
 
 
+def _agree(expected: MassProperties, declared: MassProperties, size: float) -> bool:
+    """Whether ``declared`` is ``expected`` within the tolerances of :func:`compare`."""
+    if abs(expected.mass - declared.mass) > MASS_TOLERANCE * max(expected.mass, declared.mass):
+        return False
+    if np.linalg.norm(expected.com - declared.com) > COM_TOLERANCE * size:
+        return False
+    scale = np.abs(np.linalg.eigvalsh(declared.inertia)).max()
+    tensor = expected.inertia * (declared.mass / expected.mass)
+    return bool(np.abs(tensor - declared.inertia).max() <= TENSOR_TOLERANCE * scale)
+
+
 def compare(twin: Twins) -> Disagreement | None:
     """The disagreement of a pair's declared values, or ``None`` when they mirror."""
     left, right = twin.in_root(twin.left), twin.in_root(twin.right)
@@ -350,8 +412,10 @@ def compare(twin: Twins) -> Disagreement | None:
     right_axes = written_axes(twin.right, twin.right_pose)
     if left is None or right is None or left_axes is None or right_axes is None:
         return None
-    if not (left.mass > 0 and right.mass > 0):
-        return None
+    if not (left.validity().ok and right.validity().ok):
+        return None  # an impossible tensor is IN002/IN010/IN011's business, not a twin's
+    if twin.motion is not None and _agree(left.transformed(twin.motion), right, twin.size):
+        return None  # the same part moved: two copies of one drive need not mirror
     with np.errstate(all="ignore"):
         image = twin.plane.mirror(left)
         ratio = max(left.mass, right.mass) / min(left.mass, right.mass)
@@ -372,7 +436,13 @@ def compare(twin: Twins) -> Disagreement | None:
     off = tuple(n for n, (i, j) in _INDEX.items() if abs(expected[i, j] - written[i, j]) > limit)
     unflipped: tuple[str, ...] = ()
     if off and np.abs(unmirrored - written).max() <= limit:
-        unflipped = tuple(n for n in off if n in ("ixy", "ixz", "iyz"))
+        # the right link has the left's tensor as it stands, not mirrored: name every product
+        # that should have changed sign, also those too small to pass the tolerance alone
+        unflipped = tuple(
+            n
+            for n, (i, j) in _INDEX.items()
+            if i != j and abs(expected[i, j] - written[i, j]) > 1e-3 * scale
+        )
     inverse = np.linalg.inv(twin.right_pose)
     expected_com = inverse[:3, :3] @ image.com + inverse[:3, 3]
     declared_com = inverse[:3, :3] @ right.com + inverse[:3, 3]

@@ -46,8 +46,8 @@ def _parts(d: Disagreement, left: str, right: str) -> list[str]:
         )
     if d.com_gap is not None:
         parts.append(
-            f"not in centre of mass: `{right}` has ({vector_text(d.declared_com)}) m, mirrored "
-            f"from `{left}` ({vector_text(d.expected_com)}) m, {fmt(d.com_gap, 2)} m apart"
+            f"not in centre of mass: `{right}` has {vector_text(d.declared_com)} m, mirrored "
+            f"from `{left}` {vector_text(d.expected_com)} m, {fmt(d.com_gap, 2)} m apart"
         )
     if d.unflipped:
         names = d.unflipped
