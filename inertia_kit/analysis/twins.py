@@ -414,7 +414,8 @@ def compare(twin: Twins) -> Disagreement | None:
         return None
     if not (left.validity().ok and right.validity().ok):
         return None  # an impossible tensor is IN002/IN010/IN011's business, not a twin's
-    if twin.motion is not None and _agree(left.transformed(twin.motion), right, twin.size):
+    moved = None if twin.motion is None else left.transformed(twin.motion)
+    if moved is not None and _agree(moved, right, twin.size):
         return None  # the same part moved: two copies of one drive need not mirror
     with np.errstate(all="ignore"):
         image = twin.plane.mirror(left)
@@ -448,6 +449,14 @@ def compare(twin: Twins) -> Disagreement | None:
     declared_com = inverse[:3, :3] @ right.com + inverse[:3, 3]
     mass_off = ratio > 1.0 + MASS_TOLERANCE
     com_off = gap > COM_TOLERANCE * twin.size
+    if moved is not None:
+        # the same part moved may explain the centre of mass or the tensor: only what neither
+        # the mirror nor the motion explains is named
+        if np.linalg.norm(moved.com - right.com) <= COM_TOLERANCE * twin.size:
+            com_off = False
+        same = moved.inertia * (right.mass / left.mass)
+        if np.abs(same - right.inertia).max() <= limit:
+            off, unflipped = (), ()
     if not (mass_off or com_off or off):
         return None
     left_written = left_axes.T @ left.inertia @ left_axes

@@ -209,6 +209,19 @@ def test_same_part_twice_need_not_mirror(lint, meshes):
     assert lint(biped(left, right), "IN065") == []
 
 
+def test_same_part_twice_with_a_centre_of_mass_neither_explains(lint, meshes):
+    # moved, the COM would be at y = 0.0125 in the right link's frame, mirrored at -0.0125:
+    # 0.05 is neither, the tensor is the part moved: only the centre of mass is named
+    left = hip("l_hip", "left_hip.stl", "0 0.1 -0.15", VALUES)
+    right = hip("r_hip", "left_hip.stl", "0 -0.1 -0.15", VALUES, com=(0.025, 0.05, -0.05))
+    findings = lint(biped(left, right), "IN065")
+    assert len(findings) == 1
+    assert findings[0].message == (
+        "`l_hip` and `r_hip` mirror in geometry, but not in centre of mass: `r_hip` has "
+        "(0.025, 0.05, -0.05) m, mirrored from `l_hip` (0.025, -0.0125, -0.05) m, 0.062 m apart"
+    )
+
+
 def test_geometry_that_does_not_mirror_is_not_compared(lint, meshes):
     # the right hip drawn with the left's chiral mesh turned (not mirrored): names pair, the
     # geometry does not mirror, so even a mass 1.5 times larger gives no finding
