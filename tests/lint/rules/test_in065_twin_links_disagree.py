@@ -21,6 +21,10 @@ from inertia_kit.lint.findings import Severity
 CORNER = np.array([(0, 0, 0), (0.1, 0, 0), (0, 0.05, 0), (0, 0, -0.2)], dtype=float)
 FACES = ((0, 1, 2), (0, 3, 1), (0, 2, 3), (1, 3, 2))  # outward for CORNER (det > 0 below)
 
+# the corner tetrahedron made symmetric in y: its mirror image is itself
+DRIVE = np.array(
+    [(0, 0.025, 0), (0.1, 0, 0), (0, -0.025, 0), (0, 0, -0.2)], dtype=float
+)  # FACES inward
 LIMIT = '<limit lower="-1" upper="1" effort="10" velocity="1"/>'
 VALUES = {
     "ixx": 0.0009,
@@ -48,6 +52,8 @@ def meshes(tmp_path):
     # a pair mirrored across x: the right one is the left one's mirror in the file's own axes
     write_ascii_stl(tmp_path / "left_shell.stl", tetra())
     write_ascii_stl(tmp_path / "right_shell.stl", tetra((-1, 1, 1)))
+    # a housing symmetric across its own xz-plane: one file serves both sides
+    write_ascii_stl(tmp_path / "drive.stl", DRIVE[list(FACES)][:, ::-1])
     return tmp_path
 
 
@@ -202,18 +208,22 @@ def test_frames_that_take_the_reflection_are_quiet(lint, meshes):
 
 
 def test_same_part_twice_need_not_mirror(lint, meshes):
-    # two copies of one housing (the same file, moved by a translation): identical values are
-    # the same part moved, whatever its mirror would be
-    left = hip("l_hip", "left_hip.stl", "0 0.1 -0.15", VALUES)
-    right = hip("r_hip", "left_hip.stl", "0 -0.1 -0.15", VALUES)
+    # two copies of one drive (the same symmetric housing moved by a translation): its
+    # geometry mirrors, but identical values are the same part moved, whatever its mirror
+    # would be (ixy and iyz unflipped would be named for mirrored parts, see above)
+    left = hip("l_hip", "drive.stl", "0 0.1 -0.15", VALUES)
+    right = hip("r_hip", "drive.stl", "0 -0.1 -0.15", VALUES)
+    assert lint(biped(left, right), "IN065") == []
+    # and mirrored values are right too: the geometry cannot tell a mirrored part
+    right = hip("r_hip", "drive.stl", "0 -0.1 -0.15", mirrored(VALUES))
     assert lint(biped(left, right), "IN065") == []
 
 
 def test_same_part_twice_with_a_centre_of_mass_neither_explains(lint, meshes):
     # moved, the COM would be at y = 0.0125 in the right link's frame, mirrored at -0.0125:
     # 0.05 is neither, the tensor is the part moved: only the centre of mass is named
-    left = hip("l_hip", "left_hip.stl", "0 0.1 -0.15", VALUES)
-    right = hip("r_hip", "left_hip.stl", "0 -0.1 -0.15", VALUES, com=(0.025, 0.05, -0.05))
+    left = hip("l_hip", "drive.stl", "0 0.1 -0.15", VALUES)
+    right = hip("r_hip", "drive.stl", "0 -0.1 -0.15", VALUES, com=(0.025, 0.05, -0.05))
     findings = lint(biped(left, right), "IN065")
     assert len(findings) == 1
     assert findings[0].message == (
