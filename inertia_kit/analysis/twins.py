@@ -19,6 +19,11 @@ or one whose name differs by the side marker, at the same scale), and the volume
 second moment of the two geometries mirror across the perpendicular bisector of the two link
 origins within :data:`GEOMETRY_TOLERANCE`. Anything less (no geometry, a mesh that cannot be
 read, a bad number, links at the same place) and the pair is not compared.
+
+Symmetric geometry cannot tell a mirrored part from the same part moved (two copies of one
+drive in a symmetric housing): when both links use the same files placed by one rigid motion,
+values that are the left's moved by that motion are right too, and only what neither the
+mirror nor the motion explains is a disagreement.
 """
 
 from __future__ import annotations
