@@ -1,0 +1,119 @@
+"""IN065 twin-links-disagree: left/right twins whose geometry mirrors but whose values do not."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.analysis.twins import (
+    COM_TOLERANCE,
+    MASS_TOLERANCE,
+    TENSOR_TOLERANCE,
+    Disagreement,
+    compare,
+    twins,
+)
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt, vector_text
+
+CODE = "IN065"
+NAME = "twin-links-disagree"
+SEVERITY = Severity.WARNING
+SCOPE = "robot"
+SUMMARY = (
+    "left/right twin links whose geometry mirrors but whose mass, centre of mass or inertia "
+    "(products whose sign should flip) do not"
+)
+
+_PRODUCTS = ("ixy", "ixz", "iyz")
+
+
+def _same(a: float, b: float, scale: float) -> bool:
+    return abs(a - b) <= 1e-6 * max(abs(a), abs(b), scale * 1e-9)
+
+
+def _values(d: Disagreement, names: tuple[str, ...], which: dict[str, float]) -> str:
+    return ", ".join(f"{n} {fmt(which[n], 4)}" for n in names)
+
+
+def _parts(d: Disagreement, left: str, right: str) -> list[str]:
+    parts = []
+    if d.mass_ratio is not None:
+        parts.append(
+            f"not in mass: {fmt(d.left_mass, 4)} kg and {fmt(d.right_mass, 4)} kg "
+            f"(×{fmt(d.mass_ratio, 3)})"
+        )
+    if d.com_gap is not None:
+        parts.append(
+            f"not in centre of mass: `{right}` has {vector_text(d.declared_com)} m, mirrored "
+            f"from `{left}` {vector_text(d.expected_com)} m, {fmt(d.com_gap, 2)} m apart"
+        )
+    if d.unflipped:
+        names = d.unflipped
+        both = all(_same(d.left_tensor[n], d.declared_tensor[n], d.scale) for n in names)
+        observed = _values(d, names, d.declared_tensor)
+        observed = f"{observed} on both" if both else f"`{right}` has {observed}"
+        parts.append(
+            f"their products of inertia do not: {observed}; mirrored, `{right}` should have "
+            f"{_values(d, names, d.expected_tensor)}"
+        )
+    others = tuple(n for n in d.tensor_off if n not in d.unflipped)
+    if others:
+        shown = others[:3]
+        scaled = " (at its mass)" if d.mass_ratio is not None else ""
+        parts.append(
+            f"not in inertia: `{right}` has {_values(d, shown, d.declared_tensor)}; mirrored "
+            f"from `{left}`{scaled}, {_values(d, shown, d.expected_tensor)}"
+        )
+    return parts
+
+
+def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    _, pairs = twins(robot)
+    for twin in pairs:
+        found = compare(twin)
+        if found is None:
+            continue
+        left, right = twin.left.name, twin.right.name
+        parts = _parts(found, left, right)
+        if not parts:
+            continue
+        axis = twin.plane.axis()
+        plane = (
+            f"the {'xyz'.replace(axis, '')}-plane of the root frame"
+            if axis
+            else f"the plane with normal ({vector_text(twin.plane.normal, 3)})"
+        )
+        flips = ", ".join(n for n in _PRODUCTS if axis in n[1:]) if axis else "the products"
+        first, *rest = parts
+        message = f"`{left}` and `{right}` mirror in geometry, but " + first
+        if rest:
+            message += "; " + "; ".join(p.removeprefix("not in ") for p in rest)
+        source = twin.right.link.inertial.source if twin.right.link.inertial else None
+        yield ctx.finding(
+            message,
+            source or twin.right.link.source,
+            link=right,
+            expected={
+                "twin": left,
+                "mirror_normal": [float(v) for v in twin.plane.normal],
+                "mass": found.left_mass,
+                "com": [float(v) for v in found.expected_com],
+                **{n: found.expected_tensor[n] for n in found.expected_tensor},
+                "mass_tolerance": MASS_TOLERANCE,
+                "com_tolerance_m": COM_TOLERANCE * twin.size,
+                "tensor_tolerance": TENSOR_TOLERANCE * found.scale,
+            },
+            help=(
+                f"the two links' shapes mirror across {plane} (same shapes, volumes, centroids "
+                f"and second moments, in the root frame at zero joint positions), so their "
+                f"mass properties should too: the same mass, the centre of mass reflected, "
+                f"and in axes that correspond the same moments with {flips} of opposite sign; "
+                f"the values above are `{left}`'s mirrored into `{right}`'s frame (tolerances: "
+                f"{MASS_TOLERANCE:.0%} of the mass, {fmt(COM_TOLERANCE * twin.size, 2)} m, "
+                f"{fmt(TENSOR_TOLERANCE * found.scale, 2)} kg·m²). Which twin is right the "
+                "file cannot say: check both against the CAD part (a mirrored part's products "
+                "change sign), then write the right one's mirror into the other"
+            ),
+        )
