@@ -15,6 +15,9 @@ rules do), at the declared mass:
 - ``axes``: the angle, degrees, between the declared and the geometry's principal axes, for
   each axis whose moment stands apart from both others by ``ANISOTROPY`` in both tensors (an
   axis is only defined when its moment is distinct);
+- ``tensor``: the largest ``|ln((nᵀDn + f λ) / (nᵀGn + f λ))|`` over unit axes ``n``, with
+  ``λ`` the geometry's largest moment and ``f = FLOOR`` (the forensic measure's floor): moments
+  and axes at once, in log space (the generalised eigenvalues of the two floored tensors);
 - ``com``: the distance between the declared COM and the geometry's, over the geometry's size
   (its largest radius of gyration).
 
@@ -38,6 +41,18 @@ from real_robots import PACKAGES, package_folder
 #: a principal axis is compared when its moment differs from each other one by this fraction
 ANISOTROPY = 0.2
 QUANTILES = (0.5, 0.9, 0.95, 0.99, 1.0)
+#: the forensic measure's floor (analysis/forensics/measure.py FLOOR)
+FLOOR = 0.05
+
+
+def log_distance(declared, geometry) -> float:
+    """max over unit n of |ln((nᵀDn + fλ) / (nᵀGn + fλ))| (see the module docstring)."""
+    floor = FLOOR * float(np.linalg.eigvalsh(geometry).max()) * np.eye(3)
+    inverse = np.linalg.inv(np.linalg.cholesky(geometry + floor))
+    ratios = np.linalg.eigvalsh(inverse @ (declared + floor) @ inverse.T)
+    if not (ratios > 0).all():
+        return float("inf")
+    return float(np.abs(np.log(ratios)).max())
 
 
 def axis_angles(declared, geometry) -> list[float]:
@@ -106,6 +121,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
                 "basis": basis.kind,
                 "mesh": any(isinstance(s.shape.geometry, Mesh) for s in basis.solids),
                 "moments": moments,
+                "tensor": log_distance(declared.inertia, expected.inertia),
                 "axes": max(angles) if angles else None,
                 "com": com,
             }
@@ -146,6 +162,7 @@ def main() -> int:
     ):
         print(f"{label} ({len(chosen)} links)")
         print(f"  |ln moment ratio| {quantiles([r['moments'] for r in chosen])}")
+        print(f"  tensor log dist.  {quantiles([r['tensor'] for r in chosen])}")
         angles = [r["axes"] for r in chosen if r["axes"] is not None]
         print(f"  axis angle, deg   {quantiles(angles)}")
         print(f"  COM offset/size   {quantiles([r['com'] for r in chosen])}")
