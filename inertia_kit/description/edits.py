@@ -94,8 +94,13 @@ def read_source(path: str | Path) -> SourceText:
     return decode_source(original, path)
 
 
-def decode_source(original: bytes, path: str | Path) -> SourceText:
-    """``original``, the bytes of the file ``path``, as text to edit (see :func:`read_source`)."""
+def source_encoding(original: bytes) -> tuple[bytes, str]:
+    """
+    ``(byte-order mark, encoding)`` of a file's bytes as the parser reads them: its mark, else
+    the encoding it declares (but for one libxml2 does not know, on bytes that are UTF-8: the
+    parser read them as UTF-8), else UTF-16 by its first bytes, else UTF-8. Edits and the
+    columns of elements are in the characters of this decoding.
+    """
     bom = b""
     encoding = "utf-8"
     for mark, name in (  # UTF-32's marks first: UTF-32-LE's begins with UTF-16-LE's
@@ -106,19 +111,23 @@ def decode_source(original: bytes, path: str | Path) -> SourceText:
         (codecs.BOM_UTF16_BE, "utf-16-be"),
     ):
         if original.startswith(mark):
-            bom, encoding = mark, name
-            break
-    else:
-        declared = _DECLARED_ENCODING.match(original)
-        if declared:
-            from inertia_kit.description.xmlparse import reads_declared
+            return mark, name
+    declared = _DECLARED_ENCODING.match(original)
+    if declared:
+        from inertia_kit.description.xmlparse import reads_declared
 
-            encoding = declared.group(1).decode("ascii").lower()
-            if not reads_declared(encoding) and _is_utf8(original):
-                # the parser read it as UTF-8, and told positions in those characters
-                encoding = "utf-8"
-        elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
-            encoding = "utf-16-le" if original[0] else "utf-16-be"
+        encoding = declared.group(1).decode("ascii").lower()
+        if not reads_declared(encoding) and _is_utf8(original):
+            # the parser read it as UTF-8, and told positions in those characters
+            encoding = "utf-8"
+    elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
+        encoding = "utf-16-le" if original[0] else "utf-16-be"
+    return bom, encoding
+
+
+def decode_source(original: bytes, path: str | Path) -> SourceText:
+    """``original``, the bytes of the file ``path``, as text to edit (see :func:`read_source`)."""
+    bom, encoding = source_encoding(original)
     try:
         text = original[len(bom) :].decode(encoding)
     except (LookupError, UnicodeDecodeError) as error:

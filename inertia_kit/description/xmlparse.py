@@ -6,6 +6,7 @@ and every element's start tag located by line and column, which lxml does not gi
 
 from __future__ import annotations
 
+import codecs
 import functools
 import re
 from collections.abc import Callable
@@ -198,29 +199,47 @@ def start_tag_positions(
 ) -> dict[etree._Element, tuple[int, int]] | None:
     """
     ``element -> (line, column)`` of the ``<`` of every element's start tag, both 1-based, the
-    column in characters; ``None`` when the bytes cannot be matched to the tree (UTF-16).
+    column in characters of the file's decoding (:func:`~.edits.source_encoding`); ``None``
+    when the bytes cannot be matched to the tree (UTF-16).
 
     lxml's ``sourceline`` is the line where the start tag *ends*, wrong for a tag spread over
     several lines (and off by one past line 65535, libxml2 2.14), and it has no column at all.
     """
+    from inertia_kit.description.edits import source_encoding
+
+    encoding = "utf-8"
     if _is_wide(data):
         data = _transcoded(data)
         if data is None:
             return None
+    else:
+        # columns in the characters of the text edits are made in: a file declaring
+        # ISO-8859-1 counts a byte a character, whatever UTF-8 its bytes may also read as
+        encoding = source_encoding(data)[1]
+        try:
+            codecs.lookup(encoding)
+        except LookupError:
+            encoding = "utf-8"
     starts = [match.start() for match in _MARKUP.finditer(data) if match.end() - match.start() == 1]
     elements = [element for element in root.iter() if isinstance(element.tag, str)]
     if len(starts) != len(elements):
         return None
     lines = line_starts(data)
     positions: dict[etree._Element, tuple[int, int]] = {}
+    # columns counted on from the previous element of the same line: a minified robot on one
+    # line decoded from its start for each element was quadratic
+    last_line, last_offset, last_column = 0, 0, 1
     for offset, element in zip(starts, elements, strict=True):
         name = _qualified_name(element)
         if not data.startswith(b"<" + name, offset):
             return None
         line = line_of(lines, offset)
-        begin = lines[line - 1] if line > 1 else len(_BOM) * data.startswith(_BOM)
-        column = len(data[begin:offset].decode("utf-8", "replace")) + 1
-        positions[element] = (line, column)
+        if line != last_line:
+            last_line, last_column = line, 1
+            last_offset = lines[line - 1] if line > 1 else len(_BOM) * data.startswith(_BOM)
+        last_column += len(data[last_offset:offset].decode(encoding, "replace"))
+        last_offset = offset
+        positions[element] = (line, last_column)
     return positions
 
 

@@ -144,6 +144,10 @@ class Finding:
     # :mod:`inertia_kit.lint.fixing`, which sets ``fix``, or ``unfixable`` with the reason)
     wants: FixRule | None = field(default=None, compare=False)
     unfixable: str | None = field(default=None, compare=False)
+    # judged by the values of ``link`` alone, which engines integrate as part of the body its
+    # fixed joints weld it into: the runner lowers it when that share is negligible
+    # (:mod:`inertia_kit.lint.weighing`)
+    weighed: bool = field(default=False, compare=False)
 
     def to_json(self) -> dict[str, Any]:
         data = {

@@ -29,6 +29,7 @@ from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
+from inertia_kit.lint.weighing import weigh
 
 if TYPE_CHECKING:
     from inertia_kit.lint.config import Config, PerFileIgnore
@@ -143,6 +144,9 @@ def run_rules(
                 if configured is not None and finding.severity is not configured:
                     # the configured severity always wins (a rule may escalate its own default)
                     finding = dataclasses.replace(finding, severity=configured)
+                elif configured is None:
+                    # a helper frame's defect weighs what it adds to its lumped body
+                    finding = weigh(analysis, finding)
                 # Finding compares by place and code only: two messages at one place are two
                 findings.setdefault(_order(finding), finding)
     replaced = {

@@ -281,3 +281,29 @@ def test_a_factor_below_one_is_refused_naming_the_key(tmp_path, rule, option):
     result = CliRunner().invoke(lint_main, [str(path)])
     assert result.exit_code == 2 and "Traceback" not in result.output
     assert f"rules.{rule}.{option}`: expected a number from 1 up, got 0.0" in result.stderr
+
+
+def test_a_fix_after_non_ascii_on_its_line_in_a_file_declaring_latin_1(tmp_path):
+    """
+    The parser reads ISO-8859-1 a byte a character; UTF-8 bytes before the element on its line
+    (`é` is two of them) put its column two characters off in a UTF-8 reading: "no start tag",
+    an internal error (found by the fuzz run, seed s1, input 4944).
+    """
+    text = (
+        '<?xml version="1.0" encoding="ISO-8859-1"?>\n<robot name="r">\n'
+        '  <link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>\n'
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="arm"/></joint>\n'
+        '  <link name="arm"><inertial><!-- \u00e9\u00fc --><mass value="1"/>'
+        '<inertia ixx="1666.67" ixy="0" ixz="0" iyy="1666.67" iyz="0" izz="1666.67"/>'
+        "</inertial>\n"
+        '    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>\n'
+        "</robot>\n"
+    )
+    original = text.encode("utf-8")
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(original)
+    result = CliRunner().invoke(lint_main, ["--fix", "--select", "IN063", str(path)])
+    assert result.exit_code == 0, result.output
+    fixed = original.replace(b'"1666.67"', b'"0.00166667"')
+    assert path.read_bytes() == fixed

@@ -258,6 +258,7 @@ class Summary:
     signatures: dict[str, dict] = field(default_factory=dict)  # signature -> count, example
     coverage: Counter = field(default_factory=Counter)
     slowest: tuple[float, str, int] = (0.0, "", -1)  # seconds, command, input
+    most_cpu: tuple[float, str, int] = (0.0, "", -1)  # CPU seconds, command, input: the limit
     seconds_by_command: Counter = field(default_factory=Counter)
     slow_inputs: list[tuple[float, int, str]] = field(default_factory=list)  # the 10 slowest
     hungriest: tuple[float, str, int] = (0.0, "", -1)  # peak MB, command, input
@@ -273,10 +274,12 @@ class Summary:
             [*self.slow_inputs, (result.seconds, result.index, "; ".join(result.notes)[:160])],
             reverse=True,
         )[:10]
-        for command, seconds, _cpu, peak in result.runs:
+        for command, seconds, cpu, peak in result.runs:
             self.seconds_by_command[command] += seconds
             if seconds > self.slowest[0]:
                 self.slowest = (seconds, command, result.index)
+            if cpu > self.most_cpu[0]:
+                self.most_cpu = (cpu, command, result.index)
             if peak > self.hungriest[0]:
                 self.hungriest = (peak, command, result.index)
         for item in result.found:
@@ -308,8 +311,9 @@ class Summary:
         lines = [
             f"fuzz seed {self.seed}: {self.inputs} inputs, {self.runs} runs in "
             f"{self.seconds:.0f} s ({self.inputs_per_second:.2f} inputs/s)",
-            f"slowest run {self.slowest[0]:.2f} s ({self.slowest[1]}, input {self.slowest[2]}); "
-            f"peak memory {self.hungriest[0]:.0f} MB ({self.hungriest[1]}, "
+            f"slowest run {self.slowest[0]:.2f} s wall ({self.slowest[1]}, input "
+            f"{self.slowest[2]}); most CPU {self.most_cpu[0]:.2f} s ({self.most_cpu[1]}, input "
+            f"{self.most_cpu[2]}); peak memory {self.hungriest[0]:.0f} MB ({self.hungriest[1]}, "
             f"input {self.hungriest[2]})",
         ]
         kinds = self.by_kind()
@@ -341,6 +345,7 @@ class Summary:
             "by_kind": dict(self.by_kind()),
             "coverage": dict(sorted(self.coverage.items())),
             "seconds_by_command": dict(self.seconds_by_command.most_common()),
+            "most_cpu": list(self.most_cpu),
             "slow_inputs": self.slow_inputs,
             "signatures": self.signatures,
         }

@@ -95,7 +95,8 @@ def check_outcome(invocation: Invocation, outcome: Outcome, limits: Limits) -> l
     err = outcome.stderr.decode("utf-8", "replace")
     out = outcome.stdout.decode("utf-8", "replace")
     if outcome.timed_out:
-        return [Failure("timeout", command, f"over {limits.seconds:g} s")]
+        spent = f"{outcome.cpu_seconds:.0f} s CPU, {outcome.seconds:.0f} s wall"
+        return [Failure("timeout", command, f"over {limits.seconds:g} s of CPU ({spent})")]
     if outcome.peak_mb > limits.memory_mb:
         found.append(Failure("memory", command, f"peak {outcome.peak_mb:.0f} MB"))
     if outcome.signal is not None:

@@ -26,7 +26,7 @@ from inertia_kit.lint.findings import FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 
 REQUIRED = ("CODE", "NAME", "SEVERITY", "SCOPE", "SUMMARY", "check")
-OPTIONAL = ("OPTIONS", "ENGINE", "SUPERSEDES", "FIX", "TEXT_FIX", "SPOILS_GEOMETRY")
+OPTIONAL = ("OPTIONS", "ENGINE", "SUPERSEDES", "FIX", "TEXT_FIX", "SPOILS_GEOMETRY", "WEIGHED")
 CONTRACT = (*REQUIRED, *OPTIONAL)
 CONSTANT = re.compile(r"[A-Z][A-Z0-9_]*")
 
@@ -128,6 +128,8 @@ def violations(rule: ModuleType) -> list[str]:
         problems.append("TEXT_FIX and FIX: a rule's findings offer one kind of fix")
     if hasattr(rule, "SPOILS_GEOMETRY") and rule.SPOILS_GEOMETRY is not True:
         problems.append("SPOILS_GEOMETRY: not True")
+    if hasattr(rule, "WEIGHED") and rule.WEIGHED is not True:
+        problems.append("WEIGHED: not True")
     return problems + _unread_constants(rule)
 
 

@@ -56,6 +56,12 @@ A rule may have:
     For a rule whose findings carry a ready text fix of their own, not values for a link
     (IN090 removes a comment): that fix's safety, which its findings' ``Fix`` use. The
     document says so on a ``Fix:`` line.
+``WEIGHED: bool``
+    Its findings judge the link's own mass properties (or the geometry they are judged by),
+    which engines integrate as part of the body the link's fixed joints weld it into: when
+    the link carries a negligible share of that body, the runner lowers an error to a warning
+    and says the share (:mod:`inertia_kit.lint.weighing`). A finding may say otherwise
+    (``ctx.finding(..., weighed=False)``).
 ``SPOILS_GEOMETRY: bool``
     A finding of this rule on a link means its geometry cannot give values: fixes from the
     geometry are withheld for that link, with the finding's message as the reason (IN031, a
@@ -105,6 +111,7 @@ class RuleContext:
         severity: Severity | None = None,
         repairs: Repairs | None = None,
         fixable: bool = True,
+        weighed: bool | None = None,
     ) -> Finding:
         """
         A finding of this rule at ``source``. For an element a xacro macro produced, the
@@ -114,6 +121,7 @@ class RuleContext:
         ``severity`` lets a rule escalate (e.g. warning → error for an impossible value); a
         configured severity always wins. A finding for a link offers the rule's ``FIX``
         (``repairs`` overrides what it repairs; ``fixable=False``: no fix for this one).
+        ``weighed`` overrides the rule's ``WEIGHED`` for this finding.
         """
         # Severity.INFO is 0: pick the first that is set, not the first that is truthy
         level = next(s for s in (self.severity, severity, self.rule.SEVERITY) if s is not None)
@@ -144,6 +152,8 @@ class RuleContext:
             macro_path=macro_path,
             macro_line=macro_line,
             wants=wants,
+            weighed=bool(getattr(self.rule, "WEIGHED", False) if weighed is None else weighed)
+            and link is not None,
         )
 
     def engine_finding(self, event: Event, help: str) -> Finding:

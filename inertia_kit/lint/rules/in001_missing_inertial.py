@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+import numpy as np
+
 from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -35,9 +37,19 @@ OPTIONS = (
         "the root is free unless welded to a `world` link: a massless root group above moving "
         "links is flagged (false: the simulator fixes the base)",
     ),
+    # IN022's floor: a base group lighter than this over its geometry is a massless base
+    Option(
+        "min_base_density",
+        float,
+        50.0,
+        "a root group whose declared mass over the volume of its largest shape is below this, "
+        "kg/m³, is a base without mass (IN022's floor: foam is 30, wood 500)",
+    ),
 )
 
 DENSITY = 1000.0  # kg/m³: water, MuJoCo's default geom density, inertia-fill's default
+#: a shape wider than this, m, is not a robot base's: a mesh in other units (IN031's band)
+MAX_EXTENT = 5.0
 
 
 def _top(group: tuple[LinkAnalysis, ...]) -> LinkAnalysis | None:
@@ -94,9 +106,13 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         done.update(m.name for m in group)
         if any(m.name == WORLD for m in group):
             continue  # welded to the world: static, its mass is never used
-        if any(m.link.inertial is not None for m in group):
-            continue  # a declared mass, or a broken one that IN002/IN003/IN004 report
         top = _top(group)
+        if any(m.link.inertial is not None for m in group):
+            # a declared mass, or a broken one that IN002/IN003/IN004 report; but a base whose
+            # mass is all in a small part welded to it has no mass of its own either
+            if top is not None and top.parent is None:
+                yield from _light_base(robot, group, top, ctx, floating_base)
+            continue
         if top is None:
             continue  # a cycle of fixed joints: IN040's
         collision = any(m.link.collisions for m in group)
@@ -154,6 +170,83 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             expected=payload,
             help=_help(top, site, collision),
         )
+
+
+def _volume(link: LinkAnalysis) -> tuple[float, Geometry] | None:
+    """
+    The smallest volume a link's usable geometries give (collision or visual: the one most in
+    favour of a plausible density), and that geometry; ``None`` when it has none, or one is an
+    open mesh (its hull overstates the volume) or wider than :data:`MAX_EXTENT` (other units).
+    """
+    found = []
+    for geometry in link.bases:
+        if any(s.mesh is not None and not s.mesh.closed for s in geometry.solids):
+            return None
+        corners = geometry.corners
+        with np.errstate(all="ignore"):
+            extent = None if corners is None else float(np.ptp(corners, axis=0).max())
+        if extent is None or not extent <= MAX_EXTENT:  # not: a NaN extent is not judged
+            return None
+        found.append((geometry.volume, geometry))
+    return min(found, key=lambda item: item[0]) if found else None
+
+
+def _light_base(
+    robot: RobotAnalysis,
+    group: tuple[LinkAnalysis, ...],
+    top: LinkAnalysis,
+    ctx: RuleContext,
+    floating_base: bool,
+) -> Iterator[Finding]:
+    """
+    The root group as a massless base when the mass it declares is implausibly light for its
+    geometry: under ``min_base_density`` over the volume of its largest shape (the union of
+    the group's shapes holds at least that much, so the group's density is lower still), and
+    that shape's link declares no mass (one that does is IN022's).
+    """
+    if any(m.name == WORLD for m in group):
+        return
+    below = _below(robot, group)
+    collision = any(m.link.collisions for m in group)
+    if not (collision or (floating_base and below)):
+        return
+    mass = robot.group_mass(top.name)
+    if not mass > 0:
+        return  # no positive mass anywhere: the broken values are IN002/IN003/IN004's
+    volumes = [(v, m) for m in group if (v := _volume(m)) is not None]
+    if not volumes:
+        return
+    (volume, geometry), site = max(volumes, key=lambda item: item[0][0])
+    floor = float(ctx.option("min_base_density"))
+    if site.link.inertial is not None or not volume > 0 or mass / volume >= floor:
+        # a base shape that declares a light mass of its own is IN022's (implausible density)
+        return
+    heavy = [m.name for m in group if (declared_mass(m.link) or 0.0) > 0]
+    carried = sum((declared_mass(robot.by_name[n].link) or 0.0 for n in below), 0.0)
+    where = "is the root" if site is top else f"is welded to the root `{top.name}`"
+    reasons = [
+        r
+        for r, on in (("has collision geometry", collision), ("carries moving links", below))
+        if on
+    ]
+    weight = (
+        f"Gazebo, Drake and PyBullet simulate a {fmt(mass)} kg base under the "
+        f"{fmt(carried)} kg of the links below it"
+        if carried > 0
+        else f"Gazebo, Drake and PyBullet simulate a {fmt(mass)} kg base"
+    )
+    text, payload = _geometry_values(site.geometry)
+    yield ctx.finding(
+        f"link `{site.name}` {where} and {' and '.join(reasons)} but its fixed-joint group "
+        f"declares only {fmt(mass)} kg (in {_names(tuple(heavy))}), {fmt(mass / volume, 2)} "
+        f"kg/m³ over its {geometry.describe()} of {fmt(volume, 4)} m³, below the plausible "
+        f"{fmt(floor)} kg/m³, so the robot's base has almost no mass: {weight}; MuJoCo welds "
+        f"the root to the world, so the base cannot move there{text}",
+        site.link.source,
+        link=site.name,
+        expected=payload,
+        help=_help(top, site, collision),
+    )
 
 
 def _below(robot: RobotAnalysis, group: tuple[LinkAnalysis, ...]) -> tuple[str, ...]:

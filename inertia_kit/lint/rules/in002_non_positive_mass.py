@@ -13,6 +13,7 @@ CODE = "IN002"
 NAME = "non-positive-mass"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the <inertial> with its geometry's"
 )

@@ -171,12 +171,10 @@ def _location(invalid: model.Invalid) -> tuple:
     return (site.path, site.line, site.column)
 
 
-def _moving(robot: RobotAnalysis) -> set[str]:
-    return {link.name for link in robot.links if link.moves}
-
-
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     places = _places(robot.robot)
+    # once per robot, not per finding: 5000 links with a bad number each was quadratic
+    moving = {link.name for link in robot.links if link.moves}
     # one finding per location: attributes of one element (or of one xacro macro call) together
     groups: dict[tuple, list[model.Invalid]] = {}
     for invalid in robot.robot.invalid:
@@ -198,8 +196,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         # a fix from the geometry replaces the <inertial>: only a bad value in it is fixed
         fixable = first.element.startswith(("<inertial", "<mass", "<inertia "))
         # a moving link whose mass is not a number has none: it needs one (`--fix missing`)
-        moving = first.link is not None and first.link in _moving(robot)
-        repairs = Repairs.MISSING if moving and first.element == "<mass value>" else None
+        needs_mass = first.link is not None and first.link in moving
+        repairs = Repairs.MISSING if needs_mass and first.element == "<mass value>" else None
         if not pybullet:
             # every value reads as a number, one no robot has and no arithmetic keeps
             yield ctx.finding(

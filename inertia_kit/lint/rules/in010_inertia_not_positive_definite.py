@@ -19,6 +19,7 @@ CODE = "IN010"
 NAME = "inertia-not-positive-definite"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
 )

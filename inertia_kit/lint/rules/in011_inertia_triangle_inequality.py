@@ -22,6 +22,7 @@ CODE = "IN011"
 NAME = "inertia-triangle-inequality"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
 )

@@ -22,6 +22,7 @@ CODE = "IN012"
 NAME = "inertia-too-small"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 SUMMARY = (
     "a principal moment is below an absolute floor, or its radius of gyration below a length "
     "floor: too small to integrate stably"

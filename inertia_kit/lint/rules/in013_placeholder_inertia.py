@@ -20,6 +20,7 @@ CODE = "IN013"
 NAME = "placeholder-inertia"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry",
     Safety.UNSAFE,

@@ -21,6 +21,7 @@ CODE = "IN020"
 NAME = "inertia-geometry-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
 )

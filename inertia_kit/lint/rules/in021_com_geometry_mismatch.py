@@ -18,6 +18,7 @@ CODE = "IN021"
 NAME = "com-geometry-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule("com", Safety.UNSAFE, Repairs.DOUBTFUL, "move the centre of mass to its geometry's")
 SUMMARY = "the centre of mass lies outside the link's geometry, or far from its centroid"
 OPTIONS = (

@@ -15,6 +15,7 @@ CODE = "IN022"
 NAME = "implausible-density"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 SUMMARY = "declared mass / geometry volume is outside a plausible range of densities"
 OPTIONS = (
     Option("min_density", float, 50.0, "the lowest plausible density, kg/m³"),

@@ -18,6 +18,7 @@ CODE = "IN023"
 NAME = "impossible-radius-of-gyration"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "geometry", Safety.UNSAFE, Repairs.IMPOSSIBLE, "replace the tensor with its geometry's"
 )

@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.describe import describe_geometry
 from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 
@@ -29,6 +30,21 @@ HELP = {
     "mesh-empty": "export the part's solid body (not a sketch, a sheet or a curve), or remove "
     "the shape",
 }
+
+
+def _drake_refuses(geometry: model.Geometry) -> bool:
+    """
+    Drake refuses the model at this shape, visual or collision (``Box()``, ``Cylinder()``,
+    ``Capsule()``: each dimension must be > 0; measured with drake 1.51.1); a zero sphere it
+    accepts.
+    """
+    if isinstance(geometry, model.Box):
+        dimensions = geometry.size if isinstance(geometry.size, tuple) else ()
+    elif isinstance(geometry, (model.Cylinder, model.Capsule)):
+        dimensions = (geometry.radius, geometry.length)
+    else:
+        return False
+    return any(isinstance(v, float) and v <= 0 for v in dimensions)
 
 
 def _has_mass(link: LinkAnalysis) -> bool:
@@ -55,7 +71,8 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             if shape.kind == "visual" and not visual_is_basis:
                 if kind == "mesh-empty":
                     continue  # a flat decal or ground plane draws fine and weighs nothing
-                severity = Severity.WARNING
+                if not _drake_refuses(shape.geometry):
+                    severity = Severity.WARNING
             yield ctx.finding(
                 f"link `{link.name}`: its {shape.kind} {describe_geometry(shape.geometry)} is "
                 f"degenerate: {detail}",

@@ -14,6 +14,7 @@ CODE = "IN060"
 NAME = "inertia-about-other-point"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the tensor about the centre of mass"
 )

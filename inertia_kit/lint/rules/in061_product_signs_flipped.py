@@ -14,6 +14,7 @@ CODE = "IN061"
 NAME = "product-signs-flipped"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the product signs flipped back")
 SUMMARY = "the products of inertia are written with the opposite sign convention (ixy = +∫xy dm)"
 # the explanation replaces the symptoms it explains on the same link: far from the geometry

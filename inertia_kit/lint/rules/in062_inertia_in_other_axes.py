@@ -14,6 +14,7 @@ CODE = "IN062"
 NAME = "inertia-in-other-axes"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule(
     "slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the tensor turned into the link's axes"
 )

@@ -14,6 +14,7 @@ CODE = "IN063"
 NAME = "inertia-unit-slip"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the values in SI units")
 SUMMARY = (
     "the declared tensor is the geometry's in another unit (g·m², kg·mm², kg·cm², lb·in², …) or "

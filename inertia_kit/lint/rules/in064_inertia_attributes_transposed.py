@@ -14,6 +14,7 @@ CODE = "IN064"
 NAME = "inertia-attributes-transposed"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
 FIX = FixRule("slip", Safety.SAFE, Repairs.SLIP, "undo the slip: the values in their places")
 SUMMARY = "the six inertia values are the geometry's transcribed into the wrong attributes"
 # the explanation replaces the symptoms it explains on the same link: far from the geometry

@@ -237,3 +237,63 @@ def test_one_finding_per_body(lint):
     )
     (finding,) = in001(lint, text)
     assert finding.link == "arm" and "`cover`" in finding.message
+
+
+# --- a base made massless by its own layout ---------------------------------------------------
+
+CASTER = inertial(0.1, 0.0001) + collision(box(0.05, 0.05, 0.05))
+BASE_BOX = (0.4, 0.4, 0.1)
+
+
+def with_caster(base: str, caster: str = CASTER) -> str:
+    """:func:`wheeled`, and a caster (``caster``) welded below `base_link`."""
+    text = wheeled(base)
+    weld = joint("base_link", "caster", "fixed", name="caster_joint", xyz=(-0.15, 0, -0.05))
+    return text.replace("</robot>", f"{weld}{link('caster', caster)}</robot>")
+
+
+def test_a_base_whose_mass_is_a_small_welded_part_is_massless(lint):
+    # the issue's rover: a 0.4 × 0.4 × 0.1 m box without <inertial>, a root frame without one,
+    # a 0.1 kg caster welded below
+    (finding,) = in001(lint, with_caster(collision(box(*BASE_BOX))))
+    volume = BASE_BOX[0] * BASE_BOX[1] * BASE_BOX[2]
+    assert finding.link == "base_link" and finding.severity.name == "ERROR"
+    message = finding.message
+    assert "declares only 0.1 kg (in `caster`)" in message
+    assert f"{fmt(0.1 / volume, 2)} kg/m³ over its collision box" in message
+    assert "below the plausible 50 kg/m³" in message
+    assert "so the robot's base has almost no mass" in message
+    assert "simulate a 0.1 kg base under the 0.6 kg of the links below it" in message
+    assert finding.expected["mass"] == pytest.approx(1000.0 * volume)
+
+
+def test_the_density_floor_is_an_option(lint):
+    text = with_caster(collision(box(*BASE_BOX)))
+    # 0.1 kg over 0.016 m³ is 6.25 kg/m³
+    assert in001(lint, text, min_base_density=6.0) == []
+    assert len(in001(lint, text, min_base_density=6.5)) == 1
+
+
+def test_a_base_with_its_mass_on_a_welded_inertia_link_is_right(lint):
+    # the mass on a welded link without geometry (a `base_inertia` link): 12 kg in the box
+    text = with_caster(collision(box(*BASE_BOX)), inertial(12, 0.16))
+    assert in001(lint, text) == []
+
+
+def test_a_base_box_that_declares_a_light_mass_is_left_to_in022(lint):
+    text = with_caster(inertial(0.1, 0.001) + collision(box(*BASE_BOX)))
+    assert in001(lint, text) == []
+    assert [f.link for f in lint(text, "IN022") if f.code == "IN022"] == ["base_link"]
+
+
+def test_a_light_base_welded_to_the_world_is_static(lint):
+    text = with_caster(collision(box(*BASE_BOX)))
+    world = link("world") + joint("world", "base_footprint", "fixed", name="w")
+    text = text.replace('<link name="base_footprint">', world + '<link name="base_footprint">')
+    assert world in text
+    assert in001(lint, text) == []
+
+
+def test_a_base_shape_wider_than_a_robot_is_not_judged(lint):
+    # a mesh in millimetres read as metres would be 400 m wide: its volume says nothing
+    assert in001(lint, with_caster(collision(box(400, 400, 100)))) == []

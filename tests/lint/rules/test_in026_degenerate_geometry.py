@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from kit.meshes import square_triangles, write_ascii_stl
 from kit.urdf import box, collision, cylinder, inertial, mesh, moving, sphere, visual
 
@@ -87,3 +88,26 @@ def test_a_mesh_whose_moments_overflow_is_degenerate(lint, tmp_path):
         moving(collision(mesh("huge.stl", scale="1e30 1e30 1e30")) + INERTIAL), "IN026"
     )
     assert "its volume or moments overflow double precision" in finding.message
+
+
+@pytest.mark.parametrize(
+    "shape",
+    [box(0, 0, 0), box(0.1, 0, 0.1), cylinder(0, 0.1), cylinder(0.1, 0)],
+    ids=["box", "flat-box", "cylinder-radius", "cylinder-length"],
+)
+def test_a_zero_visual_drake_refuses_is_an_error(lint, shape):
+    # Drake 1.51 refuses the model at Box()/Cylinder() with a dimension ≤ 0, visual or not
+    body = visual(shape) + collision(sphere(0.03)) + INERTIAL
+    (finding,) = lint(moving(body), "IN026")
+    assert finding.severity == Severity.ERROR
+
+
+def test_a_zero_size_virtual_link_stays_an_error_on_a_heavy_body(lint):
+    # Upkie's virtual links: a 1 g frame with a `<box size="0 0 0"/>` visual welded to a body:
+    # a negligible share of its mass, but Drake refuses the model at that box
+    frame = '<link name="imu"><visual><geometry><box size="0 0 0"/></geometry></visual>'
+    frame += inertial(0.001, 0) + "</link>"
+    weld = '<joint name="imu_fix" type="fixed"><parent link="arm"/><child link="imu"/></joint>'
+    findings = lint(moving(INERTIAL + collision(box(0.1, 0.1, 0.1)), weld + frame), "IN026")
+    assert [(f.link, f.severity) for f in findings] == [("imu", Severity.ERROR)]
+    assert "it adds" not in findings[0].message

@@ -1,0 +1,40 @@
+"""
+Severity by consequence: a defect in a link's own values is judged also by the body engines
+integrate, the lumped body of the links its fixed joints weld together.
+
+A rule whose findings judge a link's own mass properties says so (``WEIGHED``, the rule
+contract in :mod:`inertia_kit.lint.rules`). For such an error on a link that carries a
+negligible share of its lumped body (:mod:`inertia_kit.engines.shares`: below 1 % of the mass
+and of each principal moment, values every engine accepts as written), the runner lowers the
+error and says the share:
+
+- to a warning: the values are wrong, but cannot make the robot misbehave (Unitree Go1's 1e-5 kg
+  camera frames with a 1e-6 kg·m² tensor on a 5.2 kg trunk);
+- to info when the link adds nothing at all (``<mass value="0"/>`` with a zero tensor on a fixed
+  frame): every engine loads it as it loads a link without ``<inertial>``, which no rule flags;
+  it offers no fix then (``inertia-fill --fix invalid`` would give the frame its geometry's mass).
+
+A configured severity always wins; warnings are left as they are.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.engines.shares import share
+from inertia_kit.lint.findings import Finding, Severity
+
+
+def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
+    """``finding``, lowered and with its link's share told when that share is negligible."""
+    if not finding.weighed or finding.severity is not Severity.ERROR or finding.link is None:
+        return finding
+    found = share(robot, finding.link)
+    if found is None or not found.negligible:
+        return finding
+    message = f"{finding.message}; {found.text()}"
+    if found.massless:
+        # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
+        return dataclasses.replace(finding, severity=Severity.INFO, message=message, wants=None)
+    return dataclasses.replace(finding, severity=Severity.WARNING, message=message)
