@@ -28,7 +28,6 @@ from inertia_kit.analysis.forensics.measure import (
     BAND,
     BETTER,
     DISTINCT,
-    IMPERIAL_BAND,
     MARGIN,
     MIN_MISMATCH,
     SLACK,
@@ -216,12 +215,21 @@ def diagnose_part(
     case = Case(declared, expected, frame, metric, geometry)
     # every candidate whose moments could land in the band: |ratio - 1| <= e^BAND - 1
     loose = math.expm1(BAND)
+    # the slips people make, not every reading the numbers allow: a tensor in the units CAD
+    # tools report (kg·mm², g·cm², g·mm²: a factor of a million or more, far beyond any
+    # scatter) or a mass in grams; one pair of values exchanged. The other units, and
+    # conversions the wrong way round, are only named when they fit exactly: on a real part a
+    # made-up value lands within its scatter of 1e3 or 1e4 by chance too often
     candidates = [
-        *unit_slip.search(case, volume, loose, unit_slip.PART_DENSITIES),
+        *(
+            c
+            for c in unit_slip.search(case, volume, loose, unit_slip.PART_DENSITIES)
+            if c.factor >= 1e6 or (c.factor == 1.0 and c.mass_factor > 1.0)
+        ),
         *flipped_signs.search(case),
         *other_point.search(case, points, None),
         *(c for c in other_axes.search(case, rotations, loose) if c.rank not in _FITTED_RANKS),
-        *transposed.search(case, loose),
+        *(c for c in transposed.search(case, loose) if c.moved <= 2),
     ]
     scored = sorted(
         ((logs(c.corrected.inertia), i, c) for i, c in enumerate(candidates)),
@@ -245,12 +253,12 @@ def diagnose_part(
         (c for c in near if reading(c.corrected.inertia) <= DISTINCT), key=lambda c: c.preference
     )
     fitted = logs(best.corrected.inertia)
-    imperial = isinstance(best, unit_slip.UnitSlip) and "lb" in best.unit
-    band = IMPERIAL_BAND if imperial else BAND
-    if not (fitted <= band and plain_log - fitted >= MARGIN):
+    if not (fitted <= BAND and plain_log - fitted >= MARGIN):
         return None
-    # another reading nearly as good: which slip it was (or what to write) is not known
-    if any(reading(c.corrected.inertia) > DISTINCT for c in near):
+    # another slip's reading nearly as good: which slip it was is not known. (Readings of the
+    # same slip that differ, a rod's axes turned one way or another about its long axis, name
+    # the slip all the same; the fix, unsafe, writes the best.)
+    if any(type(c) is not type(best) and reading(c.corrected.inertia) > DISTINCT for c in near):
         return None
     diagnosis = Diagnosis(best, best.word(case), float(metric(declared.inertia)))
     return dataclasses.replace(diagnosis, likely=(plain_log, fitted))

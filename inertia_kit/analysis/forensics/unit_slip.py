@@ -26,9 +26,10 @@ from inertia_kit.physics.tensor_names import DIAGONAL
 #: leaves one (a density 1e-9 says the mesh is in millimetres, IN031, not the tensor)
 DENSITIES = (50.0, 25000.0)
 #: a real part (forensics.diagnosis.diagnose_part) is only refused a unit slip when its density
-#: says its geometry is in other units: a mesh in millimetres gives 1e-9 of the density, in
-#: centimetres 1e-6; a light camera housing (30 kg/m³) or a dense counterweight is no such doubt
-PART_DENSITIES = (1.0, 1e6)
+#: says its mass or its geometry's scale is in doubt: a mesh in millimetres gives 1e-9 of the
+#: density, a mass cut from 5 kg to 0.01 kg (pybullet's iiwa base) 2 kg/m³; a light camera
+#: housing (30 kg/m³) or a dense counterweight is no such doubt
+PART_DENSITIES = (10.0, 1e5)
 
 # (factor, unit) for a tensor written in another unit: declared = factor × the right value
 UNITS: tuple[tuple[float, str], ...] = (
