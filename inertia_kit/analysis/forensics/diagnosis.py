@@ -35,6 +35,7 @@ from inertia_kit.analysis.forensics.measure import (
     LogMetric,
     Metric,
 )
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
@@ -260,5 +261,9 @@ def diagnose_part(
     # the slip all the same; the fix, unsafe, writes the best.)
     if any(type(c) is not type(best) and reading(c.corrected.inertia) > DISTINCT for c in near):
         return None
-    diagnosis = Diagnosis(best, best.word(case), float(metric(declared.inertia)))
+    wording = best.word(case)
+    # how close a real part comes is a factor, not a percentage of the exact fit
+    closeness = f"within a factor of {fmt(math.exp(fitted), 2)}"
+    wording = dataclasses.replace(wording, detail=wording.detail.replace(best.within, closeness))
+    diagnosis = Diagnosis(best, wording, float(metric(declared.inertia)))
     return dataclasses.replace(diagnosis, likely=(plain_log, fitted))
