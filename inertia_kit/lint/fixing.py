@@ -12,8 +12,9 @@ edit there; links that need different values get theirs at their calls' paramete
 A link gets one set of values, whichever findings asked for it:
 
 - a recognised slip (``how="slip"``, IN06x) gives the declared values with the slip undone
-  (:func:`~inertia_kit.analysis.forensics.links.diagnose_link`): safe. When the centre of mass
-  is also rejected (``how="com"``), it becomes the geometry's, and the fix unsafe;
+  (:func:`~inertia_kit.analysis.forensics.links.diagnose_link`): safe when it fits exactly,
+  unsafe when it is a real part's likely slip. When the centre of mass is also rejected
+  (``how="com"``), it becomes the geometry's, and the fix unsafe;
 - else the geometry's values at uniform density, the mass from
   :func:`~inertia_kit.fixes.masses.mass_for` (a declared finite positive mass kept): unsafe.
 
@@ -185,6 +186,9 @@ def _slip(
         # wherever that is); a judgment, so no longer safe
         values = MassProperties(values.mass, unit.com, values.inertia)
         return Safety.UNSAFE, f"{rule.title}, centre of mass from the geometry", values
+    if diagnosis.likely is not None:
+        # a real part's likely slip (forensics.diagnosis.diagnose_part), not an exact fit
+        return Safety.UNSAFE, f"{rule.title} (likely: check against the CAD report)", values
     return rule.safety, rule.title, values
 
 

@@ -5,6 +5,7 @@ searched, and the simplest candidate that explains the numbers is chosen and wor
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -23,12 +24,18 @@ from inertia_kit.analysis.forensics import (
 )
 from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording
 from inertia_kit.analysis.forensics.measure import (
+    AMBIGUITY,
+    BAND,
     BETTER,
+    DISTINCT,
+    MARGIN,
     MIN_MISMATCH,
     SLACK,
     TOLERANCE,
+    LogMetric,
     Metric,
 )
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
@@ -47,6 +54,9 @@ class Diagnosis:
     wording: Wording
     plain_residual: float  # deviation of the declared tensor from the geometry's
     basis: str | None = None  # "collision" or "visual": the geometry it was diagnosed against
+    #: the fit of a real part (:func:`diagnose_part`): the log distances from the geometry's
+    #: tensor of the declared one and of the corrected one; ``None``: an exact fit
+    likely: tuple[float, float] | None = None
 
     @property
     def code(self) -> str:
@@ -78,6 +88,12 @@ class Diagnosis:
             "basis": self.basis,
             "residual": self.residual,
             "plain_residual": self.plain_residual,
+            "fit": "exact" if self.likely is None else "likely",
+            **(
+                {}
+                if self.likely is None
+                else {"log_distance": self.likely[1], "plain_log_distance": self.likely[0]}
+            ),
         }
 
 
@@ -159,3 +175,95 @@ def diagnose(
     if chosen is None or chosen.residual * better > plain:
         return None
     return Diagnosis(chosen, chosen.word(case), plain)
+
+
+#: hypotheses whose candidate is fitted to the geometry rather than read from the file: a
+#: real part always fits them about as well as its scatter allows, so they prove nothing there
+_FITTED_RANKS = frozenset({7})  # the declared moments laid along the geometry's principal axes
+
+
+def diagnose_part(
+    declared: MassProperties,
+    expected: MassProperties,
+    *,
+    points: Sequence[tuple[str, ArrayLike]] = (),
+    rotations: Sequence[tuple[str, ArrayLike]] = (),
+    axes: ArrayLike | None = None,
+    volume: float | None = None,
+    geometry: str = "geometry",
+) -> Diagnosis | None:
+    """
+    The slip that most likely explains ``declared`` on a real part, or ``None``: judged in log
+    space (:class:`~.measure.LogMetric`), the corrected tensor within :data:`~.measure.BAND`
+    of the geometry's, at least :data:`~.measure.MARGIN` closer than the declared one, and no
+    other hypothesis within :data:`~.measure.AMBIGUITY` of it (see :mod:`.measure`). Only named
+    points, named frames and axis permutations, signs, units and transcriptions are tried:
+    what is read from the file, not fitted to the geometry. Parameters as :func:`diagnose`.
+    """
+    if not (declared.mass > 0 and math.isfinite(declared.mass)):
+        return None
+    if not (np.isfinite(declared.inertia).all() and np.isfinite(declared.com).all()):
+        return None
+    try:
+        metric = Metric(expected.inertia)
+        logs = LogMetric(expected.inertia)
+    except np.linalg.LinAlgError:
+        return None
+    plain_log = logs(declared.inertia)
+    if not plain_log >= MARGIN:
+        return None  # real-part scatter could put it there: nothing to explain
+    frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
+    case = Case(declared, expected, frame, metric, geometry)
+    # every candidate whose moments could land in the band: |ratio - 1| <= e^BAND - 1
+    loose = math.expm1(BAND)
+    # the slips people make, not every reading the numbers allow: a tensor in the units CAD
+    # tools report (kg·mm², g·cm², g·mm²: a factor of a million or more, far beyond any
+    # scatter) or a mass in grams; one pair of values exchanged. The other units, and
+    # conversions the wrong way round, are only named when they fit exactly: on a real part a
+    # made-up value lands within its scatter of 1e3 or 1e4 by chance too often
+    candidates = [
+        *(
+            c
+            for c in unit_slip.search(case, volume, loose, unit_slip.PART_DENSITIES)
+            if c.factor >= 1e6 or (c.factor == 1.0 and c.mass_factor > 1.0)
+        ),
+        *flipped_signs.search(case),
+        *other_point.search(case, points, None),
+        *(c for c in other_axes.search(case, rotations, loose) if c.rank not in _FITTED_RANKS),
+        *(c for c in transposed.search(case, loose) if c.moved <= 2),
+    ]
+    scored = sorted(
+        ((logs(c.corrected.inertia), i, c) for i, c in enumerate(candidates)),
+        key=lambda item: item[:2],
+    )
+    if not scored:
+        return None
+    # the readings: candidates whose corrected tensors lie within DISTINCT of each other say
+    # the same thing (a product sign flipped and a half turn about an axis, the axes of a rod
+    # turned about it, iyy and izz exchanged or turned); the simplest of those near the best
+    # fit speaks for it
+    best_log, _, first = scored[0]
+    if not best_log <= BAND:
+        return None
+    try:
+        reading = LogMetric(first.corrected.inertia)
+    except np.linalg.LinAlgError:
+        return None  # no body has the best reading (floored, it is not positive definite)
+    near = [c for log, _, c in scored if log < best_log + AMBIGUITY]
+    best = min(
+        (c for c in near if reading(c.corrected.inertia) <= DISTINCT), key=lambda c: c.preference
+    )
+    fitted = logs(best.corrected.inertia)
+    if not (fitted <= BAND and plain_log - fitted >= MARGIN):
+        return None
+    # another slip's reading nearly as good: which slip it was is not known. (Readings of the
+    # same slip that differ, a rod's axes turned one way or another about its long axis, name
+    # the slip all the same; the fix, unsafe, writes the best.)
+    if any(type(c) is not type(best) and reading(c.corrected.inertia) > DISTINCT for c in near):
+        return None
+    wording = best.word(case)
+    # how close a real part comes is a factor, not a percentage of the exact fit
+    closeness = f"within a factor of {fmt(math.exp(fitted), 2)}"
+    wording = dataclasses.replace(wording, detail=wording.detail.replace(best.within, closeness))
+    diagnosis = Diagnosis(best, wording, float(metric(declared.inertia)))
+    return dataclasses.replace(diagnosis, likely=(plain_log, fitted))

@@ -6,6 +6,7 @@ the IN06x rules say about a diagnosis.
 
 from __future__ import annotations
 
+import math
 import weakref
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -16,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.describe import TABLE, describe_geometry
 from inertia_kit.analysis.forensics.candidate import Candidate
-from inertia_kit.analysis.forensics.diagnosis import Diagnosis, diagnose
+from inertia_kit.analysis.forensics.diagnosis import Diagnosis, diagnose, diagnose_part
 from inertia_kit.analysis.forensics.measure import (
     BETTER,
     LOOSE,
@@ -27,6 +28,7 @@ from inertia_kit.analysis.forensics.measure import (
 )
 from inertia_kit.analysis.forensics.other_axes import rpy_text
 from inertia_kit.description import model
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
 
 if TYPE_CHECKING:
@@ -163,7 +165,36 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
         diagnosis = diagnose_basis(link, basis)
         if diagnosis is not None:
             found.append(diagnosis)
-    return found[0] if found else None
+    if found:
+        return found[0]
+    # no exact fit: the likely slip of a real part, against the collision geometry else the
+    # visual one, when every basis agrees on it (two bases that name different slips, or
+    # one that names none while the other does, leave it unknown)
+    likely = [_likely(link, basis) for basis in link.bases]
+    named = {(d.code, type(d.slip)) for d in likely if d is not None}
+    if likely and all(d is not None for d in likely) and len(named) == 1:
+        return likely[0]
+    return None
+
+
+def _likely(link: LinkAnalysis, basis: Geometry) -> Diagnosis | None:
+    declared = link.declared
+    assert declared is not None
+    expected = basis.at_mass(declared.mass)
+    if expected is None:
+        return None
+    inertial = link.link.inertial
+    points, rotations = _named_frames(link)
+    diagnosis = diagnose_part(
+        declared,
+        expected,
+        points=points,
+        rotations=rotations,
+        axes=None if inertial is None else _origin_rotation(inertial.origin),
+        volume=basis.volume,
+        geometry=basis.describe(),
+    )
+    return None if diagnosis is None else replace(diagnosis, basis=basis.kind)
 
 
 @dataclass(frozen=True)
@@ -177,6 +208,8 @@ class Explanation:
     help: str
     # beyond the geometry's hard bound: the finding replaces IN023's error, so it is one too
     impossible: bool
+    # a real part's likely slip (diagnosis.diagnose_part), not an exact fit: its fix is unsafe
+    likely: bool = False
 
 
 def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:
@@ -196,11 +229,22 @@ def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | No
     )
     beyond = "; as written no mass inside the geometry can have it (IN023)" if impossible else ""
     wording = diagnosis.wording
+    help = wording.help
+    if diagnosis.likely is not None:
+        plain, fitted = diagnosis.likely
+        help = (
+            f"{help} (likely, not proven: a real part's values agree with a uniform solid of its "
+            f"shapes only within a factor of about 2; undone, the slip brings the tensor from "
+            f"{fmt(math.exp(plain), 3)} times off the {diagnosis.basis} geometry's to "
+            f"{fmt(math.exp(fitted), 3)}, as close as real parts come: check against the CAD "
+            "report before applying the fix, which is therefore unsafe)"
+        )
     return Explanation(
         link.name,
         f"link `{link.name}`: {wording.summary}: {wording.detail}{beyond}",
         inertial.inertia_source or inertial.source,
         diagnosis.expected(),
-        wording.help,
+        help,
         impossible,
+        likely=diagnosis.likely is not None,
     )

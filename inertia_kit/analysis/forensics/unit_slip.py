@@ -25,6 +25,11 @@ from inertia_kit.physics.tensor_names import DIAGONAL
 #: plausible densities, kg/m³ (IN022's defaults): a unit slip is only considered when undoing it
 #: leaves one (a density 1e-9 says the mesh is in millimetres, IN031, not the tensor)
 DENSITIES = (50.0, 25000.0)
+#: a real part (forensics.diagnosis.diagnose_part) is only refused a unit slip when its density
+#: says its mass or its geometry's scale is in doubt: a mesh in millimetres gives 1e-9 of the
+#: density, a mass cut from 5 kg to 0.01 kg (pybullet's iiwa base) 2 kg/m³; a light camera
+#: housing (30 kg/m³) or a dense counterweight is no such doubt
+PART_DENSITIES = (10.0, 1e5)
 
 # (factor, unit) for a tensor written in another unit: declared = factor × the right value
 UNITS: tuple[tuple[float, str], ...] = (
@@ -88,10 +93,17 @@ def _round(value: float) -> bool:
     return abs(mantissa - round(mantissa)) <= 1e-9 * mantissa
 
 
-def search(case: Case, volume: float | None, tolerance: float = math.inf) -> list[UnitSlip]:
+def search(
+    case: Case,
+    volume: float | None,
+    tolerance: float = math.inf,
+    plausible: tuple[float, float] = DENSITIES,
+) -> list[UnitSlip]:
     """
     Every unit conversion of the tensor (and of the mass, when its density says grams) whose
-    deviation from the geometry's is not above ``tolerance``.
+    deviation from the geometry's is not above ``tolerance``; none when the density the
+    declared mass gives the geometry is outside ``plausible`` (kg/m³: the geometry's scale is
+    then in doubt, not the tensor's unit).
     """
     declared = case.declared
     moments = np.linalg.eigvalsh(symmetric(declared.inertia))
@@ -105,7 +117,7 @@ def search(case: Case, volume: float | None, tolerance: float = math.inf) -> lis
         density = declared.mass / volume
         if density > high and low <= density / GRAMS <= high:
             mass_factors = [GRAMS]
-        elif not low <= density <= high:
+        elif not plausible[0] <= density <= plausible[1]:
             return []  # the geometry's scale is in doubt (IN022, IN031): no unit to blame
     found = []
     for mass_factor in mass_factors:

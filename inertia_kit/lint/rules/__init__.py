@@ -171,7 +171,10 @@ class RuleContext:
     def explanation_finding(self, why: Explanation) -> Finding:
         """
         A forensic rule's finding (IN06x) for a link its hypothesis explains: an error when the
-        declared value is beyond the geometry's hard bound (it then replaces IN023's error).
+        declared value is beyond the geometry's hard bound (it then replaces IN023's error). A
+        real part's likely slip repairs a doubtful value, not a recognised slip: ``inertia-fill
+        --fix invalid`` leaves it, ``--fix all`` recomputes the link (``--fix`` offers the
+        slip undone, as an unsafe fix).
         """
         return self.finding(
             why.message,
@@ -180,4 +183,5 @@ class RuleContext:
             expected=why.expected,
             help=why.help,
             severity=Severity.ERROR if why.impossible else None,
+            repairs=Repairs.DOUBTFUL if why.likely else None,
         )

@@ -65,3 +65,34 @@ def test_seed_simple_arm_links_are_written_for_other_axes_and_the_base_is_quiet(
         assert finding.expected["ixx"] == pytest.approx(axial)
         assert finding.expected["izz"] == pytest.approx(transverse)
         assert "written for other axes" in finding.message
+
+
+def real_rod():
+    """:func:`rod` as a real part: its moments 1.5 and 0.7 times the uniform solid's (a CAD
+    link scatters so around its shapes), still written for the cylinder's own axes."""
+    mass, radius, length = 1.0, 0.02, 0.3
+    transverse, _, axial = cylinder_moments(mass, radius, length)
+    written = inertial(mass, 1.5 * transverse, 1.5 * transverse, 0.7 * axial, xyz="0.15 0 0")
+    shape = collision(cylinder(radius, length), xyz="0.15 0 0", rpy=f"0 {math.pi / 2} 0")
+    return moving(written + shape)
+
+
+def test_a_real_part_written_for_other_axes_is_a_likely_slip(lint, tmp_path):
+    """No exact fit (the part is not the uniform solid of its shape), but turned to the link
+    axes it lands where real parts do: named, as likely; its fix unsafe, and fill's
+    ``--fix invalid`` leaves it (``--fix all`` recomputes the link)."""
+    from inertia_kit.fill.plan import plan_fill
+    from inertia_kit.lint.findings import Safety
+
+    findings = lint(real_rod())
+    assert [f.code for f in findings] == ["IN062"]
+    finding = findings[0]
+    assert finding.expected["fit"] == "likely"
+    assert "within a factor of" in finding.message
+    assert "likely, not proven" in finding.help
+    path = tmp_path / "rod.urdf"
+    path.write_text(real_rod())
+    result = lint_file(path, Selection(select=("IN062",)))
+    assert result.findings[0].fix is not None and result.findings[0].fix.safety is Safety.UNSAFE
+    assert [f.link for f in plan_fill(path, fix="invalid").changed_links] == []
+    assert [f.link for f in plan_fill(path, fix="all").changed_links] == ["arm"]
