@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from inertia_kit.description.edits import ChangedWhileEditing
 from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
@@ -64,15 +65,32 @@ class Files:
         return cls(path.parent, reads=reads, only=only)
 
     def editable(self, path: str) -> bool:
-        """Whether ``path`` is inside ``root`` (a symbolic link by the file it points to), and
-        is the one file of :attr:`only` when there is one."""
+        """Whether ``path`` is inside ``root`` (a symbolic link by the file it points to), is
+        the one file of :attr:`only` when there is one, and can be read as text to edit."""
         resolved = Path(path).resolve()
         if self.only is not None:
-            return resolved == self.only
-        return resolved.is_relative_to(self.root)
+            inside = resolved == self.only
+        else:
+            inside = resolved.is_relative_to(self.root)
+        return inside and self._undecodable(path) is None
+
+    def _undecodable(self, path: str) -> str | None:
+        """Why ``path`` cannot be read as text to edit (an encoding declared that its bytes
+        are not: xacro read them as UTF-8), or ``None``."""
+        try:
+            self.source(path)
+        except ChangedWhileEditing:
+            raise
+        except InputError as error:
+            return error.message
+        return None
 
     def outside(self, path: str) -> str:
-        """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target)."""
+        """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target), or
+        why it cannot be edited as text."""
+        undecodable = self._undecodable(path)
+        if undecodable is not None:
+            return f"not editable as text ({undecodable})"
         if self.only is not None:
             return "not the robot read from stdin (only its text is fixed and printed)"
         if os.path.islink(path):
@@ -119,12 +137,15 @@ class Files:
 
         resolved = str(Path(where.path).resolve())
         if resolved not in self._elements:
-            source = self.source(where.path)
             try:
+                source = self.source(where.path)
                 tree = parse_xml(source.original, where.path)
+            except ChangedWhileEditing:
+                raise
             except InputError:
-                # xacro's parser read it, libxml2 does not (an encoding declared that the bytes
-                # are not): its elements cannot be found, so no fix is placed in it
+                # xacro's parser read it, libxml2 (or the decoding for edits) does not: an
+                # encoding declared that the bytes are not; its elements cannot be found, so no
+                # fix is placed in it
                 tree = None
             positions = {} if tree is None else start_tag_positions(source.original, tree) or {}
             self._elements[resolved] = {position: e for e, position in positions.items()}

@@ -43,3 +43,32 @@ def test_a_file_libxml2_cannot_parse_gets_no_fix_and_no_internal_error(tmp_path)
         assert result.exit_code == 1, (args, result.output)
     filled = CliRunner().invoke(main, ["fill", "--fix", "all", str(path)])
     assert "internal error" not in filled.output
+
+
+def test_an_included_file_that_cannot_be_decoded_for_editing_gets_no_fix(tmp_path):
+    """Fuzz input 5827 of seed s1: the mrm arm's included macros file declaring utf-16le over
+    UTF-8 bytes (xacro reads them as UTF-8), of an odd length that UTF-16 cannot decode. Placing
+    a fix read it for editing: an internal error for every command; now it is not editable and
+    the findings are told."""
+    import shutil
+
+    from kit import EXAMPLES
+
+    root = tmp_path / "mrm_description"
+    shutil.copytree(EXAMPLES / "mrm_description", root)
+    macros = root / "urdf" / "links_joints.xacro"
+    data = macros.read_bytes().replace(
+        b'<?xml version="1.0" ?>', b'<?xml version="1.0" encoding="utf-16le"?>', 1
+    )
+    macros.write_bytes(data if len(data) % 2 else data + b"\n")
+    before = macros.read_bytes()
+    robot = root / "urdf" / "mrm.xacro"
+    for args in (
+        ["lint", "--engine", "all"],
+        ["lint", "--fix", "--unsafe-fixes"],
+        ["fill", "--fix", "all"],
+    ):
+        result = CliRunner().invoke(main, [*args, str(robot)])
+        assert "internal error" not in result.output, (args, result.output)
+        assert result.exit_code in (0, 1), (args, result.output)
+    assert macros.read_bytes() == before
