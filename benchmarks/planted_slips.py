@@ -96,11 +96,11 @@ from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # 2 processes on 2 cores
 
-import numpy as np  # noqa: E402
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from real_robots import PACKAGES, package_folder  # noqa: E402
+from real_robots import PACKAGES, package_folder
 
 #: the population's agreement between declared values and geometry, and the change a slip must
 #: make to be identifiable: real CAD values differ from uniform-density geometry by up to this
@@ -315,7 +315,7 @@ def _loader():
         if key not in kept:
             try:
                 kept[key] = default_mesh_loader(path, scale)
-            except Exception as error:  # noqa: BLE001 (MeshError; kept to raise again)
+            except Exception as error:  # a MeshError, kept to raise again
                 kept[key] = error
         if isinstance(kept[key], Exception):
             raise kept[key]
@@ -398,7 +398,7 @@ def survey(job: tuple[str, Path, Path]) -> list[dict]:
         return []
     try:
         analysis, findings = _lint(robot, _loader())
-    except Exception as error:  # noqa: BLE001 (a crash is reported, the benchmark goes on)
+    except Exception as error:  # reported; the benchmark goes on
         print(f"{path}: {type(error).__name__}: {error}", file=sys.stderr)
         return []
     loud = {f.link for f in findings if _loud(f)}
@@ -495,11 +495,11 @@ def plant(jobs: list[dict]) -> list[dict]:
                 slipped = SLIPS[kind](true)
             if _same(true, slipped):
                 continue  # the slip changes nothing here (a COM at the origin): no case
-            links = robot.links[:index] + (planted(link, slipped),) + robot.links[index + 1 :]
+            links = (*robot.links[:index], planted(link, slipped), *robot.links[index + 1 :])
             try:
                 _, after = _lint(dataclasses.replace(robot, links=links), load)
                 crash = None
-            except Exception as error:  # noqa: BLE001 (a crash is a result too)
+            except Exception as error:  # a crash is a result too
                 after, crash = [], f"{type(error).__name__}: {error}"
             on_link = [f for f in after if f.link == name and _loud(f)]
             elsewhere = sorted(
