@@ -4,7 +4,7 @@ How the solid a mesh's surface bounds is found, and so how its volume integrals 
 
 ``exact``
   The surface is closed and consistently wound (directly, or once vertices that differ only by
-  float noise are welded: :data:`WELD_RTOL`). A surface wound inside-out has a negative
+  float noise are welded: :data:`WELD_RTOLS`). A surface wound inside-out has a negative
   volume: it is reported as ``inverted`` and integrated flipped.
 ``repaired``
   Closed, but some triangles were wound against their neighbours; trimesh's winding repair
@@ -36,15 +36,17 @@ Method = Literal["exact", "repaired", "convex-hull"]
 # is 1e-6)
 EMPTY_VOLUME_RTOL = 1e-12
 
-# vertices closer than this fraction of the mesh's extent are one corner written twice and are
-# welded before the trimesh checks: float noise, not geometry. STL stores float32 (24 bits, a
-# step of 6e-8 of the coordinate), and exporters round a corner shared by two bodies' faces
-# differently: Fetch's laser_link.STL has two copies of a corner one float32 step (9.3e-10 m)
-# apart in a 0.075 m part, 1.2e-8 of its extent. Rounding to decimal digits cannot weld them
-# when the two fall on either side of a rounding boundary (it left that mesh open, and its
-# convex hull 3.1 times its volume); a distance tolerance can. The nearest distinct vertices
-# in that part are 6.7e-8 m apart (9e-7 of its extent): left apart.
-WELD_RTOL = 1e-7
+# vertices closer than these fractions of the mesh's extent are one corner written twice, and
+# are welded before the trimesh checks: float noise, not geometry. The finer tolerance first;
+# the coarser only when the finer leaves the surface open, and only if it then closes it.
+# STL stores float32 (24 bits, a step of 6e-8 of the coordinate), and exporters round a corner
+# shared by two bodies' faces differently: Fetch's laser_link.STL has two copies of a corner one
+# float32 step (9.3e-10 m) apart in a 0.075 m part, 1.2e-8 of its extent. Rounding to decimal
+# digits cannot weld them when the two fall on either side of a rounding boundary (it left that
+# mesh open, and its convex hull 3.1 times its volume); a distance tolerance can. But distinct
+# corners can be as close: TIAGo's base_ring.stl (0.54 m) has corners one float32 step (1.6e-8
+# m, 3e-8 of its extent) apart, closed as they are and pinched if welded, hence the fine first.
+WELD_RTOLS = (1e-8, 1e-7)
 
 
 @dataclass(frozen=True)
@@ -78,13 +80,18 @@ def classify(
     points, corners = np.unique(
         np.asarray(triangles, dtype=np.float64).reshape(-1, 3), axis=0, return_inverse=True
     )
-    welded = weld(points, WELD_RTOL * _extent(integrator.bounds))
-    faces = welded[corners.reshape(-1, 3)]
-    merged = trimesh.Trimesh(vertices=points, faces=faces, process=False)
-    # merging collapses slivers narrower than the noise: they hold no volume
-    merged.update_faces(
-        (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
-    )
+    extent = _extent(integrator.bounds)
+    for rtol in WELD_RTOLS:
+        faces = weld(points, rtol * extent)[corners.reshape(-1, 3)]
+        # welding collapses slivers narrower than the noise: they hold no volume
+        faces = faces[
+            (faces[:, 0] != faces[:, 1])
+            & (faces[:, 1] != faces[:, 2])
+            & (faces[:, 2] != faces[:, 0])
+        ]
+        merged = trimesh.Trimesh(vertices=points, faces=faces, process=False)
+        if merged.is_watertight:
+            break
     if merged.is_watertight and len(merged.faces):
         method: Method = "exact" if merged.is_winding_consistent else "repaired"
         if method == "repaired":

@@ -66,7 +66,7 @@ def test_no_faces():
     assert empty.shape == (0, 3, 3)
 
 
-# --- welding corners written twice (mesh_closure.WELD_RTOL) ---------------------------------
+# --- welding corners written twice (mesh_closure.WELD_RTOLS) --------------------------------
 
 
 def _binary_stl(path, triangles) -> None:
@@ -180,3 +180,26 @@ def test_weld_uses_a_distance_not_decimal_rounding():
     # a chain welds end to end
     chain = np.array([[i * 4e-4, 0.0, 0.0] for i in range(10)])
     assert len(set(weld(chain, 1e-3))) == 1
+
+
+def test_distinct_corners_as_close_as_the_coarse_tolerance_are_not_pinched(tmp_path):
+    """Two cubes 3e-8 of the extent apart (TIAGo's base_ring.stl has distinct corners that
+    close), with one shared corner written twice 1e-12 apart: the fine weld closes the surface,
+    and the coarse one, which would weld the facing corners into edges of four faces, is not
+    tried."""
+    from pathlib import Path
+
+    from inertia_kit.physics.mesh_closure import WELD_RTOLS, classify
+
+    first = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    second = first.copy()
+    gap = 3e-8 * 2.0  # the pair is 2 m wide: 3e-8 of its extent
+    second.apply_translation((1.0 + gap, 0.0, 0.0))
+    triangles = np.concatenate([first.triangles, second.triangles])
+    triangles[0, 0] += 1e-12  # one copy of one corner, float64 noise
+    assert WELD_RTOLS[0] * 2.0 < gap < WELD_RTOLS[1] * 2.0
+    integrator = integrate(triangles)
+    assert not integrator.closed
+    found = classify(Path("two.stl"), integrator, triangles)
+    assert (found.method, found.closed) == ("exact", True)
+    assert found.moments.volume == pytest.approx(2.0, rel=1e-9)
