@@ -203,3 +203,18 @@ def test_distinct_corners_as_close_as_the_coarse_tolerance_are_not_pinched(tmp_p
     found = classify(Path("two.stl"), integrator, triangles)
     assert (found.method, found.closed) == ("exact", True)
     assert found.moments.volume == pytest.approx(2.0, rel=1e-9)
+
+
+def test_inertia_kit_mass_reports_the_welded_solid(tmp_path):
+    """`inertia-kit mass mesh` on the box with a corner written twice: exact, the box's volume
+    (0.075 × 0.038 × 0.027 m = 7.695e-05 m³), not its convex hull's."""
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import main
+
+    triangles, volume = _box_triangles()
+    _binary_stl(tmp_path / "box.stl", _nudged(triangles))
+    result = CliRunner().invoke(main, ["mass", "mesh", str(tmp_path / "box.stl"), "--density", "1"])
+    assert result.exit_code == 0, result.output
+    assert "triangles, exact" in result.output
+    assert f"(volume {volume:.6g} m³" in result.output
