@@ -21,6 +21,7 @@ from inertia_kit.description import model
 from inertia_kit.description.model import WORLD
 from inertia_kit.engines.lumping import joint_pose, written_tensor
 from inertia_kit.engines.mujoco_files import Prediction, change, parseable, refusal
+from inertia_kit.engines.mujoco_meshes import DEFAULT_MESH_INERTIA, mesh_unit
 from inertia_kit.physics.formatting import fmt, vector_text
 from inertia_kit.physics.frames import transform
 from inertia_kit.physics.mass import MassProperties
@@ -212,7 +213,9 @@ def _refuse_body(
 def _from_geometry(link: LinkAnalysis) -> tuple[MassProperties | None, bool]:
     """
     What ``inertiafromgeom`` gives a link without ``<inertial>``: its collision geoms at 1000
-    kg/m³, each counted whole (overlaps twice); ``(None, True)`` without collision geometry.
+    kg/m³, each counted whole (overlaps twice), meshes by MuJoCo's default mesh inertia
+    (:data:`~.mujoco_meshes.DEFAULT_MESH_INERTIA`, which overcounts a non-convex mesh's
+    volume); ``(None, True)`` without collision geometry.
     """
     solids = link.collision.solids if link.link.collisions else ()
     if any(s.unit is None for s in solids):
@@ -220,7 +223,12 @@ def _from_geometry(link: LinkAnalysis) -> tuple[MassProperties | None, bool]:
     total = None
     for solid in solids:
         assert solid.unit is not None
-        part = solid.unit.with_mass(solid.unit.mass * GEOM_DENSITY) if solid.unit.mass else None
+        unit = solid.unit
+        if solid.mesh is not None:
+            unit = mesh_unit(solid)
+            if unit is None:
+                return None, False  # its triangles unreadable: no value we can predict
+        part = unit.with_mass(unit.mass * GEOM_DENSITY) if unit.mass else None
         if part is not None:
             total = part if total is None else total + part
     if total is None or total.mass < MJMINVAL:
@@ -365,18 +373,21 @@ def _note_changes(body: _Body, host: _Body | None, changes: list[Prediction]) ->
     if body.inferred and body.value is not None:
         suffix = "" if host is None else f", fused into `{host.name}`"
         value = body.value
+        meshes = any(s.mesh is not None for s in body.link.collision.solids)
+        mode = f", meshes by its default mesh inertia `{DEFAULT_MESH_INERTIA}`" if meshes else ""
         changes.append(
             change(
                 "inertiafromgeom",
                 body.name,
                 f"link `{body.name}` has no `<inertial>`: MuJoCo gives it the mass of its "
                 f"collision geometry at {fmt(GEOM_DENSITY)} kg/m³, {fmt(value.mass)} kg"
-                f"{suffix} (inertiafromgeom)",
+                f"{suffix} (inertiafromgeom{mode})",
                 body.link.link.source,
                 mass=value.mass,
                 com=[float(v) for v in value.com],
                 principal_moments=[float(v) for v in _eigenvalues(value.inertia)],
                 density=GEOM_DENSITY,
+                mesh_inertia=DEFAULT_MESH_INERTIA if meshes else None,
             )
         )
 

@@ -26,6 +26,15 @@ def fmt(value: float, digits: int = 5) -> str:
     return "0" if text in ("-0", "0") else text
 
 
+def as_printed(value: float, digits: int = 5) -> float:
+    """
+    ``value`` as :func:`fmt` prints it, read back. A rule that prints a value and the bound it
+    broke compares the two as printed, so that no message says "50 kg/m³, below the plausible
+    50 kg/m³" (1 kg in a 0.1 × 0.1 × 2 m box is 49.99999999999999 kg/m³ in floats).
+    """
+    return float(fmt(value, digits))
+
+
 def xml_number(value: float, digits: int = 9) -> str:
     """
     A number for an XML attribute: ``digits`` significant digits, positional notation for

@@ -4,8 +4,8 @@ How the solid a mesh's surface bounds is found, and so how its volume integrals 
 
 ``exact``
   The surface is closed and consistently wound (directly, or once vertices that differ only by
-  float noise are merged). A surface wound inside-out has a negative volume: it is reported as
-  ``inverted`` and integrated flipped.
+  float noise are welded: :data:`WELD_RTOLS`). A surface wound inside-out has a negative
+  volume: it is reported as ``inverted`` and integrated flipped.
 ``repaired``
   Closed, but some triangles were wound against their neighbours; trimesh's winding repair
   made it consistent.
@@ -16,7 +16,6 @@ How the solid a mesh's surface bounds is found, and so how its volume integrals 
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
@@ -37,9 +36,17 @@ Method = Literal["exact", "repaired", "convex-hull"]
 # is 1e-6)
 EMPTY_VOLUME_RTOL = 1e-12
 
-# vertices closer than this fraction of the mesh's extent are merged before the trimesh checks:
-# float noise, not geometry
-MERGE_RTOL = 1e-8
+# vertices closer than these fractions of the mesh's extent are one corner written twice, and
+# are welded before the trimesh checks: float noise, not geometry. The finer tolerance first;
+# the coarser only when the finer leaves the surface open, and only if it then closes it.
+# STL stores float32 (24 bits, a step of 6e-8 of the coordinate), and exporters round a corner
+# shared by two bodies' faces differently: Fetch's laser_link.STL has two copies of a corner one
+# float32 step (9.3e-10 m) apart in a 0.075 m part, 1.2e-8 of its extent. Rounding to decimal
+# digits cannot weld them when the two fall on either side of a rounding boundary (it left that
+# mesh open, and its convex hull 3.1 times its volume); a distance tolerance can. But distinct
+# corners can be as close: TIAGo's base_ring.stl (0.54 m) has corners one float32 step (1.6e-8
+# m, 3e-8 of its extent) apart, closed as they are and pinched if welded, hence the fine first.
+WELD_RTOLS = (1e-8, 1e-7)
 
 
 @dataclass(frozen=True)
@@ -70,17 +77,21 @@ def classify(
     assert triangles is not None
     import trimesh
 
-    merged = trimesh.Trimesh(
-        vertices=triangles.reshape(-1, 3),
-        faces=np.arange(3 * len(triangles)).reshape(-1, 3),
-        process=False,
+    points, corners = np.unique(
+        np.asarray(triangles, dtype=np.float64).reshape(-1, 3), axis=0, return_inverse=True
     )
-    merged.merge_vertices(digits_vertex=_merge_digits(integrator.bounds))
-    faces = merged.faces
-    # merging collapses slivers narrower than the noise: they hold no volume
-    merged.update_faces(
-        (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) & (faces[:, 2] != faces[:, 0])
-    )
+    extent = _extent(integrator.bounds)
+    for rtol in WELD_RTOLS:
+        faces = weld(points, rtol * extent)[corners.reshape(-1, 3)]
+        # welding collapses slivers narrower than the noise: they hold no volume
+        faces = faces[
+            (faces[:, 0] != faces[:, 1])
+            & (faces[:, 1] != faces[:, 2])
+            & (faces[:, 2] != faces[:, 0])
+        ]
+        merged = trimesh.Trimesh(vertices=points, faces=faces, process=False)
+        if merged.is_watertight:
+            break
     if merged.is_watertight and len(merged.faces):
         method: Method = "exact" if merged.is_winding_consistent else "repaired"
         if method == "repaired":
@@ -122,8 +133,42 @@ def _convex_hull(path: Path, triangles: NDArray, integrator: SurfaceIntegrator) 
     return Classification(moments, "convex-hull", closed=False, volume_error=error)
 
 
+def weld(points: NDArray, tolerance: float) -> NDArray[np.int64]:
+    """
+    For each of the distinct points (m, 3), the index of the point it is welded to: points
+    within ``tolerance / 2`` of each other on every axis are welded (so are chains of them),
+    points more than ``tolerance · √3`` apart only through such a chain.
+
+    How: the points are binned on 8 grids of cell ``tolerance``, offset by half a cell or not
+    on each axis; two points within half a cell on every axis share a cell on at least one of
+    them. The points of a cell take the lowest index among them, grid after grid, until no
+    index changes (a chain of n points settles within n rounds).
+    """
+    labels = np.arange(len(points))
+    if not len(points) or not tolerance > 0:
+        return labels
+    scaled = (points - points.min(axis=0)) / tolerance
+    offsets = np.array([[(k >> axis) & 1 for axis in range(3)] for k in range(8)]) / 2
+    cells = [
+        np.unique(np.floor(scaled + offset).astype(np.int64), axis=0, return_inverse=True)[1]
+        for offset in offsets
+    ]
+    while True:
+        before = labels
+        for cell in cells:
+            lowest = np.full(cell.max() + 1, len(points))
+            np.minimum.at(lowest, cell.ravel(), labels)
+            labels = lowest[cell.ravel()]
+        if np.array_equal(labels, before):
+            return labels
+
+
+def _extent(bounds: NDArray) -> float:
+    return float(np.max(bounds[1] - bounds[0]))
+
+
 def _check_volume(path: Path, volume: float, bounds: NDArray, what: str) -> None:
-    extent = float(np.max(bounds[1] - bounds[0]))
+    extent = _extent(bounds)
     if not abs(volume) > EMPTY_VOLUME_RTOL * extent**3:
         raise MeshError(
             path,
@@ -131,11 +176,3 @@ def _check_volume(path: Path, volume: float, bounds: NDArray, what: str) -> None
             f"{what} bounds no volume ({fmt(volume)} file units³ in a "
             f"bounding box {fmt(extent)} wide); export the solid body, not a flat sheet",
         )
-
-
-def _merge_digits(bounds: NDArray) -> int:
-    """Decimal digits that round away noise of about ``MERGE_RTOL`` times the mesh's extent."""
-    extent = float(np.max(bounds[1] - bounds[0]))
-    if not extent > 0:
-        return 8
-    return max(0, -math.floor(math.log10(MERGE_RTOL * extent)))

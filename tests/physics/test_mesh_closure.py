@@ -8,6 +8,7 @@ manifold3d is integrated through.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 import trimesh
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -63,3 +64,157 @@ def test_summation_order_does_change_bits_without_it():
 def test_no_faces():
     empty = canonical_triangles(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.intp))
     assert empty.shape == (0, 3, 3)
+
+
+# --- welding corners written twice (mesh_closure.WELD_RTOLS) --------------------------------
+
+
+def _binary_stl(path, triangles) -> None:
+    """Triangles as a binary STL: float32 coordinates, as CAD exporters write them."""
+    triangles = np.asarray(triangles, dtype=np.float32)
+    record = np.zeros(len(triangles), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    record["v"] = triangles
+    with open(path, "wb") as file:
+        file.write(b"\0" * 80 + np.uint32(len(triangles)).tobytes() + record.tobytes())
+
+
+def _box_triangles(size=(0.075, 0.038, 0.027), corner=(-0.047, 0.0103, 0.035)):
+    box = trimesh.creation.box(extents=size)
+    box.apply_translation(np.asarray(corner) + np.asarray(size) / 2)
+    return np.asarray(box.triangles, dtype=np.float32), float(np.prod(size))
+
+
+def _nudged(triangles, steps=1):
+    """The first triangle's copies of one corner moved ``steps`` float32 steps along y: the same
+    corner written twice, as Fetch's laser_link.STL has it (one step, 9.3e-10 m, of 0.0103)."""
+    corner = triangles[0, 0].copy()
+    nudged = triangles.copy()
+    y = np.float32(corner[1])
+    for _ in range(steps):
+        y = np.nextafter(y, np.float32(1))
+    nudged[0, 0, 1] = y
+    return nudged
+
+
+def test_a_corner_written_twice_one_float32_step_apart_is_welded(tmp_path):
+    from inertia_kit.physics.meshes import mesh_solid
+
+    triangles, volume = _box_triangles()
+    nudged = _nudged(triangles)
+    assert not integrate(nudged).closed  # the exact-bit check sees two corners
+    _binary_stl(tmp_path / "box.stl", nudged)
+    solid = mesh_solid(tmp_path / "box.stl")
+    assert (solid.method, solid.closed) == ("exact", True)
+    assert solid.moments.volume == pytest.approx(volume, rel=1e-6)
+
+
+def test_a_closed_box_with_a_sliver_triangle_pair_is_closed(tmp_path):
+    """A stray pair of triangles narrower than the weld tolerance (an open flap, 1e-10 m wide
+    on a 0.075 m box) collapses when welded: the box is judged by its closed surface, its
+    volume exact, not its convex hull's."""
+    from inertia_kit.physics.meshes import mesh_solid
+
+    triangles, volume = _box_triangles()
+    a, b = triangles[0, 0], triangles[0, 1]
+    step = np.float32(1)  # one float32 step along y, below the weld tolerance (7.5e-9 m)
+    flap = np.array(
+        [[a, b, np.nextafter(b, step)], [a, np.nextafter(b, step), np.nextafter(a, step)]]
+    )
+    far = np.array([0.02, 0.005, 0.005], dtype=np.float32)  # outside the box: a hull grows
+    sliver = np.array([[far, np.nextafter(far, step), np.nextafter(np.nextafter(far, step), step)]])
+    for extra in (flap, sliver):
+        assert not integrate(np.concatenate([triangles, extra])).closed
+    _binary_stl(tmp_path / "box.stl", np.concatenate([triangles, flap]))
+    solid = mesh_solid(tmp_path / "box.stl")
+    assert (solid.method, solid.closed) == ("exact", True)
+    assert solid.moments.volume == pytest.approx(volume, rel=1e-6)
+    # a sliver away from the box is a (degenerate) open shell too: welded away, no hull
+    _binary_stl(tmp_path / "far.stl", np.concatenate([triangles, sliver]))
+    assert mesh_solid(tmp_path / "far.stl").moments.volume == pytest.approx(volume, rel=1e-6)
+
+
+def test_a_tiny_closed_shell_beside_the_body_adds_its_volume(tmp_path):
+    from inertia_kit.physics.meshes import mesh_solid
+
+    triangles, volume = _box_triangles()
+    small, small_volume = _box_triangles(size=(1e-4, 4e-4, 1.6e-3), corner=(0.028, 0.0118, 0.035))
+    _binary_stl(tmp_path / "two.stl", np.concatenate([_nudged(triangles), small]))
+    solid = mesh_solid(tmp_path / "two.stl")
+    assert solid.method == "exact"
+    assert solid.moments.volume == pytest.approx(volume + small_volume, rel=1e-6)
+
+
+def test_a_genuinely_open_mesh_stays_open(tmp_path):
+    """A missing face, or a corner moved well beyond the tolerance (1e-6 of the extent), is
+    no float noise: the convex hull, as before."""
+    from inertia_kit.physics.meshes import mesh_solid
+
+    triangles, _ = _box_triangles()
+    _binary_stl(tmp_path / "open.stl", triangles[2:])
+    moved = triangles.copy()
+    moved[0, 0, 1] += 1e-6 * 0.075
+    _binary_stl(tmp_path / "moved.stl", moved)
+    for name in ("open.stl", "moved.stl"):
+        solid = mesh_solid(tmp_path / name)
+        assert (solid.method, solid.closed) == ("convex-hull", False)
+
+
+def test_weld_uses_a_distance_not_decimal_rounding():
+    """Two values either side of a rounding boundary (…5 at the 9th decimal) are 2e-12 apart:
+    rounding to 9 digits parts them, a distance tolerance of 1e-9 does not."""
+    from inertia_kit.physics.mesh_closure import weld
+
+    points = np.array(
+        [[0.1234567895 - 1e-12, 0.0, 0.0], [0.1234567895 + 1e-12, 0.0, 0.0], [0.2, 0.0, 0.0]]
+    )
+    assert np.round(points[0, 0], 9) != np.round(points[1, 0], 9)
+    labels = weld(points, 1e-9)
+    assert labels[0] == labels[1] != labels[2]
+    # half a cell on every axis always welds; beyond √3 cells never (without a chain)
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        p = rng.uniform(-1, 1, 3)
+        near = weld(np.array([p, p + rng.uniform(-0.49, 0.49, 3) * 1e-3]), 1e-3)
+        far = weld(np.array([p, p + rng.normal(size=3) / 10]), 1e-3)
+        assert near[0] == near[1] and far[0] != far[1]
+    # a chain welds end to end
+    chain = np.array([[i * 4e-4, 0.0, 0.0] for i in range(10)])
+    assert len(set(weld(chain, 1e-3))) == 1
+
+
+def test_distinct_corners_as_close_as_the_coarse_tolerance_are_not_pinched(tmp_path):
+    """Two cubes 3e-8 of the extent apart (TIAGo's base_ring.stl has distinct corners that
+    close), with one shared corner written twice 1e-12 apart: the fine weld closes the surface,
+    and the coarse one, which would weld the facing corners into edges of four faces, is not
+    tried."""
+    from pathlib import Path
+
+    from inertia_kit.physics.mesh_closure import WELD_RTOLS, classify
+
+    first = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    second = first.copy()
+    gap = 3e-8 * 2.0  # the pair is 2 m wide: 3e-8 of its extent
+    second.apply_translation((1.0 + gap, 0.0, 0.0))
+    triangles = np.concatenate([first.triangles, second.triangles])
+    triangles[0, 0] += 1e-12  # one copy of one corner, float64 noise
+    assert WELD_RTOLS[0] * 2.0 < gap < WELD_RTOLS[1] * 2.0
+    integrator = integrate(triangles)
+    assert not integrator.closed
+    found = classify(Path("two.stl"), integrator, triangles)
+    assert (found.method, found.closed) == ("exact", True)
+    assert found.moments.volume == pytest.approx(2.0, rel=1e-9)
+
+
+def test_inertia_kit_mass_reports_the_welded_solid(tmp_path):
+    """`inertia-kit mass mesh` on the box with a corner written twice: exact, the box's volume
+    (0.075 × 0.038 × 0.027 m = 7.695e-05 m³), not its convex hull's."""
+    from click.testing import CliRunner
+
+    from inertia_kit.cli import main
+
+    triangles, volume = _box_triangles()
+    _binary_stl(tmp_path / "box.stl", _nudged(triangles))
+    result = CliRunner().invoke(main, ["mass", "mesh", str(tmp_path / "box.stl"), "--density", "1"])
+    assert result.exit_code == 0, result.output
+    assert "triangles, exact" in result.output
+    assert f"(volume {volume:.6g} m³" in result.output

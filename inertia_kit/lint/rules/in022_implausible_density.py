@@ -9,7 +9,7 @@ from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.formatting import as_printed, fmt
 
 CODE = "IN022"
 NAME = "implausible-density"
@@ -43,9 +43,12 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     verdicts = []
     for geometry in link.bases:
         density = mass / geometry.volume
-        if density > high:
+        # compared as the message prints them (4 and 5 significant digits): a density that
+        # prints as the bound is at the bound, whatever its last float bits say
+        shown = as_printed(density, 4)
+        if shown > as_printed(high):
             verdicts.append(("high", geometry, density))
-        elif density < low and not _open(geometry):
+        elif shown < as_printed(low) and not _open(geometry):
             verdicts.append(("low", geometry, density))
         else:
             # plausible, or low on an overestimated volume: either basis clears the link

@@ -92,3 +92,31 @@ def test_negligible_dummy_on_a_fixed_joint_is_skipped(lint):
 def test_no_mass_or_no_geometry_is_not_its_business(lint):
     assert lint(moving(CUBE), "IN022") == []
     assert lint(moving(box_inertial(1e6, SIZE)), "IN022") == []
+
+
+@pytest.mark.parametrize(
+    ("mass", "fires"),
+    [
+        (1.0, False),  # 49.99999999999999 kg/m³ in floats: prints as the bound, is at it
+        (0.99999, False),  # 49.9995: prints "50", at the bound as far as the message can tell
+        (0.9995, True),  # 49.975: prints "49.98", below 50
+    ],
+)
+def test_a_density_that_prints_as_the_bound_is_at_it(lint, mass, fires):
+    """The rrbot tutorial's link1 (gazebo_ros_demos): 1 kg in a 0.1 × 0.1 × 2 m box was
+    "50 kg/m³, below the plausible 50 kg/m³"; a message never says so now, and one that
+    fires prints a density other than its bound."""
+    size = (0.1, 0.1, 2.0)
+    findings = lint(moving(collision(box(*size)) + box_inertial(mass, size)), "IN022")
+    assert len(findings) == int(fires)
+    for finding in findings:
+        shown = finding.message.split(" is ")[1].split(" kg/m³")[0]
+        assert shown != "50" and "below the plausible 50 kg/m³" in finding.message
+
+
+def test_the_same_holds_at_the_upper_bound(lint):
+    size = (0.1, 0.1, 0.1)
+    at = 25000.0 * 0.001 * (1 + 1e-9)  # above 25 000 by 2.5e-5 kg/m³ in floats
+    assert lint(moving(collision(box(*size)) + box_inertial(at, size)), "IN022") == []
+    above = 25010.0 * 0.001
+    assert len(lint(moving(collision(box(*size)) + box_inertial(above, size)), "IN022")) == 1
