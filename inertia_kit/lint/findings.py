@@ -43,13 +43,16 @@ class Repairs(enum.Enum):
     """
     What a rule's fix repairs, which ``inertia-fill --fix MODE`` selects by: ``missing`` (a
     link that needs a mass), ``impossible`` (values no rigid body has), ``slip`` (a recognised
-    slip, undone), ``doubtful`` (values that may be wrong; only ``--fix all`` takes these).
+    slip, undone), ``doubtful`` (values that may be wrong; only ``--fix all`` takes these),
+    ``likely`` (a real part's likely slip, undone: ``inertia-lint --unsafe-fixes`` offers it, no
+    fill mode takes it; ``--fix all`` recomputes the link from its geometry as any other).
     """
 
     MISSING = "missing"
     IMPOSSIBLE = "impossible"
     SLIP = "slip"
     DOUBTFUL = "doubtful"
+    LIKELY = "likely"
 
     def __str__(self) -> str:
         return self.value

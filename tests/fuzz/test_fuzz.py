@@ -19,12 +19,12 @@ from fuzz.known import KNOWN_OPEN, known_open
 from fuzz.plan import COVERAGE
 
 #: the CI run: inputs, and how many processes run them
-CI_INPUTS = 200
+CI_INPUTS = 120
 CI_WORKERS = 2
 
 pytestmark = [
     pytest.mark.skipif(not hasattr(os, "fork"), reason="the harness forks its runs"),
-    pytest.mark.slow,  # about a minute on 2 cores
+    pytest.mark.slow,  # about 35 s on 2 cores
 ]
 
 

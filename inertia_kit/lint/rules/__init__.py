@@ -172,9 +172,9 @@ class RuleContext:
         """
         A forensic rule's finding (IN06x) for a link its hypothesis explains: an error when the
         declared value is beyond the geometry's hard bound (it then replaces IN023's error). A
-        real part's likely slip repairs a doubtful value, not a recognised slip: ``inertia-fill
-        --fix invalid`` leaves it, ``--fix all`` recomputes the link (``--fix`` offers the
-        slip undone, as an unsafe fix).
+        real part's likely slip is no recognised slip: no ``inertia-fill`` mode takes its fix
+        (``--fix invalid`` leaves the link, ``--fix all`` recomputes it from its geometry);
+        ``inertia-lint --unsafe-fixes`` undoes the slip.
         """
         return self.finding(
             why.message,
@@ -183,5 +183,5 @@ class RuleContext:
             expected=why.expected,
             help=why.help,
             severity=Severity.ERROR if why.impossible else None,
-            repairs=Repairs.DOUBTFUL if why.likely else None,
+            repairs=Repairs.LIKELY if why.likely else None,
         )
