@@ -107,6 +107,16 @@ def _choose(candidates: list[Candidate], tolerance: float) -> Candidate | None:
     return min(near, key=lambda c: c.preference)
 
 
+def _finite(declared: MassProperties) -> bool:
+    """A positive finite mass, a finite tensor and COM: values a slip can be undone on."""
+    return bool(
+        declared.mass > 0
+        and math.isfinite(declared.mass)
+        and np.isfinite(declared.inertia).all()
+        and np.isfinite(declared.com).all()
+    )
+
+
 def diagnose(
     declared: MassProperties,
     expected: MassProperties,
@@ -149,9 +159,7 @@ def diagnose(
       A hypothesis explains the numbers when the corrected tensor deviates from the geometry's
       by at most ``tolerance`` and ``better`` times less than the declared one.
     """
-    if not (declared.mass > 0 and math.isfinite(declared.mass)):
-        return None
-    if not (np.isfinite(declared.inertia).all() and np.isfinite(declared.com).all()):
+    if not _finite(declared):
         return None
     try:
         metric = Metric(expected.inertia)
@@ -200,9 +208,7 @@ def diagnose_part(
     points, named frames and axis permutations, signs, units and transcriptions are tried:
     what is read from the file, not fitted to the geometry. Parameters as :func:`diagnose`.
     """
-    if not (declared.mass > 0 and math.isfinite(declared.mass)):
-        return None
-    if not (np.isfinite(declared.inertia).all() and np.isfinite(declared.com).all()):
+    if not _finite(declared):
         return None
     try:
         metric = Metric(expected.inertia)

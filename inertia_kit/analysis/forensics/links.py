@@ -102,14 +102,20 @@ def diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool = False) -> 
     its collision shapes), only by named points, rotations, signs, units and transpositions (no
     point solved for). IN020 names it in its message; nothing is corrected from it.
     """
+    return _cached(link, basis, "loose" if loose else "exact")
+
+
+def _cached(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis | None:
     cache = _CACHE.setdefault(link, {})
-    key = (basis.kind, loose)
+    key = (basis.kind, mode)
     if key not in cache:
-        cache[key] = _diagnose_basis(link, basis, loose)
+        cache[key] = _diagnose_basis(link, basis, mode)
     return cache[key]
 
 
-def _diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool) -> Diagnosis | None:
+def _diagnose_basis(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis | None:
+    """:func:`diagnose` (``mode`` ``exact`` or ``loose``) or :func:`diagnose_part`
+    (``likely``) of the link's declared values against ``basis``."""
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return None
@@ -117,20 +123,26 @@ def _diagnose_basis(link: LinkAnalysis, basis: Geometry, loose: bool) -> Diagnos
     if expected is None:
         return None
     inertial = link.link.inertial
-    axes = None if inertial is None else _origin_rotation(inertial.origin)
     points, rotations = _named_frames(link)
-    diagnosis = diagnose(
-        declared,
-        expected,
-        points=points,
-        rotations=rotations,
-        axes=axes,
-        hull=None if loose else basis.hull,
-        volume=basis.volume,
-        geometry=basis.describe(),
-        tolerance=LOOSE if loose else TOLERANCE,
-        better=LOOSE_BETTER if loose else BETTER,
-    )
+    common: dict[str, Any] = {
+        "points": points,
+        "rotations": rotations,
+        "axes": None if inertial is None else _origin_rotation(inertial.origin),
+        "volume": basis.volume,
+        "geometry": basis.describe(),
+    }
+    if mode == "likely":
+        diagnosis = diagnose_part(declared, expected, **common)
+    else:
+        loose = mode == "loose"
+        diagnosis = diagnose(
+            declared,
+            expected,
+            hull=None if loose else basis.hull,
+            tolerance=LOOSE if loose else TOLERANCE,
+            better=LOOSE_BETTER if loose else BETTER,
+            **common,
+        )
     return None if diagnosis is None else replace(diagnosis, basis=basis.kind)
 
 
@@ -170,31 +182,11 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     # no exact fit: the likely slip of a real part, against the collision geometry else the
     # visual one, when every basis agrees on it (two bases that name different slips, or
     # one that names none while the other does, leave it unknown)
-    likely = [_likely(link, basis) for basis in link.bases]
+    likely = [_cached(link, basis, "likely") for basis in link.bases]
     named = {(d.code, type(d.slip)) for d in likely if d is not None}
     if likely and all(d is not None for d in likely) and len(named) == 1:
         return likely[0]
     return None
-
-
-def _likely(link: LinkAnalysis, basis: Geometry) -> Diagnosis | None:
-    declared = link.declared
-    assert declared is not None
-    expected = basis.at_mass(declared.mass)
-    if expected is None:
-        return None
-    inertial = link.link.inertial
-    points, rotations = _named_frames(link)
-    diagnosis = diagnose_part(
-        declared,
-        expected,
-        points=points,
-        rotations=rotations,
-        axes=None if inertial is None else _origin_rotation(inertial.origin),
-        volume=basis.volume,
-        geometry=basis.describe(),
-    )
-    return None if diagnosis is None else replace(diagnosis, basis=basis.kind)
 
 
 @dataclass(frozen=True)
