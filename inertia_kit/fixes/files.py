@@ -67,12 +67,13 @@ class Files:
     def editable(self, path: str) -> bool:
         """Whether ``path`` is inside ``root`` (a symbolic link by the file it points to), is
         the one file of :attr:`only` when there is one, and can be read as text to edit."""
+        return self._inside(path) and self._undecodable(path) is None
+
+    def _inside(self, path: str) -> bool:
         resolved = Path(path).resolve()
         if self.only is not None:
-            inside = resolved == self.only
-        else:
-            inside = resolved.is_relative_to(self.root)
-        return inside and self._undecodable(path) is None
+            return resolved == self.only
+        return resolved.is_relative_to(self.root)
 
     def _undecodable(self, path: str) -> str | None:
         """Why ``path`` cannot be read as text to edit (an encoding declared that its bytes
@@ -88,7 +89,8 @@ class Files:
     def outside(self, path: str) -> str:
         """``outside ROOT``, for a file :meth:`editable` refuses (naming a link's target), or
         why it cannot be edited as text."""
-        undecodable = self._undecodable(path)
+        # only a file inside is read to say why: a link's target outside is never opened
+        undecodable = self._undecodable(path) if self._inside(path) else None
         if undecodable is not None:
             return f"not editable as text ({undecodable})"
         if self.only is not None:
