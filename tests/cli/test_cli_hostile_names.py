@@ -19,8 +19,8 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 from kit import write
+from kit.in_process import run_split
 from kit.meshes import box_triangles, write_binary_stl
 
 from inertia_kit.cli import main
@@ -68,12 +68,7 @@ def robots(tmp_path, monkeypatch):
 
 
 def run(*args: str, input: str | None = None) -> tuple[int, str, str]:
-    try:
-        runner = CliRunner(mix_stderr=False)  # click < 8.2
-    except TypeError:
-        runner = CliRunner()
-    result = runner.invoke(main, list(args), input=input, catch_exceptions=False)
-    return result.exit_code, result.stdout, result.stderr
+    return run_split(main, args, input)
 
 
 def safe(text: str) -> str:

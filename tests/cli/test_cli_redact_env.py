@@ -12,9 +12,8 @@ import shutil
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 from kit import write
-from kit.in_process import lint_in_process
+from kit.in_process import lint_in_process, run_split
 
 from inertia_kit.cli import main
 
@@ -71,12 +70,7 @@ def robots(tmp_path, monkeypatch):
 
 
 def run(*args: str) -> tuple[int, str, str]:
-    try:
-        runner = CliRunner(mix_stderr=False)  # click < 8.2
-    except TypeError:
-        runner = CliRunner()
-    result = runner.invoke(main, list(args), catch_exceptions=False)
-    return result.exit_code, result.stdout, result.stderr
+    return run_split(main, args)
 
 
 def seen(*texts: str) -> set[str]:
