@@ -76,6 +76,7 @@ def scene_json(scene: dict[str, Any]) -> str:
 
 def render_page(scene: dict[str, Any], *, title: str | None = None) -> str:
     """The review page of ``scene`` as one HTML document (a string, to write as UTF-8)."""
+    from inertia_kit.printable import printable
     from inertia_kit.version import __version__
 
     if title is None:
@@ -83,7 +84,7 @@ def render_page(scene: dict[str, Any], *, title: str | None = None) -> str:
     return TEMPLATE.format(
         csp=CSP,
         version=html.escape(__version__),
-        title=html.escape(title),
+        title=html.escape(printable(title)),
         css=_asset("page.css"),
         capture=_asset("capture.js"),
         scene=scene_json(scene),

@@ -79,6 +79,9 @@ def test_the_scene_round_trips_even_with_script_ends_in_its_strings():
 def test_the_title_is_escaped_and_defaults_to_the_robot():
     assert "<title>two_boxes: inertia review</title>" in render_page(two_box_scene())
     assert "<title>a &lt;b&gt; &amp; c</title>" in render_page(two_box_scene(), title="a <b> & c")
+    scene = two_box_scene()
+    scene["robot"] = "evil\u202e\n"  # a bidirectional override and a line break, as escapes
+    assert "<title>evil\\u202e\\n: inertia review</title>" in render_page(scene)
 
 
 def test_a_scene_with_nan_is_refused():

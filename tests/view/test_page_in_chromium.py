@@ -251,3 +251,28 @@ def test_selecting_a_link_named_after_a_prototype_key(prototype_page, name):
       return [...document.querySelectorAll(".link.selected")].map(e => e.dataset.link); }})()"""
     selected = open_page(prototype_page, then=select)
     assert selected.errors == "" and selected.result == [name]
+
+
+# --- names with characters that rewrite what the reader sees ----------------------------------
+
+
+def test_bidirectional_controls_and_line_breaks_in_names_show_as_escapes(tmp_path):
+    # "Trojan source": U+202E reverses what follows on the screen; the panel shows it as the
+    # terminal output does (inertia_kit.printable), the link still selectable by its exact name
+    name, joint_name = "arm\u202eevil", "shoulder\n::error::x"
+    scene = two_box_scene()
+    scene["links"][1]["name"] = name
+    scene["links"][1]["joint"]["name"] = joint_name
+    scene["links"][1]["findings"][0]["message"] = f"link {name} is \u2066odd\u2069 \U0001f916"
+    html = tmp_path / "review.html"
+    html.write_text(render_page(scene), encoding="utf-8")
+    select = f"""(() => {{
+      const card = [...document.querySelectorAll(".link")].find(e => e.dataset.link === {name!r});
+      card.click();
+      const label = document.querySelector("#joints label");
+      return [document.querySelectorAll(".link.selected").length, label.title]; }})()"""
+    loaded = open_page(html, then=select)
+    assert loaded.errors == ""
+    assert "arm\\u202eevil" in loaded.panel and "\u202e" not in loaded.panel
+    assert "\\u2066odd\\u2069" in loaded.panel and "\U0001f916" in loaded.panel  # pairs kept
+    assert loaded.result == [1, "shoulder\\n::error::x (revolute)"]

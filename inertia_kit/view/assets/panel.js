@@ -4,10 +4,28 @@
 var InertiaKitPanel = (function () {
   "use strict";
 
+  // What inertia_kit/printable.py escapes in a terminal, escaped on the page too: a name that
+  // holds a bidirectional control ("Trojan source") or a line break would otherwise reorder or
+  // split what the reader sees. Keys (data-*) keep the exact text.
+  var UNPRINTABLE = /[\u0000-\u001f\u007f-\u009f\u061c\u200e\u200f\u2028\u2029\u202a-\u202e\u2066-\u2069\ud800-\udfff]/gu;
+  var NAMED = { "\n": "\\n", "\r": "\\r", "\t": "\\t" };
+
+  function escaped(char) {
+    if (NAMED[char] !== undefined) return NAMED[char];
+    var code = char.charCodeAt(0);
+    var hex = code.toString(16);
+    return code < 0x100 ? "\\x" + ("0" + hex).slice(-2) : "\\u" + ("000" + hex).slice(-4);
+  }
+
+  function shown(text) {
+    return String(text).replace(UNPRINTABLE, escaped);
+  }
+
   function element(tag, attributes, children) {
     var node = document.createElement(tag);
     Object.keys(attributes || {}).forEach(function (key) {
-      if (key === "text") node.textContent = attributes[key];
+      if (key === "text") node.textContent = shown(attributes[key]);
+      else if (key === "title") node.setAttribute(key, shown(attributes[key]));
       else node.setAttribute(key, attributes[key]);
     });
     (children || []).forEach(function (child) { if (child) node.appendChild(child); });
