@@ -45,7 +45,7 @@ signs          products negated (ixy, ixz, iyz)                            IN061
 other-axes     ``T' = Rx T Rxᵀ``, Rx 90° about x                           IN062
 kg-mm2         ``T' = 1e6 T``                                              IN063
 swap-ixx-iyy   ixx and iyy exchanged                                       IN064
-mass-x3        ``m' = 3 m``, tensor unchanged                              IN022
+mass-x3        ``m' = 3 m``, tensor unchanged                              IN068
 neighbour      the parent's ``<inertial>`` (else a child's) copied          no rule
 grams          ``m' = 1000 m``                                              IN063
 com-origin     ``c' = 0``                                                  IN021
@@ -58,8 +58,10 @@ com-swap       the two coordinates of ``c`` largest in |value| exchanged    IN02
 Own rules, from ``inertia_kit/analysis/forensics`` and ``rules/``: IN060-IN064 are the forensic
 rules (IN063 also names a mass in grams, "the mass ... is in grams"); IN013 names an isotropic
 placeholder; no rule names a centre of mass slip but IN021 (com-geometry-mismatch, whose help
-says "check the sign, the axes and the unit"); a mass ×3 has only IN022 (implausible density)
-to name it; nothing names a copied neighbour's block ("no rule": its named column is empty).
+says "check the sign, the axes and the unit"); IN068 (inertia-for-other-mass) names a mass ×3:
+the tensor the geometry's for another mass, alike about every axis (IN022 judges the density
+alone, and 3 × 2700 kg/m³ is still a metal); nothing names a copied neighbour's block ("no
+rule": its named column is empty).
 
 Identifiable
 ------------
@@ -143,7 +145,7 @@ OWN_RULE = {
     "other-axes": "IN062",
     "kg-mm2": "IN063",
     "swap-ixx-iyy": "IN064",
-    "mass-x3": "IN022",
+    "mass-x3": "IN068",
     "neighbour": None,
     "grams": "IN063",
     "com-origin": "IN021",
