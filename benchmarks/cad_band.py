@@ -23,7 +23,7 @@ rules do), at the declared mass:
 - ``scale`` and ``shape``: the generalised eigenvalues ``r`` of the declared tensor against the
   geometry's (unfloored) split into a common factor, ``scale = mean(ln r)`` (a tensor ``k``
   times the geometry's has ``ln k``), and what is left, ``shape = max |ln r - scale|``: how far a
-  real part's tensor is a uniformly scaled copy of its geometry's (IN066's calibration).
+  real part's tensor is a uniformly scaled copy of its geometry's (IN068's calibration).
 
 Printed: quantiles per measure, for mesh links and primitive links, and overall.
 """
