@@ -69,3 +69,9 @@ def test_what_is_not_named():
     assert mass_change(props(MASS, bent), geometry) is None
     # no body: not positive definite
     assert mass_change(props(MASS, -GEOMETRY), geometry) is None
+
+
+def test_a_factor_of_fifty_is_no_retyped_mass():
+    # 50 times the geometry's: a made-up value or a unit, not a mass typed ten times too large
+    assert mass_change(props(MASS, 50 * GEOMETRY), props(MASS, GEOMETRY)) is None
+    assert mass_change(props(MASS, 10 * GEOMETRY), props(MASS, GEOMETRY)) is not None
