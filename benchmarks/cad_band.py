@@ -19,7 +19,11 @@ rules do), at the declared mass:
   ``λ`` the geometry's largest moment and ``f = FLOOR`` (the forensic measure's floor): moments
   and axes at once, in log space (the generalised eigenvalues of the two floored tensors);
 - ``com``: the distance between the declared COM and the geometry's, over the geometry's size
-  (its largest radius of gyration).
+  (its largest radius of gyration);
+- ``scale`` and ``shape``: the generalised eigenvalues ``r`` of the declared tensor against the
+  geometry's (unfloored) split into a common factor, ``scale = mean(ln r)`` (a tensor ``k``
+  times the geometry's has ``ln k``), and what is left, ``shape = max |ln r - scale|``: how far a
+  real part's tensor is a uniformly scaled copy of its geometry's (IN068's calibration).
 
 Printed: quantiles per measure, for mesh links and primitive links, and overall.
 """
@@ -53,6 +57,17 @@ def log_distance(declared, geometry) -> float:
     if not (ratios > 0).all():
         return float("inf")
     return float(np.abs(np.log(ratios)).max())
+
+
+def scale_and_shape(declared, geometry) -> tuple[float, float]:
+    """The common log factor of the generalised eigenvalues and the largest departure from it."""
+    inverse = np.linalg.inv(np.linalg.cholesky(geometry))
+    ratios = np.linalg.eigvalsh(inverse @ declared @ inverse.T)
+    if not (ratios > 0).all():
+        return float("nan"), float("inf")
+    logs = np.log(ratios)
+    scale = float(logs.mean())
+    return scale, float(np.abs(logs - scale).max())
 
 
 def axis_angles(declared, geometry) -> list[float]:
@@ -114,7 +129,10 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
                 angles = axis_angles(declared.inertia, expected.inertia)
             except (np.linalg.LinAlgError, FloatingPointError, ValueError):
                 continue
+            scale, shape = scale_and_shape(declared.inertia, expected.inertia)
             row = {
+                "scale": scale,
+                "shape": shape,
                 "package": package,
                 "file": os.path.relpath(path, root),
                 "link": link.name,
@@ -166,6 +184,8 @@ def main() -> int:
         angles = [r["axes"] for r in chosen if r["axes"] is not None]
         print(f"  axis angle, deg   {quantiles(angles)}")
         print(f"  COM offset/size   {quantiles([r['com'] for r in chosen])}")
+        print(f"  |scale| (ln k)    {quantiles([abs(r['scale']) for r in chosen])}")
+        print(f"  shape about k     {quantiles([r['shape'] for r in chosen])}")
     if args.save:
         args.save.write_text(json.dumps(rows, indent=1))
     return 0

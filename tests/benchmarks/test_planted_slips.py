@@ -112,3 +112,44 @@ def test_the_current_rules_see_the_kg_mm2_slip_on_a_textbook_box(tmp_path):
     links = (*robot.links[:index], ps.planted(link, slipped), *robot.links[index + 1 :])
     _, after = ps._lint(dataclasses.replace(robot, links=links), load_mesh)
     assert [f for f in after if f.link == "arm" and ps._loud(f)]
+
+
+def _box_case(tmp_path, slip):
+    """The textbook box with ``slip`` planted: its true values, the slipped link's analysis and
+    its findings."""
+    size = (0.3, 0.1, 0.05)
+    body = box_inertial(2.0, size) + collision(box(*size))
+    robot = load(write(tmp_path / "r.urdf", moving(body)))
+    load_mesh = ps._loader()
+    index = [link.name for link in robot.links].index("arm")
+    link = robot.links[index]
+    true = ps.Values.of(link.inertial)
+    links = (*robot.links[:index], ps.planted(link, slip(true)), *robot.links[index + 1 :])
+    analysis, after = ps._lint(dataclasses.replace(robot, links=links), load_mesh)
+    return true, analysis.by_name["arm"], [f for f in after if f.link == "arm" and ps._loud(f)]
+
+
+def test_visible_judges_the_planted_values_against_the_geometry(tmp_path):
+    # a mass x3 on the exact box: the tensor is a third of the geometry's at the planted mass,
+    # ln((1 + f) / (1/3 + f)) = 1.01 in log distance, beyond the band (0.92)
+    _, link, _ = _box_case(tmp_path, ps.mass_x3)
+    assert ps.visible("mass-x3", link, size=0.3)
+    # a mass x1.5: 0.39, within what real parts scatter
+    _, link, _ = _box_case(tmp_path, lambda v: v.replace(mass=v.mass * 1.5))
+    assert not ps.visible("mass-x3", link, size=0.3)
+    _, link, _ = _box_case(tmp_path, ps.grams)
+    assert ps.visible("grams", link, size=0.3)  # by its factor
+    # the box's COM at its centre: moved off it by 0.1 m, a third of its length
+    _, link, _ = _box_case(tmp_path, lambda v: v.replace(xyz=np.array([0.1, 0.0, 0.0])))
+    assert ps.visible("com-flip", link, size=0.3)
+    assert not ps.visible("com-flip", link, size=0.5)
+
+
+def test_an_equivalent_rule_names_a_slip_when_its_repair_restores_the_true_values(tmp_path):
+    # ixx and iyy exchanged on a diagonal tensor is a quarter turn about z: IN062's repair
+    true, _, found = _box_case(tmp_path, ps.swap_ixx_iyy)
+    assert {f.code for f in found} & {"IN062", "IN064"}
+    assert any(ps.restored(f, true) for f in found if f.code in ps.FORENSIC)
+    # a repair that does not restore them: the true values of another mass
+    assert not any(ps.restored(f, true.replace(mass=2 * true.mass)) for f in found)
+    assert not any(ps.restored(f, true.replace(tensor=1.1 * true.tensor)) for f in found)

@@ -238,8 +238,15 @@ def diagnose_part(
         *(c for c in other_axes.search(case, rotations, loose) if c.rank not in _FITTED_RANKS),
         *(c for c in transposed.search(case, loose) if c.moved <= 2),
     ]
+
+    # each corrected tensor against the geometry at its corrected mass: the geometry's tensor
+    # scales with the mass, so a mass in grams is judged by the tensor per corrected kilogram
+    # (LogMetric is scale-covariant: T against k G is T / k against G)
+    def per_kg(c: Candidate) -> np.ndarray:
+        return c.corrected.inertia * (declared.mass / c.corrected.mass)
+
     scored = sorted(
-        ((logs(c.corrected.inertia), i, c) for i, c in enumerate(candidates)),
+        ((logs(per_kg(c)), i, c) for i, c in enumerate(candidates)),
         key=lambda item: item[:2],
     )
     if not scored:
@@ -252,20 +259,18 @@ def diagnose_part(
     if not best_log <= BAND:
         return None
     try:
-        reading = LogMetric(first.corrected.inertia)
+        reading = LogMetric(per_kg(first))
     except np.linalg.LinAlgError:
         return None  # no body has the best reading (floored, it is not positive definite)
     near = [c for log, _, c in scored if log < best_log + AMBIGUITY]
-    best = min(
-        (c for c in near if reading(c.corrected.inertia) <= DISTINCT), key=lambda c: c.preference
-    )
-    fitted = logs(best.corrected.inertia)
+    best = min((c for c in near if reading(per_kg(c)) <= DISTINCT), key=lambda c: c.preference)
+    fitted = logs(per_kg(best))
     if not (fitted <= BAND and plain_log - fitted >= MARGIN):
         return None
     # another slip's reading nearly as good: which slip it was is not known. (Readings of the
     # same slip that differ, a rod's axes turned one way or another about its long axis, name
     # the slip all the same; the fix, unsafe, writes the best.)
-    if any(type(c) is not type(best) and reading(c.corrected.inertia) > DISTINCT for c in near):
+    if any(type(c) is not type(best) and reading(per_kg(c)) > DISTINCT for c in near):
         return None
     wording = best.word(case)
     # how close a real part comes is a factor, not a percentage of the exact fit

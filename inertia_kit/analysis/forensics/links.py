@@ -24,6 +24,7 @@ from inertia_kit.analysis.forensics.measure import (
     LOOSE_BETTER,
     MIN_MISMATCH,
     TOLERANCE,
+    LogMetric,
     deviation,
 )
 from inertia_kit.analysis.forensics.other_axes import rpy_text
@@ -34,6 +35,7 @@ from inertia_kit.physics.frames import rpy_matrix
 if TYPE_CHECKING:
     from inertia_kit.analysis.geometry import Geometry
     from inertia_kit.analysis.links import LinkAnalysis
+    from inertia_kit.physics.mass import MassProperties
 
 
 def _origin_rotation(origin: model.Origin) -> NDArray[np.float64] | None:
@@ -180,13 +182,31 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     if found:
         return found[0]
     # no exact fit: the likely slip of a real part, against the collision geometry else the
-    # visual one, when every basis agrees on it (two bases that name different slips, or
-    # one that names none while the other does, leave it unknown)
-    likely = [_cached(link, basis, "likely") for basis in link.bases]
-    named = {(d.code, type(d.slip)) for d in likely if d is not None}
-    if likely and all(d is not None for d in likely) and len(named) == 1:
-        return likely[0]
-    return None
+    # visual one, when no basis contradicts it: two bases that name different slips leave it
+    # unknown, and a basis that names none must at least come closer with the slip undone (a
+    # crude collision box and a detailed visual mesh rarely both land within the band)
+    likely = [(basis, _cached(link, basis, "likely")) for basis in link.bases]
+    named = {(d.code, type(d.slip)) for _, d in likely if d is not None}
+    if len(named) != 1:
+        return None
+    found = next(d for _, d in likely if d is not None)
+    for basis, diagnosis in likely:
+        if diagnosis is None and not _closer(declared, found, basis):
+            return None
+    return found
+
+
+def _closer(declared: MassProperties, diagnosis: Diagnosis, basis: Geometry) -> bool:
+    """Whether undoing the diagnosed slip brings the tensor closer to ``basis``'s too (log
+    distance, the corrected tensor against the geometry at the corrected mass)."""
+    after, before = basis.at_mass(diagnosis.corrected.mass), basis.at_mass(declared.mass)
+    if after is None or before is None:
+        return False
+    try:
+        corrected = LogMetric(after.inertia)(diagnosis.corrected.inertia)
+        return corrected < LogMetric(before.inertia)(declared.inertia)
+    except np.linalg.LinAlgError:
+        return False
 
 
 @dataclass(frozen=True)

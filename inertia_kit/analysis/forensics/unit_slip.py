@@ -85,7 +85,7 @@ class UnitSlip(Candidate):
         return Wording(summary, detail, " and ".join(todo), data)
 
 
-def _round(value: float) -> bool:
+def one_digit(value: float) -> bool:
     """A value with one significant digit (1, 0.001, 5e-4): how placeholders are written."""
     if not value > 0:
         return False
@@ -107,7 +107,7 @@ def search(
     """
     declared = case.declared
     moments = np.linalg.eigvalsh(symmetric(declared.inertia))
-    if moments[-1] - moments[0] <= 1e-9 * moments[-1] and _round(float(moments[-1])):
+    if moments[-1] - moments[0] <= 1e-9 * moments[-1] and one_digit(float(moments[-1])):
         # ixx = iyy = izz = 1 on a sphere or a cube is a placeholder (IN013); that a power of
         # ten relates it to the geometry's tensor is a coincidence of round numbers
         return []

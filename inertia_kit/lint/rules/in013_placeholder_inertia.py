@@ -8,6 +8,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
+from inertia_kit.analysis.forensics.measure import BAND, LogMetric
+from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.engines.lumping import lumped, positive_mass
@@ -122,20 +124,34 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if expected is None:
             continue
         principal = expected.principal_moments
-        if not principal[0] > 0 or principal[2] / principal[0] <= anisotropy:
-            continue  # a sphere, a cube, a near-cube: an isotropic tensor is right
+        if not principal[0] > 0:
+            continue
         written = geometry_tensor(link, declared.mass)
-        if written is None or _negligible(robot, link, written.tensor):
+        if written is None:
+            continue
+        anisotropic = principal[2] / principal[0] > anisotropy
+        # a sphere's, a cube's or a near-cube's isotropic tensor is right, unless it is a
+        # one-digit value (1, 0.001) farther from its geometry's than any real part's tensor
+        # lands (the forensics' band): ixx = iyy = izz = 1 on a 60 g foot
+        far = one_digit(values[0]) and LogMetric(written.tensor)(_written(values)) > BAND
+        if not (anisotropic or far) or _negligible(robot, link, written.tensor):
             continue
         inertial = link.link.inertial
         assert inertial is not None
         flagged.add(link.name)
+        ratio = values[0] / float(np.mean(np.diag(written.tensor)))
+        why = (
+            f"has principal moments in the ratio 1 : {fmt(principal[1] / principal[0], 3)} : "
+            f"{fmt(principal[2] / principal[0], 3)}"
+            if anisotropic
+            else f"is near-isotropic but gives {fmt(1 / ratio, 3)} times more"
+            if ratio < 1
+            else f"is near-isotropic but gives 1/{fmt(ratio, 3)} of that"
+        )
         yield ctx.finding(
             f"link `{link.name}`: ixx = iyy = izz = {fmt(values[0], 4)} kg·m² with no products "
-            f"of inertia is an isotropic placeholder, but its {link.geometry.describe()} has "
-            f"principal moments in the ratio 1 : {fmt(principal[1] / principal[0], 3)} : "
-            f"{fmt(principal[2] / principal[0], 3)}: with the declared {fmt(declared.mass)} kg "
-            f"it gives {written.text()}",
+            f"of inertia is an isotropic placeholder, but its {link.geometry.describe()} "
+            f"{why}: with the declared {fmt(declared.mass)} kg it gives {written.text()}",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected={"mass": declared.mass, **written.fields},

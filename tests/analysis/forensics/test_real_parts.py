@@ -152,3 +152,15 @@ def test_an_ambiguous_reading_is_not_named():
     planted = turn @ (square * np.diag([1.2, 0.9, 1.1])) @ turn.T
     found = diagnose_part(props(MASS, planted, COM), props(MASS, square), volume=VOLUME)
     assert found is None or isinstance(found.slip, (OtherAxes, Transposed))
+
+
+def test_a_mass_in_grams_is_named_against_the_geometry_of_the_mass_in_kg():
+    # the tensor kept, the mass 1000 times: against the geometry at the declared (gram) mass the
+    # tensor is 1000 times too small, at the corrected mass it is the part's own
+    found = diagnose_part(
+        props(MASS * 1000, REAL, COM), props(MASS * 1000, GEOMETRY * 1000), volume=VOLUME
+    )
+    assert found is not None and isinstance(found.slip, UnitSlip)
+    assert found.slip.mass_factor == 1000 and found.slip.factor == 1.0
+    assert found.corrected.mass == pytest.approx(MASS)
+    assert found.likely is not None and found.likely[1] == pytest.approx(LogMetric(GEOMETRY)(REAL))

@@ -124,3 +124,14 @@ def test_factor_is_the_largest_moment_ratio_about_any_axis():
     b = [[1.0, 0, 0], [0, 4.0, 0], [0, 0, 1.0]]
     comparison = compare_tensors(np.array(a), np.array(b))
     assert comparison is not None and comparison.factor == pytest.approx(4.0)
+
+
+def test_a_one_digit_isotropic_value_far_from_a_round_shape_is_a_placeholder(lint):
+    # ixx = iyy = izz = 1 on a 60 g ball of radius 2 cm (2/5 m r² = 9.6e-6): no part is that
+    (finding,) = in013(lint, moving(inertial(0.06, 1.0) + collision(sphere(0.02)), name="foot"))
+    assert "ixx = iyy = izz = 1 kg·m²" in finding.message
+    assert "near-isotropic but gives 1/1.04e+05 of that" in finding.message
+    assert finding.expected["ixx"] == pytest.approx(0.4 * 0.06 * 0.02**2)
+    # within the band real parts scatter in (a factor of 2.5), or a value no one makes up
+    assert in013(lint, moving(inertial(0.06, 2e-5) + collision(sphere(0.02)))) == []
+    assert in013(lint, moving(inertial(0.06, 0.937) + collision(sphere(0.02)))) == []

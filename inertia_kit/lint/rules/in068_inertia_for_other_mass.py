@@ -1,0 +1,76 @@
+"""IN068 inertia-for-other-mass: the tensor fits the geometry for another mass than declared."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+import numpy as np
+
+from inertia_kit.analysis.forensics.links import diagnose_link
+from inertia_kit.analysis.forensics.mass_changed import mass_change
+from inertia_kit.analysis.forensics.unit_slip import one_digit
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.rules import RuleContext
+from inertia_kit.physics.formatting import fmt
+
+CODE = "IN068"
+NAME = "inertia-for-other-mass"
+SEVERITY = Severity.WARNING
+SCOPE = "link"
+WEIGHED = True  # judged by what it adds to its lumped body (lint.weighing)
+SUMMARY = (
+    "the declared tensor is the geometry's for another mass, alike about every axis: the mass "
+    "was changed after the tensor was computed"
+)
+# the explanation replaces the symptom it explains on the same link: far from the geometry
+SUPERSEDES = ("IN020",)
+
+
+def _isotropic_placeholder(tensor: np.ndarray) -> bool:
+    """``ixx = iyy = izz = 1`` and the like: IN013's placeholder, not a tensor computed."""
+    moments = np.linalg.eigvalsh(tensor)
+    return bool(moments[-1] - moments[0] <= 1e-9 * moments[-1] and one_digit(float(moments[-1])))
+
+
+def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    declared = link.declared
+    inertial = link.link.inertial
+    if declared is None or inertial is None or not declared.mass > 0:
+        return
+    if _isotropic_placeholder(declared.inertia) or diagnose_link(link) is not None:
+        return  # a placeholder (IN013) or another slip (IN060-IN064) explains it
+    found = []
+    for basis in link.bases:
+        expected = basis.at_mass(declared.mass)
+        change = None if expected is None else mass_change(declared, expected)
+        if change is None:
+            return  # either geometry reads the values otherwise: which slip it was is unknown
+        found.append((basis, change))
+    if not found:
+        return
+    basis, change = found[0]
+    relation = (
+        f"{fmt(change.factor, 3)} times"
+        if change.factor > 1
+        else f"1/{fmt(1 / change.factor, 3)} of"
+    )
+    yield ctx.finding(
+        f"link `{link.name}`: the tensor is its {basis.describe()}'s for "
+        f"{fmt(change.tensor_mass, 3)} kg, not the declared {fmt(declared.mass)} kg: every "
+        f"principal moment is {relation} the geometry's at the declared mass (alike within a "
+        f"factor of {fmt(math.exp(change.shape), 2)}); the mass was likely changed after the "
+        "tensor was computed",
+        inertial.mass_source or inertial.source,
+        link=link.name,
+        expected={
+            "mass": declared.mass,
+            "tensor_mass": change.tensor_mass,
+            "factor": change.factor,
+            "basis": basis.kind,
+        },
+        help=f"check the mass: if it is right, multiply the six values by {fmt(change.scaled, 3)} "
+        f"(the part's shape kept); if the tensor is, the mass it was computed for is about "
+        f"{fmt(change.tensor_mass, 3)} kg",
+    )

@@ -1,0 +1,38 @@
+"""IN068 inertia-for-other-mass: a tensor kept while the mass was changed."""
+
+from __future__ import annotations
+
+import pytest
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, moving, sphere
+
+
+def codes(lint, text):
+    return {f.code for f in lint(text)}
+
+
+def in068(lint, text):
+    return [f for f in lint(text, "IN068") if f.code == "IN068"]
+
+
+def test_a_tensor_for_a_third_of_the_mass(lint):
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    body = inertial(6.0, ixx, iyy, izz) + collision(box(0.4, 0.2, 0.1))
+    (finding,) = in068(lint, moving(body))
+    assert "for 2 kg, not the declared 6 kg" in finding.message
+    assert "1/3 of the geometry's" in finding.message
+    assert "multiply the six values by 3" in finding.help
+    assert finding.expected["tensor_mass"] == pytest.approx(2.0)
+    assert finding.expected["factor"] == pytest.approx(1 / 3)
+    assert finding.severity.name == "WARNING"
+    # it replaces IN020's symptom
+    assert "IN020" not in codes(lint, moving(body))
+
+
+def test_the_right_mass_a_placeholder_and_a_unit_are_not_it(lint):
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    assert in068(lint, moving(inertial(2.0, ixx, iyy, izz) + collision(box(0.4, 0.2, 0.1)))) == []
+    assert in068(lint, moving(inertial(0.06, 1.0) + collision(sphere(0.02)))) == []  # IN013's
+    # the tensor in kg·mm²: IN063's
+    mm2 = (ixx * 1e6, iyy * 1e6, izz * 1e6)
+    assert in068(lint, moving(inertial(2.0, *mm2) + collision(box(0.4, 0.2, 0.1)))) == []
