@@ -3,10 +3,15 @@
 
 One pass takes the applicable fixes (safe ones; unsafe ones too with ``--unsafe-fixes``) in the
 order of their findings, skips a fix whose edits overlap an edit already taken (identical edits,
-such as one macro body shared by two links, are taken once), writes every changed file
-atomically (:func:`~inertia_kit.description.edits.write_all_atomic`: byte-identical outside the
-edited spans, symbolic links followed), and lints again. Passes repeat until no fix applies or
-nothing changes, at most :data:`MAX_PASSES` times; a file that did not settle gets a note.
+such as one macro body shared by two links, are taken once), and applies them to the text of
+each file. Passes repeat until no fix applies or nothing changes, at most :data:`MAX_PASSES`
+times (a file that did not settle gets a note), in memory: each pass after the first lints the
+text the one before produced (:mod:`~inertia_kit.description.overlay`, which the loader, xacro's
+includes and the suppression comments read through), and every changed file is written once, at
+the end, all together (:func:`~inertia_kit.description.edits.write_all_atomic`: byte-identical
+outside the edited spans, symbolic links followed). A run killed between two passes leaves every
+file as it was; the write expects the bytes the first lint read, so another writer's save at any
+moment of the run is kept and nothing is written.
 ``--diff`` makes one pass and prints the unified diff instead of writing.
 """
 
