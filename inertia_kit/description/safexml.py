@@ -10,6 +10,7 @@ import re
 from pathlib import Path
 from typing import Any
 
+from inertia_kit.description.overlay import overlay_bytes
 from inertia_kit.errors import InputError
 from inertia_kit.reading import read_regular, size_text
 
@@ -34,8 +35,13 @@ def read_bounded(path: str | Path, shown: str | Path | None = None) -> bytes:
     """
     The bytes of ``path``, refusing unreadable files, what is not a regular file (a named pipe,
     a device) and files over :data:`MAX_BYTES`, with an ``InputError`` naming ``shown``
-    (default: ``path``).
+    (default: ``path``). A file the overlay in force holds (:mod:`.overlay`: the passes of
+    ``--fix``) reads as its bytes there.
     """
+    data = overlay_bytes(path)
+    if data is not None:
+        check_size(data, path if shown is None else shown)
+        return data
     return read_regular(path, MAX_BYTES, shown, what="robot description")
 
 

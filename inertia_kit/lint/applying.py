@@ -3,10 +3,15 @@
 
 One pass takes the applicable fixes (safe ones; unsafe ones too with ``--unsafe-fixes``) in the
 order of their findings, skips a fix whose edits overlap an edit already taken (identical edits,
-such as one macro body shared by two links, are taken once), writes every changed file
-atomically (:func:`~inertia_kit.description.edits.write_all_atomic`: byte-identical outside the
-edited spans, symbolic links followed), and lints again. Passes repeat until no fix applies or
-nothing changes, at most :data:`MAX_PASSES` times; a file that did not settle gets a note.
+such as one macro body shared by two links, are taken once), and applies them to the text of
+each file. Passes repeat until no fix applies or nothing changes, at most :data:`MAX_PASSES`
+times (a file that did not settle gets a note), in memory: each pass after the first lints the
+text the one before produced (:mod:`~inertia_kit.description.overlay`, which the loader, xacro's
+includes and the suppression comments read through), and every changed file is written once, at
+the end, all together (:func:`~inertia_kit.description.edits.write_all_atomic`: byte-identical
+outside the edited spans, symbolic links followed). A run killed between two passes leaves every
+file as it was; the write expects the bytes the first lint read, so another writer's save at any
+moment of the run is kept and nothing is written.
 ``--diff`` makes one pass and prints the unified diff instead of writing.
 """
 
@@ -152,52 +157,116 @@ def fix_file(
     check: Callable[[Sequence[str]], None] | None = None,
 ) -> Outcome:
     """
-    Lint, apply, lint again until nothing applies (``write``); or, without ``write``, one pass
-    whose diff is returned. ``InputError`` from a write is kept in the result (as a file that
-    could not be read), so is ``check(paths)``'s, which may refuse the files about to be
-    written.
+    Lint, apply, lint again until nothing applies, in memory, then write every changed file
+    at once (``write``); or, without ``write``, one pass whose diff is returned. ``lint`` reads
+    the files through :mod:`~inertia_kit.description.overlay`, so each pass after the first
+    lints the text the one before produced.
 
-    Each pass edits the text its lint read and writes only if the files still hold it; a pass
-    after the first also stops when a file it wrote is no longer what it wrote (another writer
-    came between two passes: ``ChangedWhileEditing``).
+    The write expects each file to hold the bytes the first lint read: another writer that
+    saved one of them at any moment of the run is seen and nothing is written
+    (``ChangedWhileEditing``), as when a file the passes read but did not edit holds other
+    bytes in a later pass. That error, any other ``InputError`` of the write, and
+    ``check(paths)``'s (which may refuse the files about to be written) are kept in the result
+    of the first lint (as a file that could not be read), nothing fixed. A lint or a pass that
+    fails on an edited text ends the passes there: what the passes before it did is written.
     """
-    from inertia_kit.description.edits import CHANGED, ChangedWhileEditing, write_all_atomic
-    from inertia_kit.description.reads import digest, key
+    from inertia_kit.description.edits import ChangedWhileEditing
+    from inertia_kit.description.overlay import overlaid
 
-    fixed = 0
-    ours: dict[str, str] = {}  # real path -> digest of what the last pass wrote there
-    for number in range(1, MAX_PASSES + 1):
-        result = lint()
-        if result.error is not None or result.disabled or result.fragment:
-            return Outcome(result, fixed, number - 1)
-        foreign = [name for name, mine in ours.items() if result.reads.get(name, mine) != mine]
-        if foreign:
-            result.error = ChangedWhileEditing(CHANGED, foreign[0])
-            return Outcome(result, fixed, number - 1)
+    if not write:
+        return _diff(lint(), unsafe)
+    edited = _Edited()
+    first: FileResult | None = None
+    fixed = passes = 0
+    settled = True
+    for number in range(1, MAX_PASSES + 2):
+        with overlaid(edited.texts):
+            result = lint()
+            first = result if first is None else first
+            try:
+                if isinstance(result.error, ChangedWhileEditing):
+                    raise result.error
+                if result.error is not None or result.disabled or result.fragment:
+                    break
+                edited.check_reads(result.reads, first.reads)
+                step = one_pass(result.findings, unsafe, result.reads)
+            except ChangedWhileEditing as error:  # another writer: nothing is written
+                first.error = error
+                return Outcome(first)
+            except InputError as error:
+                result.error = error
+                break
+        if not step.changes:
+            break
+        if number > MAX_PASSES:
+            settled = False
+            result.notes.append(
+                f"{result.path}: the fixes did not settle after {MAX_PASSES} passes; "
+                "run inertia-lint --fix again and report the file if it still changes"
+            )
+            break
+        edited.take(step.changes)
+        fixed, passes = fixed + len(step.fixed), number
+    writes = edited.writes()
+    if writes:
+        from inertia_kit.description.edits import write_all_atomic
+
         try:
-            step = one_pass(result.findings, unsafe, result.reads)
-            if not step.changes:
-                return Outcome(result, fixed, number - 1)
-            if not write:
-                return Outcome(result, 0, 1, diff=step.diff())
-            writes = [(s.path, s.encode(text), s.original) for s, text in step.changes]
             if check is not None:
                 check([path for path, _, _ in writes])
             write_all_atomic(writes)
         except InputError as error:
-            result.error = error
-            return Outcome(result, fixed, number)
-        ours.update((key(path), digest(data)) for path, data, _ in writes)
-        fixed += len(step.fixed)
-    result = lint()
+            assert first is not None
+            first.error = error
+            return Outcome(first)
+    return Outcome(result, fixed, passes, settled)
+
+
+def _diff(result: FileResult, unsafe: bool) -> Outcome:
+    """The one pass of ``--diff``: its diff, nothing written."""
+    if result.error is not None or result.disabled or result.fragment:
+        return Outcome(result)
     try:
-        settled = one_pass(result.findings, unsafe, result.reads).changes == ()
+        step = one_pass(result.findings, unsafe, result.reads)
     except InputError as error:
         result.error = error
-        return Outcome(result, fixed, MAX_PASSES)
-    if not settled:
-        result.notes.append(
-            f"{result.path}: the fixes did not settle after {MAX_PASSES} passes; "
-            "run inertia-lint --fix again and report the file if it still changes"
-        )
-    return Outcome(result, fixed, MAX_PASSES, settled)
+        return Outcome(result, 0, 1)
+    if not step.changes:
+        return Outcome(result)
+    return Outcome(result, 0, 1, diff=step.diff())
+
+
+class _Edited:
+    """
+    The files the passes changed, by real path: as first read (the bytes the write expects
+    the file to hold still) and as the last pass left them (what the next pass lints).
+    """
+
+    def __init__(self) -> None:
+        self.read: dict[str, SourceText] = {}
+        self.texts: dict[str, bytes] = {}
+
+    def take(self, changes: Sequence[tuple[SourceText, str]]) -> None:
+        from inertia_kit.description.reads import key
+
+        for source, text in changes:
+            name = key(source.path)
+            self.read.setdefault(name, source)
+            self.texts[name] = source.encode(text)
+
+    def check_reads(self, reads: Mapping[str, str | None], first: Mapping[str, str | None]):
+        """``ChangedWhileEditing`` when a file the first lint read and no pass edited holds
+        other bytes now (the edits of this pass would be computed on another robot)."""
+        from inertia_kit.description.edits import CHANGED, ChangedWhileEditing
+
+        for name, found in reads.items():
+            if name not in self.texts and first.get(name, found) != found:
+                raise ChangedWhileEditing(CHANGED, name)
+
+    def writes(self) -> list[tuple[str, bytes, bytes]]:
+        """``(path, new bytes, bytes expected there)`` of every file that changed."""
+        return [
+            (self.read[name].path, data, self.read[name].original)
+            for name, data in self.texts.items()
+            if data != self.read[name].original
+        ]

@@ -97,7 +97,16 @@ class Directives:
 
 
 def directives(path: str | Path) -> Directives:
-    """The suppression comments of the file at ``path`` (none when it cannot be read)."""
+    """
+    The suppression comments of the file at ``path`` (none when it cannot be read): as the
+    overlay in force holds it (``--fix``'s passes: :mod:`~inertia_kit.description.overlay`),
+    else as the disk does, read again when its size or time of change differ.
+    """
+    from inertia_kit.description.overlay import overlay_bytes
+
+    held = overlay_bytes(path)
+    if held is not None:
+        return _held_directives(str(path), held)
     try:
         stat = os.stat(path)
     except (OSError, ValueError):
@@ -133,12 +142,26 @@ def covering(finding: Finding) -> list[tuple[str, Ignore]]:
 
 @functools.lru_cache(maxsize=512)
 def _directives(path: str, mtime_ns: int, size: int) -> Directives:
-    from inertia_kit.description.edits import decode_source
     from inertia_kit.description.safexml import read_bounded
-    from inertia_kit.description.xmlparse import parse_xml
 
     try:
         data = read_bounded(path)
+    except InputError:
+        return Directives(path)  # the loader reports unreadable files
+    return _read(path, data)
+
+
+@functools.lru_cache(maxsize=16)
+def _held_directives(path: str, data: bytes) -> Directives:
+    """By content: the texts of one run of ``--fix`` (a ``bytes`` hashes once)."""
+    return _read(path, data)
+
+
+def _read(path: str, data: bytes) -> Directives:
+    from inertia_kit.description.edits import decode_source
+    from inertia_kit.description.xmlparse import parse_xml
+
+    try:
         if not any(marker in data for marker in _MARKERS):  # no directive: no need to parse
             return Directives(path)
         parse_xml(data, path)  # well-formed: the markup below is read right

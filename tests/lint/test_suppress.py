@@ -7,6 +7,7 @@ import types
 from pathlib import Path
 
 import pytest
+from kit import write
 from kit.urdf import link_lines, robot_lines
 
 from inertia_kit.lint import catalog
@@ -241,3 +242,17 @@ def test_files_without_directives_or_unreadable_cover_nothing(tmp_path):
     for path in (plain, broken, tmp_path / "missing.urdf", tmp_path):
         covered = directives(path)
         assert (covered.disabled, covered.ignores, covered.problems) == (False, (), ())
+
+
+def test_suppression_comments_are_read_from_the_overlay(tmp_path: Path):
+    """The comments of a file on disk are cached by its size and time of change: a pass that
+    holds another text of it must not be served the disk's."""
+    from inertia_kit.description.overlay import overlaid
+
+    comment = b"<robot>\n  <!-- inertia-lint: ignore[IN098] -->\n  <link name='a'/>\n</robot>\n"
+    path = write(tmp_path / "a.urdf", comment)
+    assert directives(path).holding(3)  # cached: the disk's text
+    held = comment.replace(b"ignore[IN098]", b"the comment was removed")
+    with overlaid({os.path.realpath(path): held}):
+        assert not directives(path).holding(3)
+    assert directives(path).holding(3)
