@@ -170,7 +170,7 @@ def quantiles(values: list[float]) -> str:
 
 
 #: bins of the log gap ``g`` of an axis (analysis/principal_axes.py)
-GAP_BINS = (0.0, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, float("inf"))
+GAP_BINS = (0.0, 0.1, 0.2, 0.3, 0.5, 0.8, 1.0, 1.5, 2.0, 3.0, float("inf"))
 
 
 def needed_scatter(gap: float, angle: float) -> float:

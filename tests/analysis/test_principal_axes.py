@@ -44,7 +44,7 @@ def test_a_box_turned_about_z_shows_the_angle(degrees):
 
 def test_the_limit_falls_with_the_gap_and_is_void_below_the_minimum():
     assert angle_limit(MIN_GAP * 0.99) == 90.0
-    limits = [angle_limit(g) for g in (MIN_GAP, 0.5, 1.0, 2.0, 4.0)]
+    limits = [angle_limit(g) for g in (MIN_GAP, 1.0, 2.0, 4.0, 8.0)]
     assert limits == sorted(limits, reverse=True) and limits[0] < 45.0
 
 
