@@ -4,6 +4,7 @@ geometry: the band a forensic hypothesis's corrected values must land in (issue 
 
     python benchmarks/cad_band.py                 # every installed robot package
     python benchmarks/cad_band.py --save band.json
+    python benchmarks/cad_band.py --load band.json   # the principal axes' table again
 
 Population: every link of every robot file in the installed PyPI robot packages (those of
 benchmarks/real_robots.py) with a declared ``<inertial>`` and geometry that gives a volume, on
@@ -18,6 +19,10 @@ rules do), at the declared mass:
 - ``tensor``: the largest ``|ln((nᵀDn + f λ) / (nᵀGn + f λ))|`` over unit axes ``n``, with
   ``λ`` the geometry's largest moment and ``f = FLOOR`` (the forensic measure's floor): moments
   and axes at once, in log space (the generalised eigenvalues of the two floored tensors);
+- ``pairs``: per principal axis (matched by moment order), its log gap ``g`` (the smaller of the
+  two tensors' ``min_j |ln λi − ln λj|``) and the angle between the two axes, degrees: printed
+  per bin of ``g`` with the scatter each link needs for IN069's limit
+  ``½ arctan(SCATTER / g)`` (analysis/principal_axes.py), the better of its bases;
 - ``com``: the distance between the declared COM and the geometry's, over the geometry's size
   (its largest radius of gyration);
 - ``scale`` and ``shape``: the generalised eigenvalues ``r`` of the declared tensor against the
@@ -31,6 +36,7 @@ Printed: quantiles per measure, for mesh links and primitive links, and overall.
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import sys
@@ -91,6 +97,7 @@ def axis_angles(declared, geometry) -> list[float]:
 def measure_file(args: tuple[str, str, str]) -> list[dict]:
     package, path, root = args
     from inertia_kit.analysis.links import analyse
+    from inertia_kit.analysis.principal_axes import compare_axes
     from inertia_kit.description.loader import load
     from inertia_kit.description.model import Mesh
     from inertia_kit.lint.findings import Severity
@@ -114,6 +121,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
         if link.name in flagged or declared is None or not declared.mass > 0:
             continue
         best = None
+        bases: dict[str, list] = {}
         for basis in link.bases:
             expected = basis.at_mass(declared.mass)
             if expected is None:
@@ -127,6 +135,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
                 size = float(np.sqrt(g.max() / declared.mass))
                 com = float(np.linalg.norm(declared.com - expected.com) / size)
                 angles = axis_angles(declared.inertia, expected.inertia)
+                pairs = [[c.gap, c.angle] for c in compare_axes(declared.inertia, expected.inertia)]
             except (np.linalg.LinAlgError, FloatingPointError, ValueError):
                 continue
             scale, shape = scale_and_shape(declared.inertia, expected.inertia)
@@ -142,10 +151,13 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
                 "tensor": log_distance(declared.inertia, expected.inertia),
                 "axes": max(angles) if angles else None,
                 "com": com,
+                "pairs": pairs,
             }
+            bases[basis.kind] = pairs
             if best is None or row["moments"] < best["moments"]:
                 best = row
         if best is not None:
+            best["bases"] = bases
             rows.append(best)
     return rows
 
@@ -157,11 +169,61 @@ def quantiles(values: list[float]) -> str:
     return "  ".join(f"{v:7.3f}" for v in q)
 
 
+#: bins of the log gap ``g`` of an axis (analysis/principal_axes.py)
+GAP_BINS = (0.0, 0.1, 0.2, 0.3, 0.5, 0.8, 1.0, 1.5, 2.0, 3.0, float("inf"))
+
+
+def needed_scatter(gap: float, angle: float) -> float:
+    """The ``SCATTER`` that puts ``angle`` at the limit ``½ arctan(SCATTER / gap)``."""
+    return float("inf") if angle >= 45.0 else gap * float(np.tan(np.radians(2.0 * angle)))
+
+
+def print_axes(rows: list[dict]) -> None:
+    """The angle between declared and geometry principal axes against the gap, per bin; and the
+    scatter each link needs as the rule judges it (the better of its bases)."""
+    from inertia_kit.analysis.principal_axes import MIN_GAP, SCATTER, angle_limit
+
+    pairs = [pair for r in rows for pair in r.get("pairs", [])]
+    print(f"principal axis angle (deg) against the gap g, {len(pairs)} axes (better basis)")
+    print("  g from   to      axes     50 %    95 %    99 %     max   limit(lo)")
+    for lo, hi in itertools.pairwise(GAP_BINS):
+        angles = [a for g, a in pairs if lo <= g < hi]
+        if not angles:
+            continue
+        q = np.quantile(angles, (0.5, 0.95, 0.99, 1.0))
+        print(
+            f"  {lo:5.2f} {hi:5.2f} {len(angles):8d} "
+            + " ".join(f"{v:7.1f}" for v in q)
+            + f" {angle_limit(lo):7.1f}"
+        )
+    needs = []
+    for r in rows:
+        per_basis = [
+            max((needed_scatter(g, a) for g, a in found if g >= MIN_GAP), default=0.0)
+            for found in r.get("bases", {}).values()
+        ]
+        if per_basis:
+            needs.append((min(per_basis), r["package"], r["file"], r["link"]))
+    needs.sort(reverse=True)
+    values = [n for n, *_ in needs]
+    print(
+        f"scatter a link needs (g >= {MIN_GAP}, better basis), {len(values)} links: "
+        f"quantiles {QUANTILES} {quantiles(values)}; above SCATTER = {SCATTER}: "
+        f"{sum(v > SCATTER for v in values)}"
+    )
+    for need, package, file, link in needs[:8]:
+        print(f"  {need:6.3f} {package} {file} {link}")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--save", type=Path)
     parser.add_argument("--only", action="append")
+    parser.add_argument("--load", type=Path, help="the rows of an earlier --save, not measured")
     args = parser.parse_args()
+    if args.load:
+        print_axes(json.loads(args.load.read_text()))
+        return 0
     from inertia_kit.lint.discovery import expand_paths
 
     jobs = []
@@ -186,6 +248,7 @@ def main() -> int:
         print(f"  COM offset/size   {quantiles([r['com'] for r in chosen])}")
         print(f"  |scale| (ln k)    {quantiles([abs(r['scale']) for r in chosen])}")
         print(f"  shape about k     {quantiles([r['shape'] for r in chosen])}")
+    print_axes(rows)
     if args.save:
         args.save.write_text(json.dumps(rows, indent=1))
     return 0

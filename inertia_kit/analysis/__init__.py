@@ -12,5 +12,7 @@ analysis: what a robot's values and geometry mean, per link, for lint, fill and 
 - ``tensors``: comparing two tensors about every axis; when a principal moment is zero.
 - ``expected``: the geometry's tensor as a link's ``<inertia>`` would write it.
 - ``describe``: a shape in words, for messages and for the report table.
+- ``principal_axes``: the declared principal axes against the geometry's, judged by how far
+  apart the moments are (IN069).
 - ``forensics``: why a declared tensor disagrees with its geometry.
 """
