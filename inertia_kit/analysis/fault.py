@@ -102,3 +102,34 @@ def at_fault(a: LinkAnalysis, b: LinkAnalysis) -> LinkAnalysis | None:
     if _worse(second, first):
         return b
     return None
+
+
+#: the plausible densities of a part, kg/m³ (IN022's defaults: foam to tungsten, with room)
+DENSITY_RANGE = (50.0, 25000.0)
+
+
+def density_excess(link: LinkAnalysis) -> float | None:
+    """
+    How far the link's declared mass over its geometry's volume is outside
+    :data:`DENSITY_RANGE`, as a log: positive above it, negative below, 0 inside it (what a
+    slipped mass, grams for kilograms, shows). The geometry (collision, visual) that gives the
+    most plausible density decides, as in IN022; ``None`` without a positive mass or a volume.
+    """
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return None
+    low, high = DENSITY_RANGE
+    found = []
+    for geometry in link.bases:
+        density = declared.mass / geometry.volume
+        if not (math.isfinite(density) and density > 0):
+            continue
+        found.append(max(0.0, math.log(density / high)) - max(0.0, math.log(low / density)))
+    return min(found, key=abs) if found else None
+
+
+def densest(links: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, float] | None:
+    """The link of ``links`` whose density is furthest above the plausible range, and how far."""
+    judged = [(link, density_excess(link)) for link in links]
+    found = [(link, excess) for link, excess in judged if excess is not None and excess > 0]
+    return max(found, key=lambda item: item[1]) if found else None
