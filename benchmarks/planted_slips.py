@@ -46,7 +46,7 @@ other-axes     ``T' = Rx T Rxᵀ``, Rx 90° about x                           IN
 kg-mm2         ``T' = 1e6 T``                                              IN063
 swap-ixx-iyy   ixx and iyy exchanged                                       IN064
 mass-x3        ``m' = 3 m``, tensor unchanged                              IN022
-neighbour      the parent's ``<inertial>`` (else a child's) copied          no rule
+neighbour      the parent's ``<inertial>`` (else a child's) copied          IN066
 grams          ``m' = 1000 m``                                              IN063
 com-origin     ``c' = 0``                                                  IN021
 com-mirrored   ``c' = -c``                                                 IN021
@@ -121,7 +121,7 @@ OWN_RULE = {
     "kg-mm2": "IN063",
     "swap-ixx-iyy": "IN064",
     "mass-x3": "IN022",
-    "neighbour": None,
+    "neighbour": "IN066",
     "grams": "IN063",
     "com-origin": "IN021",
     "com-mirrored": "IN021",

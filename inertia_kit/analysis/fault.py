@@ -50,11 +50,11 @@ class Departure:
     com: float  # centre of mass from the centroid, over the geometry's size
 
     def text(self) -> str:
-        """How far, in words: ``tensor within a factor of 1.3 of its geometry's, ...``."""
+        """How far, in words: ``tensor a factor of 1.52 from its geometry's, ...``."""
         factor = math.exp(self.tensor) if self.tensor < 700 else math.inf
         return (
-            f"tensor within a factor of {fmt(factor, 3)} of its geometry's, centre of mass "
-            f"{self.com:.0%} of its size from the centroid"
+            f"tensor a factor of {fmt(factor, 3)} from its geometry's, centre of mass "
+            f"{fmt(100 * self.com, 2)} % of its size from the centroid"
         )
 
 
@@ -84,7 +84,7 @@ def departure(link: LinkAnalysis) -> Departure | None:
     return Departure(tensor, com)
 
 
-def _worse(a: Departure, b: Departure) -> bool:
+def worse(a: Departure, b: Departure) -> bool:
     """Whether ``a`` departs clearly more than ``b`` (module doc)."""
     tensor, com = a.tensor - b.tensor, a.com - b.com
     if tensor > TENSOR_MARGIN and com >= -COM_MARGIN:
@@ -97,9 +97,9 @@ def at_fault(a: LinkAnalysis, b: LinkAnalysis) -> LinkAnalysis | None:
     first, second = departure(a), departure(b)
     if first is None or second is None:
         return None
-    if _worse(first, second):
+    if worse(first, second):
         return a
-    if _worse(second, first):
+    if worse(second, first):
         return b
     return None
 

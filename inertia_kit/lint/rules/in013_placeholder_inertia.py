@@ -7,6 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
+from inertia_kit.analysis.copies import block
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
@@ -142,7 +143,15 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
+    # a whole block shared (mass and centre of mass too) is IN066's to judge (analysis.copies)
+    blocks: dict[tuple, set[str]] = {}
+    for link in robot.links:
+        key = block(link)
+        if key is not None:
+            blocks.setdefault(key, set()).add(link.name)
+    shared = {name for names in blocks.values() if len(names) > 1 for name in names}
     for values, members in copies.items():
+        members = [m for m in members if m.name not in shared]
         if len({m.name for m in members}) < 2:
             continue
         declared_tensor = _written(values)
@@ -159,12 +168,13 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
         closeness = [c.factor for c in comparisons if c is not None]
-        original, _, original_written = candidates[int(np.argmin(closeness))]
+        original, original_mass, original_written = candidates[int(np.argmin(closeness))]
         for member, mass, written in candidates:
             if member is original or member.name in flagged:
                 continue
-            # principal moments: a mirrored or turned copy of the same part is the same shape
-            apart = _spread(written.tensor, original_written.tensor)
+            # principal moments per kilogram: a mirrored or turned copy of the same part is the
+            # same shape, whatever mass each declares (a slipped mass is IN022's)
+            apart = _spread(written.tensor / mass, original_written.tensor / original_mass)
             if apart <= copy_factor or _negligible(robot, member, written.tensor):
                 continue
             inertial = member.link.inertial

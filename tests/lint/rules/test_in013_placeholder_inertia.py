@@ -74,14 +74,15 @@ def test_expected_values_in_the_written_axes(lint):
 
 def test_copied_tensor_flags_the_copy_not_the_original(lint):
     moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    # the six values copied, the mass the hand's own (a whole block copied is IN066's)
     text = on_base(
         upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        hand=inertial(2.0, *moments) + collision(box(0.06, 0.06, 0.06)),
+        hand=inertial(1.5, *moments) + collision(box(0.06, 0.06, 0.06)),
     )
     (finding,) = in013(lint, text)
     assert finding.link == "hand" and "those of link `upper`" in finding.message
-    cube, _, _ = box_moments(2.0, (0.06, 0.06, 0.06))
-    spread = max(moments) / cube
+    cube, _, _ = box_moments(1.5, (0.06, 0.06, 0.06))
+    spread = (max(moments) / 2.0) / (cube / 1.5)  # per kilogram
     assert f"differ by a factor of {fmt(spread, 3)}" in finding.message
     assert finding.expected["ixx"] == pytest.approx(cube)
     assert f"ixx = {fmt(cube, 4)}" in finding.message
@@ -96,15 +97,28 @@ def test_identical_and_turned_parts_share_a_tensor(lint):
         spare=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
     )
     assert in013(lint, text) == []
+    assert lint(text, "IN066") == []
+
+
+def test_a_slipped_mass_is_no_copy(lint):
+    # three identical parts sharing six values, one of them with its mass tripled: at their
+    # masses the shapes' tensors differ by 3, per kilogram they are one shape (IN022's case)
+    moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    text = on_base(
+        first=inertial(6.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        second=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        third=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+    )
+    assert in013(lint, text) == []
 
 
 def test_copy_factor_option(lint):
     moments = box_moments(2.0, (0.1, 0.1, 0.3))
     text = on_base(
         upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        lower=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.2)),
+        lower=inertial(2.5, *moments) + collision(box(0.1, 0.1, 0.2)),
     )
-    spread = moments[0] / box_moments(2.0, (0.1, 0.1, 0.2))[0]
+    spread = moments[0] / box_moments(2.0, (0.1, 0.1, 0.2))[0]  # per kilogram, whatever mass
     assert in013(lint, text) == []  # 1.8 apart: within the default 2
     assert [f.link for f in in013(lint, text, copy_factor=spread - 0.05)] == ["lower"]
 

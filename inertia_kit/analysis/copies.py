@@ -1,0 +1,97 @@
+"""
+Copied ``<inertial>`` blocks: links whose whole block (mass, ``<origin>``, the six values) is
+another link's, and which of them the block belongs to.
+
+Identical blocks are right on identical parts (left/right twins, repeated fingers, four wheels):
+each link's geometry then fits the block alike. A block copied onto a different part (the
+neighbouring link's, pasted by hand or by a macro called with the wrong arguments) fits the
+part it was made for and departs from the other: its tensor is another shape's, its centre of
+mass sits where the other part's would. Among links that share a block, the one that fits it
+best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner; each other one
+whose values depart clearly more from its own geometry (:func:`~inertia_kit.analysis.fault.
+worse`) holds a copy. When the block departs from every geometry alike but the geometries
+differ beyond what real parts scatter (:data:`~inertia_kit.analysis.forensics.measure.BAND`),
+the block cannot be right for all of them and the file cannot say whose it is: one copy is
+named, the first link in file order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from inertia_kit.analysis.fault import COM_MARGIN, TENSOR_MARGIN, Departure, departure, worse
+from inertia_kit.analysis.forensics.measure import BAND, LogMetric
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+
+
+@dataclass(frozen=True)
+class Copy:
+    """``link`` holds ``original``'s whole ``<inertial>``; ``clear`` when the geometry says so."""
+
+    link: LinkAnalysis
+    original: LinkAnalysis
+    mine: Departure  # the block against the link's own geometry
+    theirs: Departure  # ... against the original's
+    clear: bool  # the link departs clearly more; else the two depart alike
+
+
+def block(link: LinkAnalysis) -> tuple | None:
+    """The whole ``<inertial>`` as numbers (mass, xyz, rpy, six values), or ``None``."""
+    inertial = link.link.inertial
+    if inertial is None or link.declared is None or not link.declared.mass > 0:
+        return None
+    values = tuple(inertial.tensor_values().values())
+    if not any(values):
+        return None  # a zero tensor is IN012's, not a copy of anything
+    return (inertial.mass, inertial.origin.xyz, inertial.origin.rpy, values)
+
+
+def _score(d: Departure) -> float:
+    """One number to rank fits: the centre of mass's departure in tensor units."""
+    return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
+
+
+def _shapes_differ(a: LinkAnalysis, b: LinkAnalysis) -> bool:
+    """Whether two links' geometries, per kilogram, differ in principal moments beyond BAND."""
+    ga, gb = a.geometry.at_mass(1.0), b.geometry.at_mass(1.0)
+    if ga is None or gb is None:
+        return False
+    pa, pb = np.linalg.eigvalsh(ga.inertia), np.linalg.eigvalsh(gb.inertia)
+    if not (pa.min() > 0 and pb.min() > 0):
+        return False
+    return LogMetric(np.diag(pa))(np.diag(pb)) > BAND
+
+
+def copies(robot: RobotAnalysis) -> list[Copy]:
+    """The links holding another link's copied block, in file order (module doc)."""
+    groups: dict[tuple, list[LinkAnalysis]] = {}
+    for link in robot.links:
+        key = block(link)
+        if key is not None and link.name not in {m.name for m in groups.get(key, [])}:
+            groups.setdefault(key, []).append(link)
+    found: list[Copy] = []
+    for members in groups.values():
+        judged = [(m, d) for m in members if (d := departure(m)) is not None]
+        if len(judged) < 2:
+            continue
+        original, best = min(judged, key=lambda item: _score(item[1]))
+        clear = [
+            Copy(m, original, d, best, True)
+            for m, d in judged
+            if m is not original and worse(d, best)
+        ]
+        if clear:
+            found += clear
+            continue
+        first, mine = judged[0]
+        others = [(m, d) for m, d in judged[1:] if _shapes_differ(first, m)]
+        if others:
+            other, theirs = others[0]
+            found.append(Copy(first, other, mine, theirs, False))
+    order = {link.name: i for i, link in enumerate(robot.links)}
+    return sorted(found, key=lambda c: order[c.link.name])

@@ -1,0 +1,90 @@
+"""IN066 copied-inertial: a link's whole `<inertial>` is another link's, made for its geometry."""
+
+from __future__ import annotations
+
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, joint, link, robot
+
+UPPER = (0.08, 0.08, 0.3)
+FORE = (0.07, 0.07, 0.24)
+
+
+def block(mass, size) -> str:
+    """A box's own values at ``mass``, centre of mass at the box's centre (z = half its length)."""
+    return inertial(mass, *box_moments(mass, size), xyz=(0, 0, size[2] / 2))
+
+
+def part(name, body, size) -> str:
+    return link(name, body, collision(box(*size), xyz=(0, 0, size[2] / 2)))
+
+
+def arm(upper: str, fore: str) -> str:
+    return robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", upper, UPPER),
+        joint("upper_arm", "forearm", xyz=(0, 0, 0.3)),
+        part("forearm", fore, FORE),
+    )
+
+
+def test_own_blocks_are_quiet(lint):
+    assert lint(arm(block(2.0, UPPER), block(1.4, FORE)), "IN066") == []
+
+
+def test_the_copy_is_named_on_the_link_it_does_not_fit(lint):
+    (finding,) = lint(arm(block(2.0, UPPER), block(2.0, UPPER)), "IN066")
+    assert finding.link == "forearm" and finding.expected["original"] == "upper_arm"
+    assert finding.message.startswith(
+        "link `forearm`: its `<inertial>` is the one of `upper_arm`, copied (2 kg at "
+        "(0, 0, 0.15) m and the same six values): it fits `upper_arm`'s geometry"
+    )
+    assert finding.expected["com"] == [0.0, 0.0, 0.12]
+    # the forearm's block pasted into the upper arm, the first link in the file: named there
+    (finding,) = lint(arm(block(1.4, FORE), block(1.4, FORE)), "IN066")
+    assert finding.link == "upper_arm" and finding.expected["original"] == "forearm"
+
+
+def test_identical_parts_share_a_block(lint):
+    text = robot(
+        link("world"),
+        joint("world", "first"),
+        part("first", block(1.4, FORE), FORE),
+        joint("first", "second", xyz=(0, 0, 0.24)),
+        part("second", block(1.4, FORE), FORE),
+    )
+    assert lint(text, "IN066") == []
+
+
+def test_a_block_that_fits_neither_shape_is_named_once(lint):
+    # an isotropic 1 kg block on a rod and on a flat plate: a factor of about 3 from each
+    # geometry's tensor (log distance 1.13 and 1.16), their shapes far apart; which link it
+    # was made for the file cannot say: one finding, on the first
+    rod, plate = (0.1, 0.1, 0.5), (0.4, 0.4, 0.1)
+    placeholder = inertial(1.0, 0.0071)
+    text = robot(
+        link("world"),
+        joint("world", "rod"),
+        link("rod", placeholder, collision(box(*rod))),
+        joint("rod", "plate", xyz=(0, 0, 0.3)),
+        link("plate", placeholder, collision(box(*plate))),
+    )
+    (finding,) = lint(text, "IN066")
+    assert finding.link == "rod"
+    assert (finding.expected["original"], finding.expected["clear"]) == ("plate", False)
+    assert "it fits neither" in finding.message
+
+
+def test_a_negligible_welded_frame_is_not_named(lint):
+    # a 1 g sensor frame welded to a 2 kg arm, given a pasted 1 g block of another sensor
+    sensor = inertial(0.001, 1e-8)
+    text = robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", block(2.0, UPPER), UPPER),
+        joint("upper_arm", "camera", "fixed"),
+        link("camera", sensor, collision(box(0.01, 0.01, 0.1))),
+        joint("upper_arm", "imu", "fixed"),
+        link("imu", sensor, collision(box(0.02, 0.02, 0.002))),
+    )
+    assert lint(text, "IN066") == []
