@@ -7,7 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.copies import block
+from inertia_kit.analysis.copies import copies as whole_copies
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
@@ -143,15 +143,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
-    # a whole block shared (mass and centre of mass too) is IN066's to judge (analysis.copies)
-    blocks: dict[tuple, set[str]] = {}
-    for link in robot.links:
-        key = block(link)
-        if key is not None:
-            blocks.setdefault(key, set()).add(link.name)
-    shared = {name for names in blocks.values() if len(names) > 1 for name in names}
+    # a whole block copied (mass and centre of mass too) is IN066's (analysis.copies)
+    named = {c.link.name for c in whole_copies(robot)}
     for values, members in copies.items():
-        members = [m for m in members if m.name not in shared]
+        members = [m for m in members if m.name not in named]
         if len({m.name for m in members}) < 2:
             continue
         declared_tensor = _written(values)
@@ -168,26 +163,39 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
         closeness = [c.factor for c in comparisons if c is not None]
-        original, original_mass, original_written = candidates[int(np.argmin(closeness))]
-        for member, mass, written in candidates:
+        # principal moments at each link's mass: a mirrored or turned copy of the same part is
+        # the same body, and a part whose mass slipped is not
+        spreads = [[_spread(a[2].tensor, b[2].tensor) for b in candidates] for a in candidates]
+        # the original is the link most others agree with (identical parts outvote the one
+        # that differs), then the one whose geometry the values fit best
+        agree = [sum(x <= copy_factor for x in row) for row in spreads]
+        index = min(range(len(candidates)), key=lambda i: (-agree[i], closeness[i]))
+        original, original_mass, original_written = candidates[index]
+        for i, (member, mass, written) in enumerate(candidates):
             if member is original or member.name in flagged:
                 continue
-            # principal moments per kilogram: a mirrored or turned copy of the same part is the
-            # same shape, whatever mass each declares (a slipped mass is IN022's)
-            apart = _spread(written.tensor / mass, original_written.tensor / original_mass)
+            apart = spreads[i][index]
             if apart <= copy_factor or _negligible(robot, member, written.tensor):
                 continue
             inertial = member.link.inertial
             assert inertial is not None
             flagged.add(member.name)
+            shape = _spread(written.tensor / mass, original_written.tensor / original_mass)
+            why = (
+                f"the two shapes' principal moments differ by a factor of {fmt(apart, 3)}"
+                if shape > copy_factor
+                else f"the two are one shape, with {fmt(mass / original_mass, 3)} times "
+                f"`{original.name}`'s mass: their principal moments differ by a factor of "
+                f"{fmt(apart, 3)}"
+            )
             yield ctx.finding(
                 f"link `{member.name}`: its six `<inertia>` values are those of link "
-                f"`{original.name}` ({tensor_text(declared_tensor)} kg·m²), but the two shapes' "
-                f"principal moments differ by a factor of {fmt(apart, 3)}: "
+                f"`{original.name}` ({tensor_text(declared_tensor)} kg·m²), but {why}: "
                 f"{basis_text(member, mass)} {written.text()}",
                 inertial.inertia_source or inertial.source,
                 link=member.name,
                 expected={"mass": mass, **written.fields},
                 help="compute this link's own tensor (from CAD, or `inertia-fill --fix invalid` "
-                "from the geometry) instead of copying another link's",
+                "from the geometry) instead of copying another link's"
+                + ("" if shape > copy_factor else "; or check its mass"),
             )

@@ -82,7 +82,7 @@ def test_copied_tensor_flags_the_copy_not_the_original(lint):
     (finding,) = in013(lint, text)
     assert finding.link == "hand" and "those of link `upper`" in finding.message
     cube, _, _ = box_moments(1.5, (0.06, 0.06, 0.06))
-    spread = (max(moments) / 2.0) / (cube / 1.5)  # per kilogram
+    spread = max(moments) / cube
     assert f"differ by a factor of {fmt(spread, 3)}" in finding.message
     assert finding.expected["ixx"] == pytest.approx(cube)
     assert f"ixx = {fmt(cube, 4)}" in finding.message
@@ -100,16 +100,19 @@ def test_identical_and_turned_parts_share_a_tensor(lint):
     assert lint(text, "IN066") == []
 
 
-def test_a_slipped_mass_is_no_copy(lint):
-    # three identical parts sharing six values, one of them with its mass tripled: at their
-    # masses the shapes' tensors differ by 3, per kilogram they are one shape (IN022's case)
-    moments = box_moments(2.0, (0.1, 0.1, 0.3))
+def test_a_slipped_mass_among_identical_parts_is_named_on_it(lint):
+    # three identical parts sharing six values (twice their 2 kg box's, as CAD parts with a
+    # dense motor have), the first with its mass tripled: at 6 kg its box fits the values best,
+    # but the other two agree with each other, so the first holds values that cannot fit it
+    moments = box_moments(4.0, (0.1, 0.1, 0.3))
     text = on_base(
         first=inertial(6.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        second=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        third=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        second=inertial(2.0, *moments, xyz=(0, 0, 0.01)) + collision(box(0.1, 0.1, 0.3)),
+        third=inertial(2.0, *moments, xyz=(0, 0, 0.02)) + collision(box(0.1, 0.1, 0.3)),
     )
-    assert in013(lint, text) == []
+    (finding,) = in013(lint, text)
+    assert finding.link == "first" and "those of link `second`" in finding.message
+    assert "the two are one shape, with 3 times `second`'s mass" in finding.message
 
 
 def test_copy_factor_option(lint):
@@ -118,7 +121,7 @@ def test_copy_factor_option(lint):
         upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
         lower=inertial(2.5, *moments) + collision(box(0.1, 0.1, 0.2)),
     )
-    spread = moments[0] / box_moments(2.0, (0.1, 0.1, 0.2))[0]  # per kilogram, whatever mass
+    spread = moments[0] / box_moments(2.5, (0.1, 0.1, 0.2))[0]
     assert in013(lint, text) == []  # 1.8 apart: within the default 2
     assert [f.link for f in in013(lint, text, copy_factor=spread - 0.05)] == ["lower"]
 
