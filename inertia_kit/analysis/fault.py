@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from inertia_kit.analysis.forensics.measure import AMBIGUITY, LogMetric
+from inertia_kit.analysis.forensics.measure import AMBIGUITY, BAND, MARGIN, LogMetric
 from inertia_kit.physics.formatting import fmt
 
 if TYPE_CHECKING:
@@ -133,3 +133,19 @@ def densest(links: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, float] | Non
     judged = [(link, density_excess(link)) for link in links]
     found = [(link, excess) for link, excess in judged if excess is not None and excess > 0]
     return max(found, key=lambda item: item[1]) if found else None
+
+
+#: values this far from their geometry (log distance, a factor of 5.6: BAND + MARGIN, beyond
+#: the 1.38 of the worst of 2260 real links the linter is silent on) are no real part's
+IMPLAUSIBLE = BAND + MARGIN
+
+
+def implausible(link: LinkAnalysis) -> bool:
+    """
+    Whether the link's values are no real part's: a tensor :data:`IMPLAUSIBLE` from its
+    geometry's, or a density outside :data:`DENSITY_RANGE`. Links without geometry are not.
+    """
+    found = departure(link)
+    if found is not None and found.tensor > IMPLAUSIBLE:
+        return True
+    return bool(density_excess(link))

@@ -14,13 +14,17 @@ error and says the share:
   frame): every engine loads it as it loads a link without ``<inertial>``, which no rule flags;
   it offers no fix then (``inertia-fill --fix invalid`` would give the frame its geometry's mass).
 
-A configured severity always wins; warnings are left as they are.
+A body member whose own values are no real part's (:func:`~inertia_kit.analysis.fault.
+implausible`: a tensor in kg·mm², a mass in grams) cannot vouch for a link's negligible share:
+the link is judged again without such members and lowered only when negligible still. A
+configured severity always wins; warnings are left as they are.
 """
 
 from __future__ import annotations
 
 import dataclasses
 
+from inertia_kit.analysis.fault import implausible
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines.shares import share
 from inertia_kit.lint.findings import Finding, Severity
@@ -33,6 +37,15 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
     found = share(robot, finding.link)
     if found is None or not found.negligible:
         return finding
+    # a body whose other members' values are no real part's (a tensor in kg·mm², a mass in
+    # grams) cannot vouch that this link is negligible: judged without them too
+    doubtful = robot.group_fact(
+        finding.link, "implausible", lambda g: frozenset(m.name for m in g if implausible(m))
+    ) - {finding.link}
+    if doubtful:
+        alone = share(robot, finding.link, leaving_out=doubtful)
+        if alone is None or not alone.negligible:
+            return finding
     message = f"{finding.message}; {found.text()}"
     if found.massless:
         # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
