@@ -7,12 +7,12 @@ each link's geometry then fits the block alike. A block copied onto a different 
 neighbouring link's, pasted by hand or by a macro called with the wrong arguments) fits the
 part it was made for and departs from the other: its tensor is another shape's, its centre of
 mass sits where the other part's would. Among links that share a block, the one that fits it
-best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner; each other one
-whose values depart clearly more from its own geometry (:func:`~inertia_kit.analysis.fault.
-worse`) holds a copy. When the block departs from every geometry alike but the geometries
-differ beyond what real parts scatter (:data:`~inertia_kit.analysis.forensics.measure.BAND`),
-the block cannot be right for all of them and the file cannot say whose it is: one copy is
-named, the first link in file order.
+best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner when it fits as
+a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`); each
+other one whose values depart clearly more from its own geometry
+(:func:`~inertia_kit.analysis.fault.worse`) holds a copy. A block that fits no link as a real
+part is a placeholder, not a copy: each link's own rules (IN013, IN020, IN023) judge it, and no
+link is named the copy of another (two dummy frames sharing 1e-6 kg could each be either).
 """
 
 from __future__ import annotations
@@ -20,10 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from inertia_kit.analysis.fault import COM_MARGIN, TENSOR_MARGIN, Departure, departure, worse
-from inertia_kit.analysis.forensics.measure import BAND, LogMetric
+from inertia_kit.analysis.forensics.measure import BAND
 
 if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -31,13 +29,12 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class Copy:
-    """``link`` holds ``original``'s whole ``<inertial>``; ``clear`` when the geometry says so."""
+    """``link`` holds ``original``'s whole ``<inertial>``, which fits ``original`` only."""
 
     link: LinkAnalysis
     original: LinkAnalysis
     mine: Departure  # the block against the link's own geometry
     theirs: Departure  # ... against the original's
-    clear: bool  # the link departs clearly more; else the two depart alike
 
 
 def block(link: LinkAnalysis) -> tuple | None:
@@ -56,17 +53,6 @@ def _score(d: Departure) -> float:
     return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
 
 
-def _shapes_differ(a: LinkAnalysis, b: LinkAnalysis) -> bool:
-    """Whether two links' geometries, per kilogram, differ in principal moments beyond BAND."""
-    ga, gb = a.geometry.at_mass(1.0), b.geometry.at_mass(1.0)
-    if ga is None or gb is None:
-        return False
-    pa, pb = np.linalg.eigvalsh(ga.inertia), np.linalg.eigvalsh(gb.inertia)
-    if not (pa.min() > 0 and pb.min() > 0):
-        return False
-    return LogMetric(np.diag(pa))(np.diag(pb)) > BAND
-
-
 def copies(robot: RobotAnalysis) -> list[Copy]:
     """The links holding another link's copied block, in file order (module doc)."""
     groups: dict[tuple, list[LinkAnalysis]] = {}
@@ -80,18 +66,10 @@ def copies(robot: RobotAnalysis) -> list[Copy]:
         if len(judged) < 2:
             continue
         original, best = min(judged, key=lambda item: _score(item[1]))
-        clear = [
-            Copy(m, original, d, best, True)
-            for m, d in judged
-            if m is not original and worse(d, best)
+        if not best.tensor <= BAND:
+            continue  # no link owns it as a real part would: a placeholder, not a copy
+        found += [
+            Copy(m, original, d, best) for m, d in judged if m is not original and worse(d, best)
         ]
-        if clear:
-            found += clear
-            continue
-        first, mine = judged[0]
-        others = [(m, d) for m, d in judged[1:] if _shapes_differ(first, m)]
-        if others:
-            other, theirs = others[0]
-            found.append(Copy(first, other, mine, theirs, False))
     order = {link.name: i for i, link in enumerate(robot.links)}
     return sorted(found, key=lambda c: order[c.link.name])

@@ -33,16 +33,10 @@ def _message(copy: Copy) -> str:
     declared = copy.link.declared
     assert declared is not None
     block = f"{fmt(declared.mass)} kg at {vector_text(declared.com)} m and the same six values"
-    if copy.clear:
-        return (
-            f"link `{link}`: its `<inertial>` is the one of `{original}`, copied ({block}): it "
-            f"fits `{original}`'s geometry ({copy.theirs.text()}) but not its own "
-            f"({copy.mine.text()})"
-        )
     return (
-        f"link `{link}`: its `<inertial>` is also the one of `{original}` ({block}), though "
-        f"their geometries differ in shape beyond what real parts scatter: it fits neither "
-        f"(`{link}`'s {copy.mine.text()}; `{original}`'s {copy.theirs.text()})"
+        f"link `{link}`: its `<inertial>` is the one of `{original}`, copied ({block}): it "
+        f"fits `{original}`'s geometry ({copy.theirs.text()}) but not its own "
+        f"({copy.mine.text()})"
     )
 
 
@@ -55,7 +49,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         assert declared is not None and inertial is not None
         own = link.geometry.at_mass(declared.mass)
         written = geometry_tensor(link, declared.mass)
-        expected: dict = {"original": copy.original.name, "clear": copy.clear}
+        expected: dict = {"original": copy.original.name}
         if own is not None and written is not None:
             expected |= {"mass": declared.mass, "com": [float(v) for v in own.com]}
             expected |= written.fields
@@ -70,8 +64,5 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             help=(
                 f"give `{link.name}` its own mass, centre of mass and tensor, from its CAD part "
                 f"or from its geometry{geometry}"
-                if copy.clear
-                else f"check which of `{link.name}` and `{copy.original.name}` the values were "
-                "made for, and give the other its own (from its CAD part or its geometry)"
             ),
         )
