@@ -37,17 +37,27 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
     found = share(robot, finding.link)
     if found is None or not found.negligible:
         return finding
-    # a body whose other members' values are no real part's (a tensor in kg·mm², a mass in
-    # grams) cannot vouch that this link is negligible: judged without them too
-    doubtful = robot.group_fact(
-        finding.link, "implausible", lambda g: frozenset(m.name for m in g if implausible(m))
-    ) - {finding.link}
-    if doubtful:
-        alone = share(robot, finding.link, leaving_out=doubtful)
-        if alone is None or not alone.negligible:
-            return finding
+    # a massless frame adds nothing to any body; other values are judged also without the
+    # members whose own values are in doubt
+    if not found.massless and not _negligible_beside_real_parts(robot, finding.link):
+        return finding
     message = f"{finding.message}; {found.text()}"
     if found.massless:
         # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
         return dataclasses.replace(finding, severity=Severity.INFO, message=message, wants=None)
     return dataclasses.replace(finding, severity=Severity.WARNING, message=message)
+
+
+def _negligible_beside_real_parts(robot: RobotAnalysis, name: str) -> bool:
+    """
+    Whether the link is negligible also in its body without the other members whose own values
+    are no real part's (a tensor in kg·mm², a mass in grams: analysis.fault.implausible), which
+    cannot vouch that anything beside them is negligible.
+    """
+    doubtful = robot.group_fact(
+        name, "implausible", lambda g: frozenset(m.name for m in g if implausible(m))
+    ) - {name}
+    if not doubtful:
+        return True
+    alone = share(robot, name, leaving_out=doubtful)
+    return alone is not None and alone.negligible

@@ -175,3 +175,17 @@ def test_a_body_whose_own_values_are_no_real_part_cannot_make_a_frame_negligible
     # with the trunk's own values the camera is negligible beside it (not beside a 10 g mount)
     plain = slipped.replace(inertial(trunk, *moments), box_inertial(trunk, box_size))
     assert on(lint(plain), "camera")["IN023"].severity is Severity.WARNING
+
+
+def test_a_massless_frame_beside_no_real_part_is_still_info(lint):
+    # a zero-mass frame adds nothing to any body, whatever its other members declare
+    trunk, box_size = TRUNK
+    moments = [1e6 * m for m in box_moments(trunk, box_size)]
+    text = robot(
+        link("world"),
+        joint("world", "trunk"),
+        link("trunk", inertial(trunk, *moments), collision(box(*box_size))),
+        joint("trunk", "tool", "fixed", xyz=(0.2, 0, 0)),
+        link("tool", inertial(0, 0)),
+    )
+    assert on(lint(text), "tool")["IN002"].severity is Severity.INFO
