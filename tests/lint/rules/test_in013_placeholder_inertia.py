@@ -102,8 +102,9 @@ def test_identical_and_turned_parts_share_a_tensor(lint):
 
 def test_a_slipped_mass_among_identical_parts_is_named_on_it(lint):
     # three identical parts sharing six values (twice their 2 kg box's, as CAD parts with a
-    # dense motor have), the first with its mass tripled: at 6 kg its box fits the values best,
-    # but the other two agree with each other, so the first holds values that cannot fit it
+    # dense motor have: within OWNER_FIT), the first with its mass tripled: at 6 kg its box
+    # fits the values best, but the other two agree with each other, so the first holds
+    # values that cannot fit it
     moments = box_moments(4.0, (0.1, 0.1, 0.3))
     text = on_base(
         first=inertial(6.0, *moments) + collision(box(0.1, 0.1, 0.3)),
@@ -112,7 +113,17 @@ def test_a_slipped_mass_among_identical_parts_is_named_on_it(lint):
     )
     (finding,) = in013(lint, text)
     assert finding.link == "first" and "those of link `second`" in finding.message
-    assert "the two are one shape, with 3 times `second`'s mass" in finding.message
+    assert "it declares 3 times `second`'s mass on a shape alike per kilogram" in finding.message
+
+
+def test_a_placeholder_on_every_link_keeps_the_best_fit_as_original(lint):
+    # about 1 kg·m² on a 5 kg chassis and on four identical 0.25 kg motors (not isotropic:
+    # the copy is judged, not the isotropy): the motors agree with each other, but the values
+    # fit none of them as a real part; the chassis they fit best is the original
+    chassis = inertial(5.0, 1.0, 1.0, 0.9) + collision(box(0.3, 0.2, 0.1))
+    motor = inertial(0.25, 1.0, 1.0, 0.9) + collision(box(0.04, 0.04, 0.08))
+    text = on_base(chassis=chassis, m1=motor, m2=motor, m3=motor, m4=motor)
+    assert sorted(f.link for f in in013(lint, text)) == ["m1", "m2", "m3", "m4"]
 
 
 def test_copy_factor_option(lint):
