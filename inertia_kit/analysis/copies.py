@@ -8,7 +8,8 @@ neighbouring link's, pasted by hand or by a macro called with the wrong argument
 part it was made for and departs from the other: its tensor is another shape's, its centre of
 mass sits where the other part's would. Among links that share a block, the one that fits it
 best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner when it fits as
-a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`); each
+a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`, its
+centre of mass within :data:`OWNER_COM` of its size from the centroid); each
 other one whose values depart clearly more from its own geometry
 (:func:`~inertia_kit.analysis.fault.worse`) holds a copy. A block that fits no link as a real
 part is a placeholder, not a copy: each link's own rules (IN013, IN020, IN023) judge it, and no
@@ -25,6 +26,11 @@ from inertia_kit.analysis.forensics.measure import BAND
 
 if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+
+
+#: ... and its centre of mass within this fraction of the link's size from the centroid: a
+#: motor at one end moves a real part's a third of the way to that end (rules/IN021)
+OWNER_COM = 1 / 3
 
 
 @dataclass(frozen=True)
@@ -66,7 +72,7 @@ def copies(robot: RobotAnalysis) -> list[Copy]:
         if len(judged) < 2:
             continue
         original, best = min(judged, key=lambda item: _score(item[1]))
-        if not best.tensor <= BAND:
+        if not (best.tensor <= BAND and best.com <= OWNER_COM):
             continue  # no link owns it as a real part would: a placeholder, not a copy
         found += [
             Copy(m, original, d, best) for m, d in judged if m is not original and worse(d, best)

@@ -86,3 +86,11 @@ def test_a_negligible_welded_frame_is_not_named(lint):
         link("imu", sensor, collision(box(0.02, 0.02, 0.002))),
     )
     assert lint(text, "IN066") == []
+
+
+def test_no_owner_when_the_centre_of_mass_fits_no_real_part(lint):
+    # the upper arm's block with its centre of mass at 0.29 m of a 0.3 m box, 47 % of its size
+    # from the centroid (a motor at one end puts it at most a third of the way): it fits no
+    # link as a real part's would, so neither holds the other's copy
+    off = inertial(2.0, *box_moments(2.0, UPPER), xyz=(0, 0, 0.29))
+    assert lint(arm(off, off), "IN066") == []
