@@ -86,6 +86,32 @@ def _negligible(robot: RobotAnalysis, link: LinkAnalysis, geometry: NDArray[np.f
     return own < NEGLIGIBLE * float(body.principal_moments[0])
 
 
+#: more distinct bodies than this sharing six values are not counted against each other (a
+#: quadratic count); the best fit is then the original
+MAX_DISTINCT = 64
+
+
+def _agreement(
+    tensors: list[NDArray[np.float64]], owners: list[int], factor: float
+) -> dict[int, int]:
+    """
+    For each of ``owners``, how many of ``tensors`` are the same body within ``factor``
+    (:func:`_spread`). Equal principal moments are counted once with their number, so that
+    5000 identical links cost one comparison; beyond :data:`MAX_DISTINCT` distinct bodies
+    nothing is counted (every owner 0).
+    """
+    keys = [tuple(f"{v:.9g}" for v in np.linalg.eigvalsh(t)) for t in tensors]
+    distinct: dict[tuple, tuple[NDArray[np.float64], int]] = {}
+    for key, tensor in zip(keys, tensors, strict=True):
+        first, count = distinct.get(key, (tensor, 0))
+        distinct[key] = (first, count + 1)
+    if len(distinct) > MAX_DISTINCT:
+        return dict.fromkeys(owners, 0)
+    return {
+        i: sum(n for t, n in distinct.values() if _spread(tensors[i], t) <= factor) for i in owners
+    }
+
+
 def _values(link: LinkAnalysis) -> tuple[float, ...] | None:
     inertial = link.link.inertial
     if inertial is None or positive_mass(link) is None:
@@ -169,24 +195,22 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
         closeness = [c.factor for c in comparisons if c is not None]
-        # principal moments at each link's mass: a mirrored or turned copy of the same part is
-        # the same body, and a part whose mass slipped is not
-        spreads = [[_spread(a[2].tensor, b[2].tensor) for b in candidates] for a in candidates]
         # the original is the link most others agree with (identical parts outvote the one
         # whose mass slipped), among those the values fit as a real part's fit its geometry;
         # when they fit none so (a placeholder on every link), the one they fit best
-        agree = [sum(x <= copy_factor for x in row) for row in spreads]
         owners = [i for i, c in enumerate(closeness) if c <= OWNER_FIT]
-        index = (
-            min(owners, key=lambda i: (-agree[i], closeness[i]))
-            if owners
-            else int(np.argmin(closeness))
-        )
+        if owners:
+            agree = _agreement([w.tensor for _, _, w in candidates], owners, copy_factor)
+            index = min(owners, key=lambda i: (-agree[i], closeness[i]))
+        else:
+            index = int(np.argmin(closeness))
         original, original_mass, original_written = candidates[index]
-        for i, (member, mass, written) in enumerate(candidates):
+        for member, mass, written in candidates:
             if member is original or member.name in flagged:
                 continue
-            apart = spreads[i][index]
+            # principal moments at each link's mass: a mirrored or turned copy of the same
+            # part is the same body, and a part whose mass slipped is not
+            apart = _spread(written.tensor, original_written.tensor)
             if apart <= copy_factor or _negligible(robot, member, written.tensor):
                 continue
             inertial = member.link.inertial
