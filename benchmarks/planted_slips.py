@@ -46,7 +46,7 @@ other-axes     ``T' = Rx T Rxᵀ``, Rx 90° about x                           IN
 kg-mm2         ``T' = 1e6 T``                                              IN063
 swap-ixx-iyy   ixx and iyy exchanged                                       IN064
 mass-x3        ``m' = 3 m``, tensor unchanged                              IN068
-neighbour      the parent's ``<inertial>`` (else a child's) copied          no rule
+neighbour      the parent's ``<inertial>`` (else a child's) copied          IN066
 grams          ``m' = 1000 m``                                              IN063
 com-origin     ``c' = 0``                                                  IN021
 com-mirrored   ``c' = -c``                                                 IN021
@@ -60,8 +60,8 @@ rules (IN063 also names a mass in grams, "the mass ... is in grams"); IN013 name
 placeholder; no rule names a centre of mass slip but IN021 (com-geometry-mismatch, whose help
 says "check the sign, the axes and the unit"); IN068 (inertia-for-other-mass) names a mass ×3:
 the tensor the geometry's for another mass, alike about every axis (IN022 judges the density
-alone, and 3 × 2700 kg/m³ is still a metal); nothing names a copied neighbour's block ("no
-rule": its named column is empty).
+alone, and 3 × 2700 kg/m³ is still a metal); IN066 (copied-inertial) names a copied
+neighbour's block.
 
 Identifiable
 ------------
@@ -146,7 +146,7 @@ OWN_RULE = {
     "kg-mm2": "IN063",
     "swap-ixx-iyy": "IN064",
     "mass-x3": "IN068",
-    "neighbour": None,
+    "neighbour": "IN066",
     "grams": "IN063",
     "com-origin": "IN021",
     "com-mirrored": "IN021",

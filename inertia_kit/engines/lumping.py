@@ -156,6 +156,27 @@ def lumped(robot: RobotAnalysis, name: str) -> MassProperties | None:
     return total.transformed(inverse(poses[name]))
 
 
+def lumped_without(
+    robot: RobotAnalysis, name: str, leaving_out: frozenset[str]
+) -> MassProperties | None:
+    """
+    :func:`lumped` without the links ``leaving_out`` (members whose values are in doubt), in
+    ``name``'s frame; ``None`` when no other member has usable values.
+    """
+    if lumped(robot, name) is None:
+        return None
+    group = robot.group_of(name)
+    _, poses = _LUMPED[robot][group[0].name]
+    total: MassProperties | None = None
+    for member in group:
+        declared = positive_mass(member)
+        if member.name in leaving_out or declared is None or member.name not in poses:
+            continue
+        placed = declared.transformed(poses[member.name])
+        total = placed if total is None else total + placed
+    return None if total is None else total.transformed(inverse(poses[name]))
+
+
 # --- bodies -----------------------------------------------------------------------------------
 
 

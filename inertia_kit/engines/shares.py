@@ -29,7 +29,7 @@ import numpy as np
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description.model import WORLD
 from inertia_kit.engines.drake_reading import could_be_physically_valid
-from inertia_kit.engines.lumping import lumped
+from inertia_kit.engines.lumping import lumped, lumped_without
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties, shift_tensor
 
@@ -128,12 +128,15 @@ def _head(group: tuple[LinkAnalysis, ...]) -> LinkAnalysis:
     return next((m for m in group if m.parent is None or m.parent.type != "fixed"), group[0])
 
 
-def share(robot: RobotAnalysis, name: str) -> Share | None:
+def share(
+    robot: RobotAnalysis, name: str, leaving_out: frozenset[str] = frozenset()
+) -> Share | None:
     """
     The share of its lumped body the link ``name`` carries; ``None`` when there is no body to
     judge it by: the link is alone, its values are not accepted as written
     (:func:`accepted_as_written`), or the other links of its group carry no mass. A link welded
-    to the world (never integrated) has a share only as a massless frame (``static``).
+    to the world (never integrated) has a share only as a massless frame (``static``). The
+    links ``leaving_out`` are left out of the body (members whose own values are in doubt).
     """
     link = robot.by_name.get(name)
     group = robot.group_of(name)
@@ -145,7 +148,8 @@ def share(robot: RobotAnalysis, name: str) -> Share | None:
         if own is None or own.mass != 0:
             return None
         return Share(name, WORLD, math.inf, 0.0, 0.0, static=True)
-    body = lumped(robot, name)  # in the link's frame, its own values included
+    # in the link's frame, its own values included
+    body = lumped_without(robot, name, leaving_out) if leaving_out else lumped(robot, name)
     if own is None or body is None or not body.mass - own.mass > 0:
         return None
     if not (math.isfinite(body.mass) and np.isfinite(body.inertia).all()):

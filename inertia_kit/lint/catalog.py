@@ -60,6 +60,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in063_inertia_unit_slip,
     in064_inertia_attributes_transposed,
     in065_twin_links_disagree,
+    in066_copied_inertial,
     in068_inertia_for_other_mass,
     in069_principal_axes_mismatch,
     in070_mujoco_verdict,

@@ -14,13 +14,17 @@ error and says the share:
   frame): every engine loads it as it loads a link without ``<inertial>``, which no rule flags;
   it offers no fix then (``inertia-fill --fix invalid`` would give the frame its geometry's mass).
 
-A configured severity always wins; warnings are left as they are.
+A body member whose own values are no real part's (:func:`~inertia_kit.analysis.fault.
+implausible`: a tensor in kg·mm², a mass in grams) cannot vouch for a link's negligible share:
+the link is judged again without such members and lowered only when negligible still. A
+configured severity always wins; warnings are left as they are.
 """
 
 from __future__ import annotations
 
 import dataclasses
 
+from inertia_kit.analysis.fault import implausible
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines.shares import share
 from inertia_kit.lint.findings import Finding, Severity
@@ -33,8 +37,27 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
     found = share(robot, finding.link)
     if found is None or not found.negligible:
         return finding
+    # a massless frame adds nothing to any body; other values are judged also without the
+    # members whose own values are in doubt
+    if not found.massless and not _negligible_beside_real_parts(robot, finding.link):
+        return finding
     message = f"{finding.message}; {found.text()}"
     if found.massless:
         # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
         return dataclasses.replace(finding, severity=Severity.INFO, message=message, wants=None)
     return dataclasses.replace(finding, severity=Severity.WARNING, message=message)
+
+
+def _negligible_beside_real_parts(robot: RobotAnalysis, name: str) -> bool:
+    """
+    Whether the link is negligible also in its body without the other members whose own values
+    are no real part's (a tensor in kg·mm², a mass in grams: analysis.fault.implausible), which
+    cannot vouch that anything beside them is negligible.
+    """
+    doubtful = robot.group_fact(
+        name, "implausible", lambda g: frozenset(m.name for m in g if implausible(m))
+    ) - {name}
+    if not doubtful:
+        return True
+    alone = share(robot, name, leaving_out=doubtful)
+    return alone is not None and alone.negligible

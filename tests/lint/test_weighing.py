@@ -153,3 +153,39 @@ def test_a_massless_frame_welded_to_the_world_is_no_error(lint):
     (finding,) = [f for f in lint(text, "IN002") if f.link == "base"]
     assert finding.severity is Severity.INFO
     assert "it is welded to the world, which engines never move" in finding.message
+
+
+def test_a_body_whose_own_values_are_no_real_part_cannot_make_a_frame_negligible(lint):
+    # the trunk's tensor in kg·mm² (a million times its box's) makes the frame's share of the
+    # body's moments tiny; left out as no real part's, the frame is judged against what remains
+    trunk, box_size = TRUNK
+    moments = [1e6 * m for m in box_moments(trunk, box_size)]
+    slipped = robot(
+        link("world"),
+        joint("world", "trunk"),
+        link("trunk", inertial(trunk, *moments), collision(box(*box_size))),
+        joint("trunk", "camera", "fixed", xyz=(0.2, 0, 0)),
+        link("camera", CAMERA),
+        joint("trunk", "mount", "fixed", xyz=(0.1, 0, 0)),
+        link("mount", box_inertial(0.01, (0.02, 0.02, 0.02)), collision(box(0.02, 0.02, 0.02))),
+    )
+    found = on(lint(slipped), "camera")
+    assert found["IN023"].severity is Severity.ERROR
+    assert "it adds" not in found["IN023"].message
+    # with the trunk's own values the camera is negligible beside it (not beside a 10 g mount)
+    plain = slipped.replace(inertial(trunk, *moments), box_inertial(trunk, box_size))
+    assert on(lint(plain), "camera")["IN023"].severity is Severity.WARNING
+
+
+def test_a_massless_frame_beside_no_real_part_is_still_info(lint):
+    # a zero-mass frame adds nothing to any body, whatever its other members declare
+    trunk, box_size = TRUNK
+    moments = [1e6 * m for m in box_moments(trunk, box_size)]
+    text = robot(
+        link("world"),
+        joint("world", "trunk"),
+        link("trunk", inertial(trunk, *moments), collision(box(*box_size))),
+        joint("trunk", "tool", "fixed", xyz=(0.2, 0, 0)),
+        link("tool", inertial(0, 0)),
+    )
+    assert on(lint(text), "tool")["IN002"].severity is Severity.INFO

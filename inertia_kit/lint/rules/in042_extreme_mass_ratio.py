@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from inertia_kit.analysis.links import RobotAnalysis
+from inertia_kit.analysis.fault import densest, density_excess
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -50,21 +51,56 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         light, heavy = (
             (joint.child, joint.parent) if child < parent else (joint.parent, joint.child)
         )
+        # the light body is named, unless the heavy one's mass is what no material gives
+        # its geometry while the light one's is plausible: then that mass slipped
+        culprit = _slipped(robot, heavy, light)
+        cause = ""
+        if culprit is not None:
+            cause = (
+                f"; `{culprit.name}` is the likely slip: its {fmt(culprit.declared.mass, 4)} kg "
+                f"is {fmt(_density(culprit), 4)} kg/m³ over its geometry, no material"
+            )
+        named = light if culprit is None else culprit.name
         yield ctx.finding(
             f"joint `{joint.name}`: {_body(robot, light)} weighs "
             f"{fmt(min(parent, child), 4)} kg, 1/{_ratio(ratio)} of {_body(robot, heavy)} at "
             f"{fmt(max(parent, child), 4)} kg (beyond 1/{_ratio(limit)}): the joint's "
-            "equations are ill-conditioned, so solvers jitter, drift or need tiny time steps",
+            "equations are ill-conditioned, so solvers jitter, drift or need tiny time steps"
+            + cause,
             joint.source,
             joint=joint.name or None,
-            link=light,
+            link=named,
             expected={
                 "ratio": ratio,
                 "parent_mass": parent,
                 "child_mass": child,
                 "max_ratio": limit,
             },
-            help=f"check both masses (grams for kilograms?); if they are real, give `{light}` "
-            "at least its share of motor, cabling and housing, or weld it to its neighbour "
-            "with a fixed joint",
+            help=(
+                f"check both masses (grams for kilograms?); if they are real, give `{light}` "
+                "at least its share of motor, cabling and housing, or weld it to its neighbour "
+                "with a fixed joint"
+                if culprit is None
+                else f"check `{culprit.name}`'s mass against its part (grams for kilograms?); the "
+                "ratio may then be right"
+            ),
         )
+
+
+def _density(link: LinkAnalysis) -> float:
+    """The least of the link's densities over its geometries (the one IN022 would let pass)."""
+    assert link.declared is not None
+    return link.declared.mass / max(b.volume for b in link.bases)
+
+
+def _slipped(robot: RobotAnalysis, heavy: str, light: str) -> LinkAnalysis | None:
+    """
+    The link of the heavy body whose density is beyond any material (analysis.fault) when
+    no link of the light body's is: the mass that slipped. ``None`` when unclear.
+    """
+    found = densest(robot.group_of(heavy))
+    if found is None:
+        return None
+    if any(density_excess(m) for m in robot.group_of(light)):
+        return None
+    return found[0]

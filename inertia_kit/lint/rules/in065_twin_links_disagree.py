@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 
+import numpy as np
+
+from inertia_kit.analysis.fault import at_fault, departure
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.analysis.twins import (
     COM_TOLERANCE,
     MASS_TOLERANCE,
     TENSOR_TOLERANCE,
     Disagreement,
+    Twins,
     compare,
     twins,
 )
@@ -69,9 +74,49 @@ def _parts(d: Disagreement, left: str, right: str) -> list[str]:
     return parts
 
 
+def _turned(twin: Twins) -> Twins:
+    """The pair seen from its other side: the left link judged against the right one."""
+    motion = None if twin.motion is None else np.linalg.inv(twin.motion)
+    return dataclasses.replace(
+        twin,
+        left=twin.right,
+        right=twin.left,
+        left_pose=twin.right_pose,
+        right_pose=twin.left_pose,
+        motion=motion,
+    )
+
+
+def _which(twin: Twins) -> tuple[Twins, str]:
+    """
+    The pair with the twin at fault as ``right`` (the one the finding lands on), and the help's
+    sentence on which one is right: the twin whose values depart clearly more from its own
+    geometry (analysis.fault), else the right one as written, the file unable to tell.
+    """
+    culprit = at_fault(twin.left, twin.right)
+    if culprit is None:
+        return twin, (
+            "Which twin is right the file cannot say: check both against the CAD part (a "
+            "mirrored part's products change sign), then write the right one's mirror into "
+            "the other"
+        )
+    if culprit is twin.left:
+        twin = _turned(twin)
+    good, bad = departure(twin.left), departure(twin.right)
+    assert good is not None and bad is not None
+    return twin, (
+        f"`{twin.right.name}`'s values are the ones that depart from the geometry ({bad.text()}; "
+        f"`{twin.left.name}`'s {good.text()}): check it against the CAD part, or write "
+        f"`{twin.left.name}`'s mirror into it"
+    )
+
+
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     _, pairs = twins(robot)
-    for twin in pairs:
+    for pair in pairs:
+        if compare(pair) is None:
+            continue
+        twin, verdict = _which(pair)
         found = compare(twin)
         if found is None:
             continue
@@ -112,8 +157,6 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"and in axes that correspond the same moments with {flips} of opposite sign; "
                 f"the values above are `{left}`'s mirrored into `{right}`'s frame (tolerances: "
                 f"{MASS_TOLERANCE:.0%} of the mass, {fmt(COM_TOLERANCE * twin.size, 2)} m, "
-                f"{fmt(TENSOR_TOLERANCE * found.scale, 2)} kg·m²). Which twin is right the "
-                "file cannot say: check both against the CAD part (a mirrored part's products "
-                "change sign), then write the right one's mirror into the other"
+                f"{fmt(TENSOR_TOLERANCE * found.scale, 2)} kg·m²). {verdict}"
             ),
         )

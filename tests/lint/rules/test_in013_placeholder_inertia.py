@@ -74,13 +74,14 @@ def test_expected_values_in_the_written_axes(lint):
 
 def test_copied_tensor_flags_the_copy_not_the_original(lint):
     moments = box_moments(2.0, (0.1, 0.1, 0.3))
+    # the six values copied, the mass the hand's own (a whole block copied is IN066's)
     text = on_base(
         upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        hand=inertial(2.0, *moments) + collision(box(0.06, 0.06, 0.06)),
+        hand=inertial(1.5, *moments) + collision(box(0.06, 0.06, 0.06)),
     )
     (finding,) = in013(lint, text)
     assert finding.link == "hand" and "those of link `upper`" in finding.message
-    cube, _, _ = box_moments(2.0, (0.06, 0.06, 0.06))
+    cube, _, _ = box_moments(1.5, (0.06, 0.06, 0.06))
     spread = max(moments) / cube
     assert f"differ by a factor of {fmt(spread, 3)}" in finding.message
     assert finding.expected["ixx"] == pytest.approx(cube)
@@ -96,15 +97,42 @@ def test_identical_and_turned_parts_share_a_tensor(lint):
         spare=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
     )
     assert in013(lint, text) == []
+    assert lint(text, "IN066") == []
+
+
+def test_a_slipped_mass_among_identical_parts_is_named_on_it(lint):
+    # three identical parts sharing six values (twice their 2 kg box's, as CAD parts with a
+    # dense motor have: within OWNER_FIT), the first with its mass tripled: at 6 kg its box
+    # fits the values best, but the other two agree with each other, so the first holds
+    # values that cannot fit it
+    moments = box_moments(4.0, (0.1, 0.1, 0.3))
+    text = on_base(
+        first=inertial(6.0, *moments) + collision(box(0.1, 0.1, 0.3)),
+        second=inertial(2.0, *moments, xyz=(0, 0, 0.01)) + collision(box(0.1, 0.1, 0.3)),
+        third=inertial(2.0, *moments, xyz=(0, 0, 0.02)) + collision(box(0.1, 0.1, 0.3)),
+    )
+    (finding,) = in013(lint, text)
+    assert finding.link == "first" and "those of link `second`" in finding.message
+    assert "it declares 3 times `second`'s mass on a shape alike per kilogram" in finding.message
+
+
+def test_a_placeholder_on_every_link_keeps_the_best_fit_as_original(lint):
+    # about 1 kg·m² on a 5 kg chassis and on four identical 0.25 kg motors (not isotropic:
+    # the copy is judged, not the isotropy): the motors agree with each other, but the values
+    # fit none of them as a real part; the chassis they fit best is the original
+    chassis = inertial(5.0, 1.0, 1.0, 0.9) + collision(box(0.3, 0.2, 0.1))
+    motor = inertial(0.25, 1.0, 1.0, 0.9) + collision(box(0.04, 0.04, 0.08))
+    text = on_base(chassis=chassis, m1=motor, m2=motor, m3=motor, m4=motor)
+    assert sorted(f.link for f in in013(lint, text)) == ["m1", "m2", "m3", "m4"]
 
 
 def test_copy_factor_option(lint):
     moments = box_moments(2.0, (0.1, 0.1, 0.3))
     text = on_base(
         upper=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.3)),
-        lower=inertial(2.0, *moments) + collision(box(0.1, 0.1, 0.2)),
+        lower=inertial(2.5, *moments) + collision(box(0.1, 0.1, 0.2)),
     )
-    spread = moments[0] / box_moments(2.0, (0.1, 0.1, 0.2))[0]
+    spread = moments[0] / box_moments(2.5, (0.1, 0.1, 0.2))[0]
     assert in013(lint, text) == []  # 1.8 apart: within the default 2
     assert [f.link for f in in013(lint, text, copy_factor=spread - 0.05)] == ["lower"]
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from kit.urdf import inertial, joint, link, robot
+from kit.urdf import box, box_inertial, collision, inertial, joint, link, robot
 
 from inertia_kit.lint.findings import Severity
 
@@ -62,3 +62,36 @@ def test_heavier_child_is_reported_too(lint):
 def test_max_ratio_option(lint):
     assert lint(chain(20.0, 0.05), "IN042", options={"IN042": {"max_ratio": 100.0}}) != []
     assert lint(chain(20.0, 0.005), "IN042", options={"IN042": {"max_ratio": 1e4}}) == []
+
+
+def boxed(body: float, tip: float) -> str:
+    """base → `body` (a 0.1 m aluminium cube: 2.7 kg) → `tip` (a 2 cm cube: 0.0216 kg), by mass."""
+    return robot(
+        link("base"),
+        joint("base", "body", "continuous", name="yaw"),
+        link("body", box_inertial(body, (0.1, 0.1, 0.1)), collision(box(0.1, 0.1, 0.1))),
+        joint("body", "tip", name="tip_joint"),
+        link("tip", box_inertial(tip, (0.02, 0.02, 0.02)), collision(box(0.02, 0.02, 0.02))),
+    )
+
+
+def test_a_mass_no_material_gives_is_named_on_its_link(lint):
+    # the body's mass written in grams: 2700 kg in a 0.1 m cube is 2.7e6 kg/m³, the tip's
+    # 0.0216 kg in a 2 cm cube a plausible 2700: the body's mass slipped, not the tip's
+    findings = lint(boxed(2700.0, 0.0216), "IN042")
+    assert len(findings) == 1
+    finding = findings[0]
+    assert finding.link == "body" and finding.joint == "tip_joint"
+    assert "`tip` weighs 0.0216 kg, 1/125000 of `body` at 2700 kg" in finding.message
+    assert "`body` is the likely slip: its 2700 kg is 2.7e+06 kg/m³" in finding.message
+    assert "check `body`'s mass" in finding.help
+
+
+def test_a_plausible_heavy_body_leaves_the_light_one_named(lint):
+    # a 0.0005 kg tip in its 2 cm cube is 62.5 kg/m³ (foam): plausible both sides, the light
+    # body is named as always
+    findings = lint(boxed(2.7, 0.0005), "IN042")
+    assert [f.link for f in findings] == ["tip"]
+    # a light side itself implausible (0.00002 kg: 2.5 kg/m³) leaves the finding on it
+    findings = lint(boxed(2700.0, 0.00002), "IN042")
+    assert [f.link for f in findings] == ["tip"]

@@ -136,11 +136,60 @@ def test_masses_differ(lint, meshes):
     assert findings[0].message == (
         "`l_hip` and `r_hip` mirror in geometry, but not in mass: 0.45 kg and 0.675 kg (×1.5)"
     )
-    # the same values with 1.5 times the mass: the tensor, per kilogram, differs too
+    # the same values with 1.5 times the mass: the tensor, per kilogram, differs too. VALUES
+    # are 2.6 times the tetrahedron's tensor at 0.45 kg about z, so at 0.675 kg the right hip
+    # fits its geometry better: the left one is at fault (analysis.fault) and named
     findings = lint(pair(mirrored(VALUES), right_mass=0.675), "IN065")
-    assert len(findings) == 1
-    assert "(×1.5); inertia: `r_hip` has ixx 0.0009" in findings[0].message
-    assert "mirrored from `l_hip` (at its mass), ixx 0.00135" in findings[0].message
+    assert len(findings) == 1 and findings[0].link == "l_hip"
+    assert "(×1.5); inertia: `l_hip` has ixx 0.0009" in findings[0].message
+    assert "mirrored from `r_hip` (at its mass), ixx 0.0006" in findings[0].message
+
+
+# the tetrahedron's own values at 0.45 kg (uniform density), rounded as CAD prints them
+GEOMETRIC = {
+    "ixx": 7.2e-4,
+    "ixy": 2.8e-5,
+    "ixz": -1.1e-4,
+    "iyy": 8.4e-4,
+    "iyz": -5.6e-5,
+    "izz": 2.1e-4,
+}
+
+
+def geometric_pair(*, left_mass=0.45, right_mass=0.45, left_com=(0.025, 0.0125, -0.05)):
+    return biped(
+        hip("l_hip", "left_hip.stl", "0 0.1 -0.15", GEOMETRIC, mass=left_mass, com=left_com),
+        hip(
+            "r_hip",
+            "right_hip.stl",
+            "0 -0.1 -0.15",
+            mirrored(GEOMETRIC),
+            mass=right_mass,
+            com=(0.025, -0.0125, -0.05),
+        ),
+    )
+
+
+def test_the_twin_at_fault_is_named_whichever_side(lint, meshes):
+    assert lint(geometric_pair(), "IN065") == []
+    # a slipped mass on the left twin, the first in the file: the finding lands on it
+    findings = lint(geometric_pair(left_mass=1.35), "IN065")
+    assert [f.link for f in findings] == ["l_hip"]
+    assert findings[0].message.startswith("`r_hip` and `l_hip` mirror in geometry, but not in mass")
+    assert "`l_hip`'s values are the ones that depart from the geometry" in findings[0].help
+    assert findings[0].expected["twin"] == "r_hip"
+    findings = lint(geometric_pair(right_mass=1.35), "IN065")
+    assert [f.link for f in findings] == ["r_hip"]
+    # a centre of mass mirrored wrong on the left: judged by its distance from the centroid
+    findings = lint(geometric_pair(left_com=(0.025, -0.0125, -0.05)), "IN065")
+    assert [f.link for f in findings] == ["l_hip"]
+
+
+def test_twins_that_depart_alike_keep_one_finding_on_the_right(lint, meshes):
+    # both hips' tensors are off the geometry alike (products unflipped): the file cannot say
+    findings = lint(pair(VALUES), "IN065")
+    assert [f.link for f in findings] == ["r_hip"]
+    assert "Which twin is right the file cannot say" in findings[0].help
 
 
 def test_mass_within_tolerance_is_quiet(lint, meshes):
@@ -253,7 +302,10 @@ def box_leg(name, y, mass, ixy):
 def test_primitive_twins_compare_mass(lint):
     text = biped(box_leg("left_leg", 0.1, 2, 0), box_leg("right_leg", -0.1, 3, 0))
     findings = lint(text, "IN065")
-    assert len(findings) == 1 and "2 kg and 3 kg (×1.5)" in findings[0].message
+    # the same tensor at 3 kg is closer to the box's (izz 0.004 where 2 kg gives 0.00083):
+    # the left leg departs more from its geometry and is named
+    assert len(findings) == 1 and "3 kg and 2 kg (×1.5)" in findings[0].message
+    assert findings[0].link == "left_leg"
 
 
 def test_primitive_twins_may_be_the_same_part(lint):

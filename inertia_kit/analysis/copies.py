@@ -1,0 +1,81 @@
+"""
+Copied ``<inertial>`` blocks: links whose whole block (mass, ``<origin>``, the six values) is
+another link's, and which of them the block belongs to.
+
+Identical blocks are right on identical parts (left/right twins, repeated fingers, four wheels):
+each link's geometry then fits the block alike. A block copied onto a different part (the
+neighbouring link's, pasted by hand or by a macro called with the wrong arguments) fits the
+part it was made for and departs from the other: its tensor is another shape's, its centre of
+mass sits where the other part's would. Among links that share a block, the one that fits it
+best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner when it fits as
+a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`, its
+centre of mass within :data:`OWNER_COM` of its size from the centroid); each
+other one whose values depart clearly more from its own geometry
+(:func:`~inertia_kit.analysis.fault.worse`) holds a copy. A block that fits no link as a real
+part is a placeholder, not a copy: each link's own rules (IN013, IN020, IN023) judge it, and no
+link is named the copy of another (two dummy frames sharing 1e-6 kg could each be either).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from inertia_kit.analysis.fault import COM_MARGIN, TENSOR_MARGIN, Departure, departure, worse
+from inertia_kit.analysis.forensics.measure import BAND
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+
+
+#: ... and its centre of mass within this fraction of the link's size from the centroid: a
+#: motor at one end moves a real part's a third of the way to that end (rules/IN021)
+OWNER_COM = 1 / 3
+
+
+@dataclass(frozen=True)
+class Copy:
+    """``link`` holds ``original``'s whole ``<inertial>``, which fits ``original`` only."""
+
+    link: LinkAnalysis
+    original: LinkAnalysis
+    mine: Departure  # the block against the link's own geometry
+    theirs: Departure  # ... against the original's
+
+
+def block(link: LinkAnalysis) -> tuple | None:
+    """The whole ``<inertial>`` as numbers (mass, xyz, rpy, six values), or ``None``."""
+    inertial = link.link.inertial
+    if inertial is None or link.declared is None or not link.declared.mass > 0:
+        return None
+    values = tuple(inertial.tensor_values().values())
+    if not any(values):
+        return None  # a zero tensor is IN012's, not a copy of anything
+    return (inertial.mass, inertial.origin.xyz, inertial.origin.rpy, values)
+
+
+def _score(d: Departure) -> float:
+    """One number to rank fits: the centre of mass's departure in tensor units."""
+    return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
+
+
+def copies(robot: RobotAnalysis) -> list[Copy]:
+    """The links holding another link's copied block, in file order (module doc)."""
+    groups: dict[tuple, list[LinkAnalysis]] = {}
+    for link in robot.links:
+        key = block(link)
+        if key is not None and link.name not in {m.name for m in groups.get(key, [])}:
+            groups.setdefault(key, []).append(link)
+    found: list[Copy] = []
+    for members in groups.values():
+        judged = [(m, d) for m in members if (d := departure(m)) is not None]
+        if len(judged) < 2:
+            continue
+        original, best = min(judged, key=lambda item: _score(item[1]))
+        if not (best.tensor <= BAND and best.com <= OWNER_COM):
+            continue  # no link owns it as a real part would: a placeholder, not a copy
+        found += [
+            Copy(m, original, d, best) for m, d in judged if m is not original and worse(d, best)
+        ]
+    order = {link.name: i for i, link in enumerate(robot.links)}
+    return sorted(found, key=lambda c: order[c.link.name])

@@ -1,0 +1,96 @@
+"""IN066 copied-inertial: a link's whole `<inertial>` is another link's, made for its geometry."""
+
+from __future__ import annotations
+
+from kit.moments import box_moments
+from kit.urdf import box, collision, inertial, joint, link, robot
+
+UPPER = (0.08, 0.08, 0.3)
+FORE = (0.07, 0.07, 0.24)
+
+
+def block(mass, size) -> str:
+    """A box's own values at ``mass``, centre of mass at the box's centre (z = half its length)."""
+    return inertial(mass, *box_moments(mass, size), xyz=(0, 0, size[2] / 2))
+
+
+def part(name, body, size) -> str:
+    return link(name, body, collision(box(*size), xyz=(0, 0, size[2] / 2)))
+
+
+def arm(upper: str, fore: str) -> str:
+    return robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", upper, UPPER),
+        joint("upper_arm", "forearm", xyz=(0, 0, 0.3)),
+        part("forearm", fore, FORE),
+    )
+
+
+def test_own_blocks_are_quiet(lint):
+    assert lint(arm(block(2.0, UPPER), block(1.4, FORE)), "IN066") == []
+
+
+def test_the_copy_is_named_on_the_link_it_does_not_fit(lint):
+    (finding,) = lint(arm(block(2.0, UPPER), block(2.0, UPPER)), "IN066")
+    assert finding.link == "forearm" and finding.expected["original"] == "upper_arm"
+    assert finding.message.startswith(
+        "link `forearm`: its `<inertial>` is the one of `upper_arm`, copied (2 kg at "
+        "(0, 0, 0.15) m and the same six values): it fits `upper_arm`'s geometry"
+    )
+    assert finding.expected["com"] == [0.0, 0.0, 0.12]
+    # the forearm's block pasted into the upper arm, the first link in the file: named there
+    (finding,) = lint(arm(block(1.4, FORE), block(1.4, FORE)), "IN066")
+    assert finding.link == "upper_arm" and finding.expected["original"] == "forearm"
+
+
+def test_identical_parts_share_a_block(lint):
+    text = robot(
+        link("world"),
+        joint("world", "first"),
+        part("first", block(1.4, FORE), FORE),
+        joint("first", "second", xyz=(0, 0, 0.24)),
+        part("second", block(1.4, FORE), FORE),
+    )
+    assert lint(text, "IN066") == []
+
+
+def test_a_block_that_fits_no_link_is_no_copy(lint):
+    # an isotropic 1 kg block on a rod and on a flat plate: a factor of about 3 from each
+    # geometry's tensor (log distance 1.13 and 1.16, beyond what real parts show): no link owns
+    # it, a placeholder (IN013's), not a copy of one link's values onto the other
+    rod, plate = (0.1, 0.1, 0.5), (0.4, 0.4, 0.1)
+    placeholder = inertial(1.0, 0.0071)
+    text = robot(
+        link("world"),
+        joint("world", "rod"),
+        link("rod", placeholder, collision(box(*rod))),
+        joint("rod", "plate", xyz=(0, 0, 0.3)),
+        link("plate", placeholder, collision(box(*plate))),
+    )
+    assert lint(text, "IN066") == []
+    assert [f.link for f in lint(text, "IN013")] == ["rod"]  # the plate is near a cube
+
+
+def test_a_negligible_welded_frame_is_not_named(lint):
+    # a 1 g sensor frame welded to a 2 kg arm, given a pasted 1 g block of another sensor
+    sensor = inertial(0.001, 1e-8)
+    text = robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", block(2.0, UPPER), UPPER),
+        joint("upper_arm", "camera", "fixed"),
+        link("camera", sensor, collision(box(0.01, 0.01, 0.1))),
+        joint("upper_arm", "imu", "fixed"),
+        link("imu", sensor, collision(box(0.02, 0.02, 0.002))),
+    )
+    assert lint(text, "IN066") == []
+
+
+def test_no_owner_when_the_centre_of_mass_fits_no_real_part(lint):
+    # the upper arm's block with its centre of mass at 0.29 m of a 0.3 m box, 47 % of its size
+    # from the centroid (a motor at one end puts it at most a third of the way): it fits no
+    # link as a real part's would, so neither holds the other's copy
+    off = inertial(2.0, *box_moments(2.0, UPPER), xyz=(0, 0, 0.29))
+    assert lint(arm(off, off), "IN066") == []
