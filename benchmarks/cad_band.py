@@ -19,7 +19,10 @@ rules do), at the declared mass:
   ``λ`` the geometry's largest moment and ``f = FLOOR`` (the forensic measure's floor): moments
   and axes at once, in log space (the generalised eigenvalues of the two floored tensors);
 - ``com``: the distance between the declared COM and the geometry's, over the geometry's size
-  (its largest radius of gyration).
+  (its largest radius of gyration);
+- ``com fraction``: how far the declared COM lies from the centroid of the nearer of the two
+  geometries, as a fraction of the way to the edge of its hull (analysis/com_offset.py, what
+  IN021 and IN067 measure): the band a centre of mass slip undone must land in.
 
 Printed: quantiles per measure, for mesh links and primitive links, and overall.
 """
@@ -75,6 +78,7 @@ def axis_angles(declared, geometry) -> list[float]:
 
 def measure_file(args: tuple[str, str, str]) -> list[dict]:
     package, path, root = args
+    from inertia_kit.analysis.com_offset import least_fraction
     from inertia_kit.analysis.links import analyse
     from inertia_kit.description.loader import load
     from inertia_kit.description.model import Mesh
@@ -128,6 +132,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
             if best is None or row["moments"] < best["moments"]:
                 best = row
         if best is not None:
+            best["com_fraction"] = least_fraction(link.bases, declared.com)
             rows.append(best)
     return rows
 
@@ -166,6 +171,8 @@ def main() -> int:
         angles = [r["axes"] for r in chosen if r["axes"] is not None]
         print(f"  axis angle, deg   {quantiles(angles)}")
         print(f"  COM offset/size   {quantiles([r['com'] for r in chosen])}")
+        fractions = [r["com_fraction"] for r in chosen if np.isfinite(r["com_fraction"])]
+        print(f"  COM fraction      {quantiles(fractions)}")
     if args.save:
         args.save.write_text(json.dumps(rows, indent=1))
     return 0

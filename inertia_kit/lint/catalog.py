@@ -60,6 +60,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in063_inertia_unit_slip,
     in064_inertia_attributes_transposed,
     in065_twin_links_disagree,
+    in067_com_slip,
     in070_mujoco_verdict,
     in071_gazebo_verdict,
     in072_drake_verdict,

@@ -6,8 +6,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from inertia_kit.analysis.com_offset import offset_fraction
 from inertia_kit.analysis.declared import declared_com
-from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -30,27 +30,6 @@ OPTIONS = (
         "min_mass_share", float, 0.01, "skip links lighter than this share of their fixed group"
     ),
 )
-
-_AXES = np.concatenate((np.eye(3), -np.eye(3)))
-
-
-def offset_fraction(geometry: Geometry, com: np.ndarray) -> float:
-    """
-    How far ``com`` lies from the geometry's centroid, as a fraction of the way to the edge of
-    the geometry's hull in that direction (and along each link axis); above 1 it is outside.
-    """
-    assert geometry.unit is not None and geometry.hull is not None
-    centroid = geometry.unit.com
-    offset = com - centroid
-    length = float(np.linalg.norm(offset))
-    if length == 0.0:
-        return 0.0
-    directions = np.vstack((offset / length, _AXES))
-    along = directions @ offset
-    reach = geometry.hull.half_widths(centroid, directions)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        fractions = np.where(along > 0, along / reach, 0.0)
-    return float(np.nanmax(fractions))
 
 
 def _xyz(point: np.ndarray) -> str:
