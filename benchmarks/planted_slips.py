@@ -130,6 +130,11 @@ OWN_RULE = {
     "com-swap": "IN021",
 }
 KINDS = tuple(OWN_RULE)
+#: rules whose finding also names a slip its own rule names: IN067 (com-slip) names the slip of
+#: a centre of mass IN021 rejects, and replaces IN021's finding
+ALSO_NAMED_BY = {"IN021": ("IN067",)}
+#: the slips IN067 undoes (a COM left at the origin has no reading to undo)
+COM_READINGS = ("com-mirrored", "com-flip", "com-swap")
 
 
 # --- the slips: pure functions of a link's values ------------------------------------------
@@ -515,13 +520,44 @@ def plant(jobs: list[dict]) -> list[dict]:
                     "kind": kind,
                     "identifiable": identifiable(true, slipped, job["size"]),
                     "detected": bool(on_link),
-                    "named": own is not None and any(f.code == own for f in on_link),
+                    "named": own is not None
+                    and any(f.code in (own, *ALSO_NAMED_BY.get(own, ())) for f in on_link),
+                    "reading": com_reading(on_link, true),
                     "codes": sorted({f"{f.code}:{f.severity}" for f in after if f.link == name}),
                     "elsewhere": elsewhere,
                     "crash": crash,
                 }
             )
     return results
+
+
+def com_reading(on_link: list, true: Values) -> str | None:
+    """
+    What IN067 says of a planted centre of mass slip: ``right`` (its corrected point is the
+    true one), ``wrong`` (another point), ``None`` (no IN067 finding).
+    """
+    found = next((f for f in on_link if f.code == "IN067"), None)
+    if found is None:
+        return None
+    right = np.allclose(found.expected["xyz"], true.xyz, rtol=1e-6, atol=1e-9)
+    return "right" if right else "wrong"
+
+
+def com_table(cases: list[dict]) -> list[str]:
+    """Of the identifiable centre of mass slips, how many IN067 undoes rightly, or wrongly."""
+    lines = [
+        "IN067 (com-slip) readings of the identifiable centre of mass slips",
+        f"{'slip':<14}{'ident.':>7}{'right':>8}{'wrong':>8}",
+    ]
+    for kind in COM_READINGS:
+        ident = [c for c in cases if c["kind"] == kind and c["identifiable"]]
+        right = sum(c.get("reading") == "right" for c in ident)
+        wrong = sum(c.get("reading") == "wrong" for c in ident)
+        lines.append(
+            f"{kind:<14}{len(ident):>7}{_percent(right, len(ident)):>8}"
+            f"{_percent(wrong, len(ident)):>8}"
+        )
+    return lines
 
 
 def _same(a: Values, b: Values) -> bool:
@@ -613,6 +649,8 @@ def main() -> int:
     ):
         print("\n".join(table(group, title)))
         print()
+    print("\n".join(com_table(results)))
+    print()
     elsewhere = defaultdict(int)
     for r in results:
         for item in r["elsewhere"]:

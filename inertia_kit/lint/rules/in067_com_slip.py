@@ -59,7 +59,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     reading = diagnosis.reading
     envelope = link.envelope
     shapes = " and ".join(g.describe() for g in (link.collision, link.visual) if g.solids)
-    percent = fmt(100 * diagnosis.declared_fraction, 3)
+    percent = fmt(100 * diagnosis.declared_fraction, 2)
     where = f"lies {percent}% of the way from the centroid to the edge of its {shapes}"
     severity = None
     if envelope is not None:
