@@ -522,7 +522,7 @@ def plant(jobs: list[dict]) -> list[dict]:
                     "detected": bool(on_link),
                     "named": own is not None
                     and any(f.code in (own, *ALSO_NAMED_BY.get(own, ())) for f in on_link),
-                    "reading": com_reading(on_link, true),
+                    "reading": com_reading(on_link, true, job["size"]),
                     "codes": sorted({f"{f.code}:{f.severity}" for f in after if f.link == name}),
                     "elsewhere": elsewhere,
                     "crash": crash,
@@ -531,16 +531,19 @@ def plant(jobs: list[dict]) -> list[dict]:
     return results
 
 
-def com_reading(on_link: list, true: Values) -> str | None:
+def com_reading(on_link: list, true: Values, size: float) -> str | None:
     """
     What IN067 says of a planted centre of mass slip: ``right`` (its corrected point is the
-    true one), ``wrong`` (another point), ``None`` (no IN067 finding).
+    true one, or one IN067 cannot tell from it: ``x`` negated for a mirrored ``(x, 1e-4, 0)``),
+    ``wrong`` (another point), ``None`` (no IN067 finding).
     """
+    from inertia_kit.analysis.forensics.com_slip import SAME_POINT
+
     found = next((f for f in on_link if f.code == "IN067"), None)
     if found is None:
         return None
-    right = np.allclose(found.expected["xyz"], true.xyz, rtol=1e-6, atol=1e-9)
-    return "right" if right else "wrong"
+    gap = float(np.linalg.norm(np.asarray(found.expected["xyz"]) - true.xyz))
+    return "right" if gap <= SAME_POINT * size else "wrong"
 
 
 def com_table(cases: list[dict]) -> list[str]:
