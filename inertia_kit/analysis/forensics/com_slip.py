@@ -57,6 +57,10 @@ AMBIGUITY = 0.4
 SAME_POINT = 0.05
 #: millimetres written as metres: the one unit slip a centre of mass shows (CAD exports in mm)
 MILLIMETRE = 1e-3
+#: ... read so only when the point lies this many times the geometry's size from the link
+#: origin: in millimetres a point 3 % of the size from it already does, while any point near
+#: the origin read as millimetres lands on it (Talos' ankle links, 5 cm off their 4 cm part)
+UNIT_REACH = 30.0
 
 #: the rank of a reading in another frame: the least simple, as it has many frames to try
 FRAME_RANK = 2
@@ -93,11 +97,14 @@ def _gain(worse: float, better: float) -> float:
 
 
 def readings(
-    com: NDArray[np.float64], frames: Sequence[tuple[str, NDArray[np.float64]]] = ()
+    com: NDArray[np.float64],
+    frames: Sequence[tuple[str, NDArray[np.float64]]] = (),
+    size: float = 0.0,
 ) -> list[tuple[int, str, str, NDArray[np.float64]]]:
     """
     Every reading of ``com`` (link frame, m) by the hypotheses: ``(rank, words, kind, point)``,
-    simplest first. ``frames``: named 4×4 poses (link frame) the point may have been given in.
+    simplest first. ``frames``: named 4×4 poses (link frame) the point may have been given in;
+    ``size``: the geometry's, m (millimetres are read only far beyond it: :data:`UNIT_REACH`).
     """
     found: list[tuple[int, str, str, NDArray[np.float64]]] = []
     for i in range(3):
@@ -109,7 +116,8 @@ def readings(
         swapped = com.copy()
         swapped[i], swapped[j] = com[j], com[i]
         found.append((1, f"{_AXIS[i]} and {_AXIS[j]} exchanged", "swap", swapped))
-    found.append((1, "the values read as millimetres", "unit", com * MILLIMETRE))
+    if np.linalg.norm(com) >= UNIT_REACH * size:
+        found.append((1, "the values read as millimetres", "unit", com * MILLIMETRE))
     for name, pose in frames:
         moved = pose[:3, :3] @ com + pose[:3, 3]
         found.append((FRAME_RANK, f"the point read in {name}", "frame", moved))
@@ -167,10 +175,11 @@ def diagnose_com(
     declared = least_fraction(usable, com)
     if not declared > BAND:
         return None
+    size = _size(usable)
     scored = sorted(
         (
             ComReading(rank, words, kind, point, least_fraction(usable, point))
-            for rank, words, kind, point in readings(com, frames)
+            for rank, words, kind, point in readings(com, frames, size)
         ),
         key=lambda r: (r.fraction, r.rank),
     )
@@ -178,7 +187,6 @@ def diagnose_com(
     if not fits:
         return None
     best = fits[0]
-    size = _size(usable)
     near = [r for r in scored if _gain(r.fraction, best.fraction) < AMBIGUITY]
     same = [r for r in near if np.linalg.norm(r.point - best.point) <= SAME_POINT * size]
     chosen = min(same, key=lambda r: r.rank)

@@ -141,3 +141,12 @@ def test_any_flip_or_swap_of_a_point_near_the_centroid_is_undone(
     found = _diagnose(part, planted)
     assert found is not None and found.reading is not None
     assert found.reading.point == pytest.approx(true)
+
+
+def test_a_point_near_the_origin_is_not_read_as_millimetres(analysed):
+    # a 4 cm part around the link origin, its centre of mass written 7 cm off it (Talos'
+    # ankle links): read as millimetres it would land on the origin, inside, as any such
+    # point would; millimetres are only read on a point far beyond the part
+    com = np.array([-0.011, 0.047, 0.053])
+    part = _link(analysed, com, xyz=(0, 0, 0.005), shapes=collision(box(0.04, 0.04, 0.04)))
+    assert _diagnose(part, com) is None
