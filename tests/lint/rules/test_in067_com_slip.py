@@ -63,3 +63,13 @@ def test_safe_fixes_alone_leave_it(tmp_path):
     before = path.read_text()
     run_lint(["--fix", str(path)])
     assert path.read_text() == before
+
+
+def test_with_a_tensor_slip_both_are_undone_in_one_fix(tmp_path):
+    # the tensor in kg·mm² (IN063) and the COM's y negated: one edit writes both corrections
+    path = tmp_path / "r.urdf"
+    path.write_text(moving(inertial(2.0, 27083.3, 833.3, 27083.3, xyz="0.01 -0.24 0") + BAR))
+    run_lint(["--fix", "--unsafe-fixes", str(path)])
+    text = path.read_text()
+    assert '<origin xyz="0.01 0.24 0"/>' in text and 'ixx="0.0270833"' in text
+    assert run_lint([str(path)])[1].strip() == "No findings in 1 file."
