@@ -42,6 +42,9 @@ def test_two_slips_alike_leave_in021(lint):
     shapes = collision(box(0.2, 0.2, 0.1), xyz="0 0 0.3")
     findings = lint(moving(inertial(2.0, 0.01, xyz="0.03 0.02 -0.3") + shapes))
     assert [f.code for f in findings] == ["IN021"]
+    assert "with z negated or with every sign negated (mirrored) it would be inside alike" in (
+        findings[0].help
+    )
 
 
 def test_the_fix_writes_the_corrected_point_and_is_a_fixed_point(tmp_path):
