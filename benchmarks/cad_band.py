@@ -29,6 +29,9 @@ rules do), at the declared mass:
   geometry's (unfloored) split into a common factor, ``scale = mean(ln r)`` (a tensor ``k``
   times the geometry's has ``ln k``), and what is left, ``shape = max |ln r - scale|``: how far a
   real part's tensor is a uniformly scaled copy of its geometry's (IN068's calibration).
+- ``com fraction``: how far the declared COM lies from the centroid of the nearer of the two
+  geometries, as a fraction of the way to the edge of its hull (analysis/com_offset.py, what
+  IN021 and IN067 measure): the band a centre of mass slip undone must land in.
 
 Printed: quantiles per measure, for mesh links and primitive links, and overall.
 """
@@ -96,6 +99,7 @@ def axis_angles(declared, geometry) -> list[float]:
 
 def measure_file(args: tuple[str, str, str]) -> list[dict]:
     package, path, root = args
+    from inertia_kit.analysis.com_offset import least_fraction
     from inertia_kit.analysis.links import analyse
     from inertia_kit.analysis.principal_axes import compare_axes
     from inertia_kit.description.loader import load
@@ -158,6 +162,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
                 best = row
         if best is not None:
             best["bases"] = bases
+            best["com_fraction"] = least_fraction(link.bases, declared.com)
             rows.append(best)
     return rows
 
@@ -248,6 +253,8 @@ def main() -> int:
         print(f"  COM offset/size   {quantiles([r['com'] for r in chosen])}")
         print(f"  |scale| (ln k)    {quantiles([abs(r['scale']) for r in chosen])}")
         print(f"  shape about k     {quantiles([r['shape'] for r in chosen])}")
+        fractions = [r["com_fraction"] for r in chosen if np.isfinite(r["com_fraction"])]
+        print(f"  COM fraction      {quantiles(fractions)}")
     print_axes(rows)
     if args.save:
         args.save.write_text(json.dumps(rows, indent=1))

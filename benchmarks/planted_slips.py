@@ -155,6 +155,11 @@ OWN_RULE = {
     "com-swap": "IN021",
 }
 KINDS = tuple(OWN_RULE)
+#: rules whose finding also names a slip its own rule names: IN067 (com-slip) names the slip of
+#: a centre of mass IN021 rejects, and replaces IN021's finding
+ALSO_NAMED_BY = {"IN021": ("IN067",)}
+#: the slips IN067 undoes (a COM left at the origin has no reading to undo)
+COM_READINGS = ("com-mirrored", "com-flip", "com-swap")
 
 
 # --- the slips: pure functions of a link's values ------------------------------------------
@@ -575,7 +580,9 @@ def plant(jobs: list[dict]) -> list[dict]:
                 {f"{f.link}:{f.code}" for f in after if f.link != name and _key(f) not in before}
             )
             own = OWN_RULE[kind]
-            named = own is not None and any(f.code == own for f in on_link)
+            named = own is not None and any(
+                f.code in (own, *ALSO_NAMED_BY.get(own, ())) for f in on_link
+            )
             equivalent = (
                 own is not None
                 and not named
@@ -593,12 +600,45 @@ def plant(jobs: list[dict]) -> list[dict]:
                     "detected": bool(on_link),
                     "named": named or equivalent,
                     "equivalent": equivalent,
+                    "reading": com_reading(on_link, true, job["size"]),
                     "codes": sorted({f"{f.code}:{f.severity}" for f in after if f.link == name}),
                     "elsewhere": elsewhere,
                     "crash": crash,
                 }
             )
     return results
+
+
+def com_reading(on_link: list, true: Values, size: float) -> str | None:
+    """
+    What IN067 says of a planted centre of mass slip: ``right`` (its corrected point is the
+    true one, or one IN067 cannot tell from it: ``x`` negated for a mirrored ``(x, 1e-4, 0)``),
+    ``wrong`` (another point), ``None`` (no IN067 finding).
+    """
+    from inertia_kit.analysis.forensics.com_slip import SAME_POINT
+
+    found = next((f for f in on_link if f.code == "IN067"), None)
+    if found is None:
+        return None
+    gap = float(np.linalg.norm(np.asarray(found.expected["xyz"]) - true.xyz))
+    return "right" if gap <= SAME_POINT * size else "wrong"
+
+
+def com_table(cases: list[dict]) -> list[str]:
+    """Of the identifiable centre of mass slips, how many IN067 undoes rightly, or wrongly."""
+    lines = [
+        "IN067 (com-slip) readings of the identifiable centre of mass slips",
+        f"{'slip':<14}{'ident.':>7}{'right':>8}{'wrong':>8}",
+    ]
+    for kind in COM_READINGS:
+        ident = [c for c in cases if c["kind"] == kind and c["identifiable"]]
+        right = sum(c.get("reading") == "right" for c in ident)
+        wrong = sum(c.get("reading") == "wrong" for c in ident)
+        lines.append(
+            f"{kind:<14}{len(ident):>7}{_percent(right, len(ident)):>8}"
+            f"{_percent(wrong, len(ident)):>8}"
+        )
+    return lines
 
 
 def _same(a: Values, b: Values) -> bool:
@@ -693,6 +733,8 @@ def main() -> int:
     ):
         print("\n".join(table(group, title)))
         print()
+    print("\n".join(com_table(results)))
+    print()
     elsewhere = defaultdict(int)
     for r in results:
         for item in r["elsewhere"]:

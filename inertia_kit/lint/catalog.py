@@ -61,6 +61,7 @@ from inertia_kit.lint.rules import (  # noqa: F401
     in064_inertia_attributes_transposed,
     in065_twin_links_disagree,
     in066_copied_inertial,
+    in067_com_slip,
     in068_inertia_for_other_mass,
     in069_principal_axes_mismatch,
     in070_mujoco_verdict,

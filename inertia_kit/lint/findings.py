@@ -63,7 +63,8 @@ class FixRule:
     """
     A rule's fix (its module's ``FIX``): ``how`` the values are found (``geometry``: the
     geometry's at uniform density, a declared finite positive mass kept; ``slip``: the
-    declared values with the slip undone; ``com``: the geometry's centre of mass), its
+    declared values with the slip undone; ``com``: the geometry's centre of mass;
+    ``com-slip``: the declared values with the centre of mass's slip undone), its
     ``safety``, what it ``repairs``, and its ``title``.
     """
 

@@ -15,6 +15,8 @@ A link gets one set of values, whichever findings asked for it:
   (:func:`~inertia_kit.analysis.forensics.links.diagnose_link`): safe when it fits exactly,
   unsafe when it is a real part's likely slip. When the centre of mass is also rejected
   (``how="com"``), it becomes the geometry's, and the fix unsafe;
+- a centre of mass slip (``how="com-slip"``, IN067) gives the declared values (or those of a
+  tensor slip undone) with the centre of mass read as the slip undone: unsafe;
 - else the geometry's values at uniform density, the mass from
   :func:`~inertia_kit.fixes.masses.mass_for` (a declared finite positive mass kept): unsafe.
 
@@ -37,10 +39,15 @@ from inertia_kit.lint.findings import EditPlace, Finding, Fix, FixRule, Repairs,
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
+
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
     from inertia_kit.description.edits import Edit
     from inertia_kit.fixes.files import Files
 
+#: the ``how`` of fixes that undo a slip in the declared values (not values from the geometry)
+_SLIPS = ("slip", "com-slip")
 #: the title of a fix asked for by name, or by ``inertia-fill --fix all``
 RECOMPUTE = "recompute the <inertial> from the geometry"
 
@@ -126,7 +133,7 @@ def plan_fixes(
             chosen[link.name] = slip
             masses[link.name] = (values.mass, title)
             continue
-        title = next((w.title for w in selected if w.how != "slip"), RECOMPUTE)
+        title = next((w.title for w in selected if w.how not in _SLIPS), RECOMPUTE)
         reason = geometry_refusal(link) or spoils.get(link.name)
         if reason is not None:
             result.links[link.name] = LinkFix(link.name, Safety.UNSAFE, title, reason=reason)
@@ -169,13 +176,46 @@ def plan_fixes(
 def _slip(
     link: LinkAnalysis, selected: list[FixRule], offered: list[FixRule], choice: MassChoice
 ) -> tuple[Safety, str, MassProperties] | None:
-    """``(safety, title, values)`` of a selected slip fix (``None``: none, or a mass given for
-    the link: then the geometry's tensor for that mass)."""
+    """``(safety, title, values)`` of a selected slip fix, of the tensor (``how="slip"``) or of
+    the centre of mass (``how="com-slip"``), or both (``None``: none, or a mass given for the
+    link: then the geometry's tensor for that mass)."""
+    rule = next((w for w in selected if w.how == "slip"), None)
+    moved = next((w for w in selected if w.how == "com-slip"), None)
+    if (rule is None and moved is None) or link.name in choice.masses:
+        return None
+    found = _tensor_slip(link, rule, offered) if rule is not None else None
+    if moved is None:
+        return found
+    com = _com_slip(link)
+    if com is None:
+        return found
+    _, title, values = found or (moved.safety, moved.title, link.declared)
+    if values is None:
+        return found
+    if found is not None:
+        title = f"{title}; {moved.title}"
+    # a centre of mass slip is never proven (forensics.com_slip): the fix is unsafe
+    return Safety.UNSAFE, title, MassProperties(values.mass, com, values.inertia)
+
+
+def _com_slip(link: LinkAnalysis) -> NDArray[np.float64] | None:
+    """The centre of mass with its slip undone (IN067), or ``None``."""
+    from inertia_kit.analysis.declared import declared_com
+    from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
+
+    com = declared_com(link.link)
+    if com is None:
+        return None
+    diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
+    return None if diagnosis is None or diagnosis.reading is None else diagnosis.reading.point
+
+
+def _tensor_slip(
+    link: LinkAnalysis, rule: FixRule, offered: list[FixRule]
+) -> tuple[Safety, str, MassProperties] | None:
+    """``(safety, title, values)`` of a tensor slip (IN06x) undone, or ``None``."""
     from inertia_kit.analysis.forensics.links import diagnose_link
 
-    rule = next((w for w in selected if w.how == "slip"), None)
-    if rule is None or link.name in choice.masses:
-        return None
     diagnosis = diagnose_link(link)
     if diagnosis is None:
         return None

@@ -137,8 +137,8 @@ def _fix(fix: Any) -> list[str]:
     if not isinstance(fix, FixRule):
         return ["FIX: no FixRule"]
     problems = []
-    if fix.how not in ("geometry", "slip", "com"):
-        problems.append(f"FIX: how {fix.how!r} is none of geometry, slip, com")
+    if fix.how not in ("geometry", "slip", "com", "com-slip"):
+        problems.append(f"FIX: how {fix.how!r} is none of geometry, slip, com, com-slip")
     if fix.safety not in (Safety.SAFE, Safety.UNSAFE) or not isinstance(fix.repairs, Repairs):
         problems.append("FIX: safety must be safe or unsafe, repairs a Repairs")
     if (fix.how == "slip") != (fix.safety is Safety.SAFE):

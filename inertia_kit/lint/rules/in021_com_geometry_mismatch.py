@@ -6,8 +6,9 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from inertia_kit.analysis.com_offset import offset_fraction
 from inertia_kit.analysis.declared import declared_com
-from inertia_kit.analysis.geometry import Geometry
+from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -31,30 +32,19 @@ OPTIONS = (
     ),
 )
 
-_AXES = np.concatenate((np.eye(3), -np.eye(3)))
-
-
-def offset_fraction(geometry: Geometry, com: np.ndarray) -> float:
-    """
-    How far ``com`` lies from the geometry's centroid, as a fraction of the way to the edge of
-    the geometry's hull in that direction (and along each link axis); above 1 it is outside.
-    """
-    assert geometry.unit is not None and geometry.hull is not None
-    centroid = geometry.unit.com
-    offset = com - centroid
-    length = float(np.linalg.norm(offset))
-    if length == 0.0:
-        return 0.0
-    directions = np.vstack((offset / length, _AXES))
-    along = directions @ offset
-    reach = geometry.hull.half_widths(centroid, directions)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        fractions = np.where(along > 0, along / reach, 0.0)
-    return float(np.nanmax(fractions))
-
 
 def _xyz(point: np.ndarray) -> str:
     return "(" + ", ".join(fmt(v, 4) for v in point) + ")"
+
+
+def _alike(link: LinkAnalysis, com: np.ndarray) -> str:
+    """The slips that would each explain the centre of mass alike (IN067 names one that alone
+    does), for the help: ``""`` when there are none."""
+    diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
+    if diagnosis is None or diagnosis.reading is not None or not diagnosis.rivals:
+        return ""
+    words = " or with ".join(r.words for r in diagnosis.rivals)
+    return f"; with {words} it would be inside alike, so which slip it was is not known"
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
@@ -85,7 +75,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 link=link.name,
                 expected=None if centroid is None else {"xyz": [float(v) for v in centroid]},
                 help="the centre of mass is in the link frame (check the sign, the axes and the "
-                "unit of <inertial><origin xyz>), or the geometry is misplaced",
+                "unit of <inertial><origin xyz>), or the geometry is misplaced" + _alike(link, com),
                 severity=Severity.ERROR,
             )
             return
@@ -109,5 +99,5 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         link=link.name,
         expected={"xyz": [float(v) for v in centroid], "offset_fraction": fractions[0]},
         help="check <inertial><origin xyz> (link frame, metres); a heavy motor or counterweight "
-        "at one end explains an offset, a value about another frame does not",
+        "at one end explains an offset, a value about another frame does not" + _alike(link, com),
     )

@@ -1,0 +1,78 @@
+"""IN067 com-slip: a centre of mass off its geometry, its slip named; replaces IN021; its fix."""
+
+from __future__ import annotations
+
+import pytest
+from kit.fixed_point import run_lint
+from kit.urdf import box, collision, inertial, moving, visual
+
+from inertia_kit.lint.findings import Repairs, Safety, Severity
+
+BAR = collision(box(0.05, 0.4, 0.05), xyz="0 0.2 0") + visual(box(0.05, 0.4, 0.05), xyz="0 0.2 0")
+
+
+def arm(xyz: str, shapes: str = BAR) -> str:
+    return moving(inertial(2.0, 0.0271, 0.00083, 0.0271, xyz=xyz) + shapes)
+
+
+def test_a_flipped_sign_is_named_and_replaces_in021(lint):
+    findings = lint(arm("0.01 -0.24 0"))
+    assert [f.code for f in findings] == ["IN067"]
+    finding = findings[0]
+    assert finding.severity == Severity.ERROR  # outside the hull, as IN021's error
+    assert "with y negated it is inside, 41 mm from the geometry's centroid" in finding.message
+    assert finding.expected["xyz"] == pytest.approx([0.01, 0.24, 0.0])
+    assert finding.expected["hypothesis"] == "flip"
+    assert finding.wants.safety == Safety.UNSAFE and finding.wants.repairs == Repairs.LIKELY
+
+
+def test_inside_but_far_is_a_warning(lint):
+    # a plate from y = -0.1 to 0.2: y = -0.06 is inside, 73 % of the way from its centroid
+    # (y = 0.05) to its edge; negated, 10 mm from the centroid
+    plate = collision(box(0.4, 0.3, 0.05), xyz="0.2 0.05 0")
+    findings = lint(moving(inertial(2.0, 0.016, 0.027, 0.042, xyz="0.2 -0.06 0") + plate))
+    assert [(f.code, f.severity) for f in findings] == [("IN067", Severity.WARNING)]
+    message = findings[0].message
+    assert "73% of the way from the centroid to the edge of its collision box" in message
+    assert "with y negated it is inside, 10 mm from" in message
+
+
+def test_two_slips_alike_leave_in021(lint):
+    # a box centred on the z axis: z negated or every sign negated fit as well
+    shapes = collision(box(0.2, 0.2, 0.1), xyz="0 0 0.3")
+    findings = lint(moving(inertial(2.0, 0.01, xyz="0.03 0.02 -0.3") + shapes))
+    assert [f.code for f in findings] == ["IN021"]
+    assert "with z negated or with every sign negated (mirrored) it would be inside alike" in (
+        findings[0].help
+    )
+
+
+def test_the_fix_writes_the_corrected_point_and_is_a_fixed_point(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text(arm("0.01 -0.24 0"))
+    code, _ = run_lint(["--fix", "--unsafe-fixes", str(path)])
+    assert code == 0
+    text = path.read_text()
+    assert '<origin xyz="0.01 0.24 0"/>' in text
+    assert 'ixx="0.0271"' in text  # the tensor kept
+    code, output = run_lint(["--fix", "--unsafe-fixes", str(path)])
+    assert (code, output.strip()) == (0, "No findings in 1 file.")
+    assert path.read_text() == text
+
+
+def test_safe_fixes_alone_leave_it(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text(arm("0.01 -0.24 0"))
+    before = path.read_text()
+    run_lint(["--fix", str(path)])
+    assert path.read_text() == before
+
+
+def test_with_a_tensor_slip_both_are_undone_in_one_fix(tmp_path):
+    # the tensor in kg·mm² (IN063) and the COM's y negated: one edit writes both corrections
+    path = tmp_path / "r.urdf"
+    path.write_text(moving(inertial(2.0, 27083.3, 833.3, 27083.3, xyz="0.01 -0.24 0") + BAR))
+    run_lint(["--fix", "--unsafe-fixes", str(path)])
+    text = path.read_text()
+    assert '<origin xyz="0.01 0.24 0"/>' in text and 'ixx="0.0270833"' in text
+    assert run_lint([str(path)])[1].strip() == "No findings in 1 file."
