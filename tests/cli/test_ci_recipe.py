@@ -16,7 +16,10 @@ from pathlib import Path
 import pytest
 from console_scripts import console_script
 from kit import EXAMPLES, REPO
+from kit.in_process import run_split
 from kit.junit import valid
+
+from inertia_kit.cli import lint_main
 
 RECIPE = REPO / "docs" / "ci.md"
 FENCE = re.compile(r"^```yaml\n(.*?)^```", re.MULTILINE | re.DOTALL)
@@ -78,17 +81,13 @@ def repository(tmp_path):
     return copy, env
 
 
-def findings(where: Path, env: dict[str, str]) -> list[dict]:
-    """What the reports should hold: the findings, from the json format."""
-    result = subprocess.run(
-        ["inertia-lint", "--output-format", "json", "."],
-        cwd=where,
-        env=env,
-        capture_output=True,
-        text=True,
-    )
-    assert result.returncode == 1, result.stderr  # the seed robots have findings
-    return json.loads(result.stdout)
+def findings(where: Path, monkeypatch) -> list[dict]:
+    """What the reports should hold: the findings, from the json format (in this process: the
+    recipe's own commands are the ones run as a CI job runs them)."""
+    monkeypatch.chdir(where)
+    code, stdout, stderr = run_split(lint_main, ["--output-format", "json", "."])
+    assert code == 1, stderr  # the seed robots have findings
+    return json.loads(stdout)
 
 
 def test_the_commands_are_the_ones_documented():
@@ -106,9 +105,9 @@ def test_the_commands_are_the_ones_documented():
     ]
 
 
-def test_github_actions_recipe(repository):
+def test_github_actions_recipe(repository, monkeypatch):
     where, env = repository
-    expected = findings(where, env)
+    expected = findings(where, monkeypatch)
     done = run_recipe(blocks()["GitHub Actions"], where, env)
     # the first step fails the job, the report steps write their report and pass
     assert [code for _, code, _ in done] == [1, 0, 0]
@@ -129,10 +128,10 @@ def test_github_actions_recipe(repository):
     _check_junit(where / "inertia-lint.xml", expected)
 
 
-def test_gitlab_ci_recipe(repository):
+def test_gitlab_ci_recipe(repository, monkeypatch):
     where, env = repository
     env["CI_PROJECT_DIR"] = str(where)  # as GitLab's runner sets it
-    expected = findings(where, env)
+    expected = findings(where, monkeypatch)
     done = run_recipe(blocks()["GitLab CI"], where, env)
     assert [code for _, code, _ in done] == [0, 0, 1]
     assert len(done[2][2].splitlines()) == len(expected)

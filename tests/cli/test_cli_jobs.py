@@ -50,8 +50,17 @@ def test_two_jobs_print_what_one_prints_on_the_examples(mode, tmp_path, monkeypa
     one = lint("-j", "1", *mode, "examples")
     assert one[0] in (1, 2) and (one[1] or "--statistics" in mode)  # the examples have findings
     assert lint("-j", "2", *mode, "examples") == one
-    assert lint("-j", "0", *mode, "examples") == one  # 0: the usable cores
-    assert lint(*mode, "examples") == one  # the default: the usable cores
+
+
+def test_zero_jobs_and_the_default_print_what_one_prints(tmp_path, monkeypatch):
+    """``-j 0`` and no ``-j``: the usable cores, a number of workers as ``-j 2`` is above (the
+    formats and modes are the same code whatever the number; one of them here)."""
+    monkeypatch.chdir(EXAMPLES.parent)
+    monkeypatch.setenv("INERTIA_KIT_CACHE_DIR", str(tmp_path / "cache"))
+    one = lint("-j", "1", "--output-format", "json", "examples")
+    assert one[0] == 1 and json.loads(one[1])  # the examples have findings
+    assert lint("-j", "0", "--output-format", "json", "examples") == one  # 0: the usable cores
+    assert lint("--output-format", "json", "examples") == one  # the default: the usable cores
 
 
 @pytest.mark.parametrize("example", sorted(p.name for p in EXAMPLES.iterdir()))

@@ -1,13 +1,16 @@
 """
 The pre-commit hook: its manifest is what pre-commit accepts, its file pattern takes .urdf,
-.xacro and .urdf.xacro files, and, for real, `pre-commit try-repo` installs this repository
-into a fresh virtualenv (each run: ~20 s here) and fails a repository holding a bad URDF and
-passes a good one; the wheel pip builds ships the rule documents.
+.xacro and .urdf.xacro files, and, for real, pre-commit installs this repository into a
+virtualenv from a `.pre-commit-config.yaml` naming it by path and commit (as README shows; the
+same config `pre-commit try-repo` writes) and its hooks fail a repository holding a bad URDF and
+pass a good one; the wheel pip builds ships the rule documents.
 
 The repository under test is a snapshot of this working tree (tracked and untracked, not
-ignored files) committed to a temporary git repository: try-repo takes committed files only, and
-the tree under test may hold changes not yet committed. Nothing here touches this repository's
-git state.
+ignored files) committed to a temporary git repository: pre-commit takes committed files only,
+and the tree under test may hold changes not yet committed. The hooks' virtualenv is built once
+per test session (~20 s here) in a private pre-commit cache and used by every run after
+(`try-repo` would build a fresh one each run). Nothing here touches this repository's git
+state.
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from pathlib import Path
 import pytest
 import yaml
 from kit import REPO
+from kit.session import shared_folder
 from kit.urdf import box, collision, joint_lines, link_lines, robot_lines
 
 ROOT = REPO
@@ -132,33 +136,43 @@ def _project(path: Path, files: dict[str, str]) -> Path:
     return path
 
 
-@pytest.fixture(scope="module")
-def hook_repo(tmp_path_factory):
-    """(snapshot repository, its commit, environment with a private pre-commit cache)."""
-    base = tmp_path_factory.mktemp("precommit")
+def _hooks_configured(base: Path) -> None:
+    """In ``base``: the snapshot repository and the pre-commit configuration of its hooks."""
     snapshot = base / "inertia-kit"
     snapshot.mkdir()
     commit = _snapshot(snapshot)
+    hooks = [{"id": entry["id"]} for entry in yaml.safe_load(MANIFEST.read_text())]
+    config = {"repos": [{"repo": str(snapshot), "rev": commit, "hooks": hooks}]}
+    (base / "pre-commit-config.yaml").write_text(yaml.safe_dump(config))
+
+
+@pytest.fixture(scope="module")
+def hook_repo(tmp_path_factory):
+    """
+    (the pre-commit configuration of the snapshot repository's hooks, the snapshot, the
+    environment with a pre-commit cache): one of each for the session, so the hooks'
+    virtualenv is built once (pre-commit's lock on its cache makes the other workers wait).
+    """
+    base = shared_folder(tmp_path_factory, "precommit", _hooks_configured)
     env = {**os.environ, "PRE_COMMIT_HOME": str(base / "cache"), "NO_COLOR": "1"}
     env.pop("PRE_COMMIT", None)
-    return snapshot, commit, env
+    return base / "pre-commit-config.yaml", base / "inertia-kit", env
 
 
-def _try_repo(
+def _run_hook(
     hook_repo, project: Path, hook_id: str = "inertia-lint", files: tuple[str, ...] = ()
 ) -> subprocess.CompletedProcess:
     """The hook on ``files`` (as a commit of them hands them over), else on every file."""
-    snapshot, commit, env = hook_repo
+    config, _, env = hook_repo
     return subprocess.run(
         [
             sys.executable,
             "-m",
             "pre_commit",
-            "try-repo",
-            str(snapshot),
+            "run",
             hook_id,
-            "--ref",
-            commit,
+            "--config",
+            str(config),
             *(("--files", *files) if files else ("--all-files",)),
             "--color",
             "never",
@@ -172,12 +186,12 @@ def _try_repo(
 
 
 @pytest.mark.slow
-def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
+def test_hook_fails_a_bad_urdf(hook_repo, tmp_path):
     bad = _project(
         tmp_path / "bad",
         {"pyproject.toml": CONFIG, "urdf/bad.urdf": BAD, "urdf/good.urdf.xacro": GOOD},
     )
-    done = _try_repo(hook_repo, bad)
+    done = _run_hook(hook_repo, bad)
     output = done.stdout + done.stderr
     assert done.returncode == 1, output
     assert re.search(r"inertia-lint\.+Failed", output), output
@@ -188,23 +202,23 @@ def test_try_repo_fails_a_bad_urdf(hook_repo, tmp_path):
 
 
 @pytest.mark.slow
-def test_try_repo_passes_a_good_urdf(hook_repo, tmp_path):
+def test_hook_passes_a_good_urdf(hook_repo, tmp_path):
     good = _project(tmp_path / "good", {"pyproject.toml": CONFIG, "urdf/good.urdf": GOOD})
-    done = _try_repo(hook_repo, good)
+    done = _run_hook(hook_repo, good)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-lint\.+Passed", output), output
 
 
 @pytest.mark.slow
-def test_try_repo_leaves_out_the_files_the_configuration_excludes(hook_repo, tmp_path):
+def test_hook_leaves_out_the_files_the_configuration_excludes(hook_repo, tmp_path):
     """pre-commit hands every file over by name; `exclude` in the configuration still holds
     (`--force-exclude` in the hook's entry), and colcon's build/ beside src/ is left out."""
     config = CONFIG + 'extend-exclude = ["generated/"]\n'
     files = {"pyproject.toml": config, "src/good.urdf": GOOD}
     files.update({"generated/bad.urdf": BAD, "build/bad.urdf": BAD})
     project = _project(tmp_path / "excluded", files)
-    done = _try_repo(hook_repo, project)
+    done = _run_hook(hook_repo, project)
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-lint\.+Passed", output), output
@@ -219,12 +233,12 @@ MISSING = robot_lines(
 
 
 @pytest.mark.slow
-def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
+def test_hook_fill_fills_then_passes(hook_repo, tmp_path):
     """The fixer writes the missing block and fails (exit 1) so the change is reviewed; run
     again on the filled file, it passes and changes nothing."""
     project = _project(tmp_path / "fill", {"urdf/arm.urdf": MISSING, "urdf/good.urdf": GOOD})
     urdf = project / "urdf" / "arm.urdf"
-    done = _try_repo(hook_repo, project, "inertia-fill")
+    done = _run_hook(hook_repo, project, "inertia-fill")
     output = done.stdout + done.stderr
     assert done.returncode == 1, output
     assert re.search(r"inertia-fill\.+Failed", output), output
@@ -238,7 +252,7 @@ def test_try_repo_fill_fills_then_passes(hook_repo, tmp_path):
     assert '<mass value="4"/>' in filled
     assert (project / "urdf" / "good.urdf").read_text() == GOOD
 
-    done = _try_repo(hook_repo, project, "inertia-fill")
+    done = _run_hook(hook_repo, project, "inertia-fill")
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-fill\.+Passed", output), output
@@ -251,7 +265,7 @@ def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
     A wheel built from the snapshot (what pre-commit and pip install) holds the rule
     documents as files, and `--explain` run from the unpacked wheel reads them there.
     """
-    snapshot, _, env = hook_repo
+    _, snapshot, env = hook_repo
     subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(tmp_path), "."],
         cwd=snapshot,
@@ -307,7 +321,7 @@ def _wheeled(path: Path, edit) -> Path:
 
 
 @pytest.mark.slow
-def test_try_repo_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
+def test_hook_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
     """`mass="-5"` in wheels.xacro, committed alone: the hook gets the fragment, lints the
     robot that includes it, and reports the finding where the edit is."""
     project = _wheeled(
@@ -315,7 +329,7 @@ def test_try_repo_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
         lambda macro: macro.replace('<mass value="${wheel_mass}" />', '<mass value="-5" />'),
     )
     line = 1 + (project / WHEELS).read_text().split('<mass value="-5"')[0].count("\n")
-    done = _try_repo(hook_repo, project, files=(WHEELS,))
+    done = _run_hook(hook_repo, project, files=(WHEELS,))
     output = done.stdout + done.stderr
     assert done.returncode == 1, output
     assert re.search(r"inertia-lint\.+Failed", output), output
@@ -330,7 +344,7 @@ def test_try_repo_lint_fails_a_broken_mass_in_a_fragment(hook_repo, tmp_path):
 
 
 @pytest.mark.slow
-def test_try_repo_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
+def test_hook_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
     """The wheel macro lost its <inertial>: the fill hook on wheels.xacro writes it there (and
     nowhere else), fails so the change is reviewed, and passes on the next run."""
 
@@ -340,7 +354,7 @@ def test_try_repo_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
 
     project = _wheeled(tmp_path / "fill-wheels", drop_inertial)
     others = {p: p.read_bytes() for p in project.rglob("*.xacro") if p.name != "wheels.xacro"}
-    done = _try_repo(hook_repo, project, "inertia-fill", files=(WHEELS,))
+    done = _run_hook(hook_repo, project, "inertia-fill", files=(WHEELS,))
     output = done.stdout + done.stderr
     assert done.returncode == 1, output
     assert "- files were modified by this hook" in output
@@ -355,7 +369,7 @@ def test_try_repo_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
     assert f'<mass value="{mass}"/>' in filled[start : filled.index("</xacro:macro>", start)]
     assert {p: p.read_bytes() for p in others} == others
 
-    done = _try_repo(hook_repo, project, "inertia-fill", files=(WHEELS,))
+    done = _run_hook(hook_repo, project, "inertia-fill", files=(WHEELS,))
     output = done.stdout + done.stderr
     assert done.returncode == 0, output
     assert re.search(r"inertia-fill\.+Passed", output), output
