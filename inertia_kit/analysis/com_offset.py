@@ -3,13 +3,36 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from inertia_kit.analysis.declared import declared_com
 from inertia_kit.analysis.geometry import Geometry
 
+if TYPE_CHECKING:
+    from inertia_kit.analysis.links import LinkAnalysis
+
 _AXES = np.concatenate((np.eye(3), -np.eye(3)))
+
+
+def judged_com(link: LinkAnalysis, min_mass_share: float) -> np.ndarray | None:
+    """
+    The declared centre of mass the COM rules (IN021, IN067) judge, or ``None``: judged on its
+    own (the tensor or the mass may be missing or not a number: IN003, IN004), but not for a
+    mass <= 0, which has none (IN002), nor for a negligible part of a welded body, whose centre
+    of mass moves the lumped one by nothing.
+    """
+    inertial = link.link.inertial
+    com = declared_com(link.link)
+    if inertial is None or com is None:
+        return None
+    if isinstance(inertial.mass, float) and not inertial.mass > 0:
+        return None
+    if link.mass_share < min_mass_share:
+        return None
+    return com
 
 
 def offset_fraction(geometry: Geometry, com: ArrayLike) -> float:

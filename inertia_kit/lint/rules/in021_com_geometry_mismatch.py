@@ -6,8 +6,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.com_offset import offset_fraction
-from inertia_kit.analysis.declared import declared_com
+from inertia_kit.analysis.com_offset import judged_com, offset_fraction
 from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
@@ -48,16 +47,9 @@ def _alike(link: LinkAnalysis, com: np.ndarray) -> str:
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    # the centre of mass is judged on its own: the tensor or the mass may be missing or not a
-    # number (IN003, IN004); a mass ≤ 0 has none (IN002)
+    com = judged_com(link, float(ctx.option("min_mass_share")))
     inertial = link.link.inertial
-    com = declared_com(link.link)
-    if inertial is None or com is None:
-        return
-    if isinstance(inertial.mass, float) and not inertial.mass > 0:
-        return
-    # a negligible part of a welded body: its centre of mass moves the lumped one by nothing
-    if link.mass_share < float(ctx.option("min_mass_share")):
+    if com is None or inertial is None:
         return
     source = inertial.origin.source or inertial.source
     envelope = link.envelope

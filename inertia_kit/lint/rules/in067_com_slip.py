@@ -6,7 +6,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.declared import declared_com
+from inertia_kit.analysis.com_offset import judged_com
 from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
@@ -43,13 +43,9 @@ def _length(metres: float) -> str:
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    com = judged_com(link, float(ctx.option("min_mass_share")))
     inertial = link.link.inertial
-    com = declared_com(link.link)
-    if inertial is None or com is None:
-        return
-    if isinstance(inertial.mass, float) and not inertial.mass > 0:
-        return
-    if link.mass_share < float(ctx.option("min_mass_share")):
+    if com is None or inertial is None:
         return
     diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
     if diagnosis is None or diagnosis.reading is None:
