@@ -127,7 +127,7 @@ def plan_fixes(
         again = recompute and link.link.inertial is not None and bool(link.geometry.solids)
         if not (selected or by_name or again):
             continue
-        slip = _slip(link, selected, offered, choice)
+        slip = _slip(link, selected, offered, choice, safe_only)
         if slip is not None:
             safety, title, values = slip
             chosen[link.name] = slip
@@ -174,17 +174,22 @@ def plan_fixes(
 
 
 def _slip(
-    link: LinkAnalysis, selected: list[FixRule], offered: list[FixRule], choice: MassChoice
+    link: LinkAnalysis,
+    selected: list[FixRule],
+    offered: list[FixRule],
+    choice: MassChoice,
+    safe_only: bool = False,
 ) -> tuple[Safety, str, MassProperties] | None:
     """``(safety, title, values)`` of a selected slip fix, of the tensor (``how="slip"``) or of
     the centre of mass (``how="com-slip"``), or both (``None``: none, or a mass given for the
-    link: then the geometry's tensor for that mass)."""
+    link: then the geometry's tensor for that mass). With ``safe_only``, a safe tensor fix is
+    not joined to the unsafe centre of mass one (which would make both unsafe: neither taken)."""
     rule = next((w for w in selected if w.how == "slip"), None)
     moved = next((w for w in selected if w.how == "com-slip"), None)
     if (rule is None and moved is None) or link.name in choice.masses:
         return None
     found = _tensor_slip(link, rule, offered) if rule is not None else None
-    if moved is None:
+    if moved is None or (safe_only and found is not None and found[0] is Safety.SAFE):
         return found
     com = _com_slip(link)
     if com is None:
@@ -268,6 +273,8 @@ def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files) -> list
     result = []
     for finding in findings:
         found = fixes.links.get(finding.link or "") if finding.wants is not None else None
+        if found is not None and finding.wants.how == "com-slip" and found.safety is Safety.SAFE:
+            found = None  # a centre of mass slip fix is never safe: a safe one leaves it (_slip)
         if found is not None and found.reason is not None:
             finding = dataclasses.replace(finding, unfixable=found.reason)
         elif found is not None and found.edits:

@@ -76,3 +76,16 @@ def test_with_a_tensor_slip_both_are_undone_in_one_fix(tmp_path):
     text = path.read_text()
     assert '<origin xyz="0.01 0.24 0"/>' in text and 'ixx="0.0270833"' in text
     assert run_lint([str(path)])[1].strip() == "No findings in 1 file."
+
+
+def test_a_safe_tensor_fix_is_not_held_back_by_the_unsafe_com_fix(tmp_path):
+    # joined, the two made one unsafe fix: plain --fix took neither (IN063's safe one included)
+    path = tmp_path / "r.urdf"
+    path.write_text(moving(inertial(2.0, 27083.3, 833.3, 27083.3, xyz="0.01 -0.24 0") + BAR))
+    code, output = run_lint(["--fix", str(path)])
+    text = path.read_text()
+    assert 'ixx="0.0270833"' in text and '<origin xyz="0.01 -0.24 0"/>' in text
+    assert code == 1 and "Fixed 1 finding; 1 error remains" in output and "IN067" in output
+    run_lint(["--fix", "--unsafe-fixes", str(path)])
+    assert '<origin xyz="0.01 0.24 0"/>' in path.read_text()
+    assert run_lint([str(path)])[1].strip() == "No findings in 1 file."
