@@ -128,7 +128,7 @@ def readings(
 def link_frames(link: model.Link, children: Sequence[model.Joint]) -> list:
     """Named poses of a link's shapes and child joints (not the link's own): ``(name, pose)``."""
     frames = []
-    seen: list[NDArray[np.float64]] = []
+    seen: set[tuple[float, ...]] = set()  # poses to 1e-9: a star of 5000 joints compared pairwise
     places = [(f"the frame of joint `{j.name}`", j.origin) for j in children]
     for shape in (*link.collisions, *link.visuals):
         places.append((f"the {shape.kind} origin's frame", shape.origin))
@@ -140,9 +140,10 @@ def link_frames(link: model.Link, children: Sequence[model.Joint]) -> list:
         pose = np.eye(4)
         pose[:3, :3] = rpy_matrix(rpy)  # type: ignore[arg-type]
         pose[:3, 3] = xyz
-        if np.allclose(pose, np.eye(4)) or any(np.allclose(pose, p) for p in seen):
+        key = tuple(np.round(pose, 9).ravel().tolist())
+        if np.allclose(pose, np.eye(4)) or key in seen:
             continue
-        seen.append(pose)
+        seen.add(key)
         frames.append((name, pose))
     return frames
 
