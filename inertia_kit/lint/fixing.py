@@ -205,13 +205,9 @@ def _slip(
 
 def _com_slip(link: LinkAnalysis) -> NDArray[np.float64] | None:
     """The centre of mass with its slip undone (IN067), or ``None``."""
-    from inertia_kit.analysis.declared import declared_com
-    from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
+    from inertia_kit.analysis.forensics.com_slip import diagnose_link_com
 
-    com = declared_com(link.link)
-    if com is None:
-        return None
-    diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
+    diagnosis = diagnose_link_com(link)
     return None if diagnosis is None or diagnosis.reading is None else diagnosis.reading.point
 
 

@@ -30,8 +30,10 @@ mass lies at a fraction of the way to the geometry's edge with quantiles 50 % 0.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,6 +42,9 @@ from inertia_kit.analysis.com_offset import least_fraction
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.description import model
 from inertia_kit.physics.frames import rpy_matrix
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.links import LinkAnalysis
 
 #: the corrected point lies within this fraction of the way from the centroid to the edge:
 #: between the 95th and the 99th percentile of real links (0.41, 0.54), and below IN021's
@@ -207,3 +212,24 @@ def diagnose_com(
         for g in usable
     )
     return ComDiagnosis(declared, chosen, (), distance)
+
+
+_LINKS: weakref.WeakKeyDictionary[LinkAnalysis, ComDiagnosis | None] = weakref.WeakKeyDictionary()
+
+
+def diagnose_link_com(link: LinkAnalysis) -> ComDiagnosis | None:
+    """
+    :func:`diagnose_com` of a link's declared centre of mass against its bases and the frames
+    of its shapes and child joints, or ``None`` (no declared point). Cached per link: IN021's
+    help, IN067 and the fix planner all ask.
+    """
+    if link not in _LINKS:
+        from inertia_kit.analysis.declared import declared_com
+
+        com = declared_com(link.link)
+        _LINKS[link] = (
+            None
+            if com is None
+            else diagnose_com(com, link.bases, link_frames(link.link, link.children))
+        )
+    return _LINKS[link]

@@ -7,7 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.com_offset import judged_com, offset_fraction
-from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
+from inertia_kit.analysis.forensics.com_slip import diagnose_link_com
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -36,10 +36,10 @@ def _xyz(point: np.ndarray) -> str:
     return "(" + ", ".join(fmt(v, 4) for v in point) + ")"
 
 
-def _alike(link: LinkAnalysis, com: np.ndarray) -> str:
+def _alike(link: LinkAnalysis) -> str:
     """The slips that would each explain the centre of mass alike (IN067 names one that alone
     does), for the help: ``""`` when there are none."""
-    diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
+    diagnosis = diagnose_link_com(link)
     if diagnosis is None or diagnosis.reading is not None or not diagnosis.rivals:
         return ""
     words = " or with ".join(r.words for r in diagnosis.rivals)
@@ -67,7 +67,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 link=link.name,
                 expected=None if centroid is None else {"xyz": [float(v) for v in centroid]},
                 help="the centre of mass is in the link frame (check the sign, the axes and the "
-                "unit of <inertial><origin xyz>), or the geometry is misplaced" + _alike(link, com),
+                "unit of <inertial><origin xyz>), or the geometry is misplaced" + _alike(link),
                 severity=Severity.ERROR,
             )
             return
@@ -91,5 +91,5 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         link=link.name,
         expected={"xyz": [float(v) for v in centroid], "offset_fraction": fractions[0]},
         help="check <inertial><origin xyz> (link frame, metres); a heavy motor or counterweight "
-        "at one end explains an offset, a value about another frame does not" + _alike(link, com),
+        "at one end explains an offset, a value about another frame does not" + _alike(link),
     )

@@ -7,7 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.com_offset import judged_com
-from inertia_kit.analysis.forensics.com_slip import diagnose_com, link_frames
+from inertia_kit.analysis.forensics.com_slip import diagnose_link_com
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -47,7 +47,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     inertial = link.link.inertial
     if com is None or inertial is None:
         return
-    diagnosis = diagnose_com(com, link.bases, link_frames(link.link, link.children))
+    diagnosis = diagnose_link_com(link)
     if diagnosis is None or diagnosis.reading is None:
         return  # nothing explains it, or two slips alike: IN021 reports the symptom
     if not diagnosis.declared_fraction > float(ctx.option("min_offset")):
