@@ -138,7 +138,7 @@ class LinkAnalysis:
         """The link's mass as a fraction of its fixed-joint group's (see RobotAnalysis)."""
         return 1.0 if self.robot is None else self.robot.mass_share(self.name)
 
-    @property
+    @functools.cached_property
     def bases(self) -> tuple[Geometry, ...]:
         """
         Every usable geometry of the link, collision first then visual: the shapes a rule may

@@ -56,7 +56,9 @@ def _parent(shape: str, index: int) -> str:
 def urdf(links: int, shape: str = "chain", joint: str = "revolute") -> str:
     """
     A URDF of ``links`` links (the base, welded to ``world``, and ``links - 1`` more), each on
-    a ``joint`` of that type (``fixed``: one body of them all, for the engines).
+    a ``joint`` of that type (``fixed``: one body of them all, for the engines; ``alternate``:
+    every odd link welded, every even one on a revolute joint, so one big welded body meets
+    thousands of moving joints).
     """
     parts = [
         '<?xml version="1.0"?>\n<robot name="big">\n',
@@ -65,7 +67,8 @@ def urdf(links: int, shape: str = "chain", joint: str = "revolute") -> str:
         _link("base", 0),
     ]
     for index in range(1, links):
-        parts.append(_joint(_parent(shape, index), f"l{index}", joint))
+        kind = joint if joint != "alternate" else ("fixed" if index % 2 else "revolute")
+        parts.append(_joint(_parent(shape, index), f"l{index}", kind))
         parts.append(_link(f"l{index}", index))
     parts.append("</robot>\n")
     return "".join(parts)

@@ -32,7 +32,7 @@ UNLINTED_SEVERITY = "critical"
 
 def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalError] = ()) -> str:
     root = os.environ.get("CI_PROJECT_DIR") or os.getcwd()
-    seen: set[str] = set()
+    seen: dict[tuple[str, str, str], str] = {}
     issues = []
     for finding in findings:
         subject = finding.link or finding.joint or ""
@@ -71,12 +71,14 @@ def _issue(
     path: str,
     line: int | None,
     subject: str,
-    seen: set[str],
+    seen: dict[tuple[str, str, str], str],
 ) -> dict[str, Any]:
-    fingerprint = _fingerprint("", code, path, subject)
-    while fingerprint in seen:
-        fingerprint = _fingerprint(fingerprint, code, path, subject)
-    seen.add(fingerprint)
+    # the k-th finding alike (code, file, subject) gets the k-th link of a hash chain: stable
+    # while their order is; the chain's last link is kept, so 5000 alike cost 5000 hashes
+    key = (code, path, subject)
+    last = seen.get(key)
+    fingerprint = _fingerprint("" if last is None else last, code, path, subject)
+    seen[key] = fingerprint
     return {
         "description": description,
         "check_name": code,

@@ -98,9 +98,14 @@ def _slipped(robot: RobotAnalysis, heavy: str, light: str) -> LinkAnalysis | Non
     The link of the heavy body whose density is beyond any material (analysis.fault) when
     no link of the light body's is: the mass that slipped. ``None`` when unclear.
     """
-    found = densest(robot.group_of(heavy))
+    # once per group: a base welded to thousands of links is on every one of its joints
+    found = robot.group_fact(heavy, "densest", densest)
     if found is None:
         return None
-    if any(density_excess(m) for m in robot.group_of(light)):
+    if robot.group_fact(light, "any density excess", _any_excess):
         return None
     return found[0]
+
+
+def _any_excess(group: tuple[LinkAnalysis, ...]) -> bool:
+    return any(density_excess(m) for m in group)
