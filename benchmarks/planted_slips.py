@@ -97,7 +97,12 @@ Per kind: cases, identifiable cases (and by the older test), detected (a new err
 on the link, any rule) of all cases and of the identifiable ones, named (an error or warning of
 the own rule on the link, or of an equivalent rule that restores the true values) of the
 identifiable ones, and the cases with a new finding (any severity) on another link of the
-robot than the one planted. ``--save FILE`` writes every case as JSON.
+robot than the one planted ("untouched+"). A finding there is new when that link had no finding
+of its rule before, or of the rule's family (:data:`FAMILIES`: a copied tensor is IN013's, or
+IN066's when the whole block is the same; a centre of mass slip on the original changes which of
+the two speaks of the copy); a finding there whose severity only changed is counted apart
+("raised", "lowered": a helper frame's share of its body judged again when the body's own values
+slip, rules/README.md "Severity by consequence"). ``--save FILE`` writes every case as JSON.
 """
 
 from __future__ import annotations
@@ -541,8 +546,35 @@ def _neighbour(analysis, link) -> Values | None:
     return None
 
 
-def _key(finding) -> tuple:
-    return (finding.link, finding.code, int(finding.severity))
+#: rules that speak of one defect of a link: which of them does depends on its neighbours
+FAMILIES = {"IN013": "copied", "IN066": "copied"}
+
+
+def _subject(finding) -> tuple:
+    """The link and the defect a finding is about, whatever its severity."""
+    return (finding.link, FAMILIES.get(finding.code, finding.code))
+
+
+def changes_elsewhere(before: list, after: list, planted: str) -> tuple[list, list, list]:
+    """
+    The findings on links other than ``planted``: new (``link:code``), raised and lowered in
+    severity (module doc).
+    """
+    severities: dict[tuple, set[int]] = defaultdict(set)
+    for f in before:
+        severities[_subject(f)].add(int(f.severity))
+    new, raised, lowered = set(), set(), set()
+    for f in after:
+        if f.link == planted:
+            continue
+        known = severities.get(_subject(f))
+        if not known:
+            new.add(f"{f.link}:{f.code}")
+        elif int(f.severity) > max(known):
+            raised.add(f"{f.link}:{f.code}")
+        elif int(f.severity) < min(known):
+            lowered.add(f"{f.link}:{f.code}")
+    return sorted(new), sorted(raised), sorted(lowered)
 
 
 def plant(jobs: list[dict]) -> list[dict]:
@@ -551,7 +583,6 @@ def plant(jobs: list[dict]) -> list[dict]:
     robot = _load(Path(first["folder"]), Path(first["file"]))
     load = _loader()
     analysis, findings = _lint(robot, load)
-    before = {_key(f) for f in findings}
     results = []
     for job in jobs:
         name = job["link"]
@@ -576,9 +607,7 @@ def plant(jobs: list[dict]) -> list[dict]:
             except Exception as error:  # a crash is a result too
                 after, crash, seen = [], f"{type(error).__name__}: {error}", False
             on_link = [f for f in after if f.link == name and _loud(f)]
-            elsewhere = sorted(
-                {f"{f.link}:{f.code}" for f in after if f.link != name and _key(f) not in before}
-            )
+            elsewhere, raised, lowered = changes_elsewhere(findings, after, name)
             own = OWN_RULE[kind]
             named = own is not None and any(
                 f.code in (own, *ALSO_NAMED_BY.get(own, ())) for f in on_link
@@ -603,6 +632,8 @@ def plant(jobs: list[dict]) -> list[dict]:
                     "reading": com_reading(on_link, true, job["size"]),
                     "codes": sorted({f"{f.code}:{f.severity}" for f in after if f.link == name}),
                     "elsewhere": elsewhere,
+                    "raised": raised,
+                    "lowered": lowered,
                     "crash": crash,
                 }
             )
@@ -743,6 +774,15 @@ def main() -> int:
         print("new findings on untouched links (slip, rule: cases):")
         for (kind, code), n in sorted(elsewhere.items()):
             print(f"  {kind} {code}: {n}")
+    for change in ("raised", "lowered"):
+        changed = defaultdict(int)
+        for r in results:
+            for item in r.get(change, ()):
+                changed[r["kind"], item.split(":")[1]] += 1
+        if changed:
+            print(f"findings on untouched links whose severity {change} (slip, rule: cases):")
+            for (kind, code), n in sorted(changed.items()):
+                print(f"  {kind} {code}: {n}")
     crashes = [r for r in results if r["crash"]]
     if crashes:
         print(f"{len(crashes)} cases crashed the linter, e.g. {crashes[0]['crash']}")

@@ -11,9 +11,12 @@ best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner 
 a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`, its
 centre of mass within :data:`OWNER_COM` of its size from the centroid); each
 other one whose values depart clearly more from its own geometry
-(:func:`~inertia_kit.analysis.fault.worse`) holds a copy. A block that fits no link as a real
-part is a placeholder, not a copy: each link's own rules (IN013, IN020, IN023) judge it, and no
-link is named the copy of another (two dummy frames sharing 1e-6 kg could each be either).
+(:func:`~inertia_kit.analysis.fault.worse`) holds a copy. Real CAD values sometimes fit their
+own part more loosely than that (Panda's ``link5`` a factor of 4.9 from its collision mesh); a
+block that fits its best link only so is still that link's where on another link it is no real
+part's values and departs far more (:func:`_foreign`). A block that fits no link plausibly is a
+placeholder, not a copy: each link's own rules (IN013, IN020, IN023) judge it, and no link is
+named the copy of another (two dummy frames sharing 1e-6 kg could each be either).
 """
 
 from __future__ import annotations
@@ -21,8 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from inertia_kit.analysis.fault import COM_MARGIN, TENSOR_MARGIN, Departure, departure, worse
-from inertia_kit.analysis.forensics.measure import BAND
+from inertia_kit.analysis.fault import (
+    COM_MARGIN,
+    IMPLAUSIBLE,
+    TENSOR_MARGIN,
+    Departure,
+    departure,
+    worse,
+)
+from inertia_kit.analysis.forensics.measure import BAND, MARGIN
 
 if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -31,6 +41,8 @@ if TYPE_CHECKING:
 #: ... and its centre of mass within this fraction of the link's size from the centroid: a
 #: motor at one end moves a real part's a third of the way to that end (rules/IN021)
 OWNER_COM = 1 / 3
+#: a centre of mass farther than half the link's size from its centroid is outside its geometry
+OUTSIDE = 1 / 2
 
 
 @dataclass(frozen=True)
@@ -59,6 +71,22 @@ def _score(d: Departure) -> float:
     return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
 
 
+def _foreign(copy: Departure, best: Departure) -> bool:
+    """
+    Whether a block that fits its best link only roughly (a real part's CAD values off by more
+    than the band, a centre of mass far from the centroid: Panda's ``link5``, Mini Cheetah's
+    shanks) is still plainly that link's and not the other's: on the other it is no real part's
+    values (:data:`~inertia_kit.analysis.fault.IMPLAUSIBLE`), and it departs there by a factor
+    of 2.2 more (:data:`~inertia_kit.analysis.forensics.measure.MARGIN`) or by a third of the
+    link's size more in centre of mass, while the best link's tensor is plausible.
+    """
+    if best.tensor > IMPLAUSIBLE:
+        return False  # it fits no link as any real part: a placeholder
+    if not (copy.tensor > IMPLAUSIBLE or copy.com > OUTSIDE):
+        return False
+    return copy.tensor - best.tensor > MARGIN or copy.com - best.com > OWNER_COM
+
+
 def copies(robot: RobotAnalysis) -> list[Copy]:
     """The links holding another link's copied block, in file order (module doc)."""
     groups: dict[tuple, list[LinkAnalysis]] = {}
@@ -72,10 +100,11 @@ def copies(robot: RobotAnalysis) -> list[Copy]:
         if len(judged) < 2:
             continue
         original, best = min(judged, key=lambda item: _score(item[1]))
-        if not (best.tensor <= BAND and best.com <= OWNER_COM):
-            continue  # no link owns it as a real part would: a placeholder, not a copy
+        owned = best.tensor <= BAND and best.com <= OWNER_COM
         found += [
-            Copy(m, original, d, best) for m, d in judged if m is not original and worse(d, best)
+            Copy(m, original, d, best)
+            for m, d in judged
+            if m is not original and worse(d, best) and (owned or _foreign(d, best))
         ]
     order = {link.name: i for i, link in enumerate(robot.links)}
     return sorted(found, key=lambda c: order[c.link.name])

@@ -84,22 +84,31 @@ def departure(link: LinkAnalysis) -> Departure | None:
     return Departure(tensor, com)
 
 
-def worse(a: Departure, b: Departure) -> bool:
-    """Whether ``a`` departs clearly more than ``b`` (module doc)."""
+def worse(
+    a: Departure, b: Departure, margins: tuple[float, float] = (TENSOR_MARGIN, COM_MARGIN)
+) -> bool:
+    """
+    Whether ``a`` departs clearly more than ``b`` (module doc): by ``margins`` (tensor, centre
+    of mass), :data:`TENSOR_MARGIN` and :data:`COM_MARGIN` unless a rule knows the two should
+    depart alike (mirrored twins).
+    """
+    tensor_margin, com_margin = margins
     tensor, com = a.tensor - b.tensor, a.com - b.com
-    if tensor > TENSOR_MARGIN and com >= -COM_MARGIN:
+    if tensor > tensor_margin and com >= -com_margin:
         return True
-    return com > COM_MARGIN and tensor >= -TENSOR_MARGIN
+    return com > com_margin and tensor >= -tensor_margin
 
 
-def at_fault(a: LinkAnalysis, b: LinkAnalysis) -> LinkAnalysis | None:
+def at_fault(
+    a: LinkAnalysis, b: LinkAnalysis, margins: tuple[float, float] = (TENSOR_MARGIN, COM_MARGIN)
+) -> LinkAnalysis | None:
     """``a`` or ``b``, whichever departs clearly more from its geometry; ``None`` when unclear."""
     first, second = departure(a), departure(b)
     if first is None or second is None:
         return None
-    if worse(first, second):
+    if worse(first, second, margins):
         return a
-    if worse(second, first):
+    if worse(second, first, margins):
         return b
     return None
 

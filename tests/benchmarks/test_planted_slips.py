@@ -153,3 +153,29 @@ def test_an_equivalent_rule_names_a_slip_when_its_repair_restores_the_true_value
     # a repair that does not restore them: the true values of another mass
     assert not any(ps.restored(f, true.replace(mass=2 * true.mass)) for f in found)
     assert not any(ps.restored(f, true.replace(tensor=1.1 * true.tensor)) for f in found)
+
+
+def test_changes_elsewhere_tells_new_findings_from_changed_severities():
+    from inertia_kit.lint.findings import Severity
+
+    def finding(link, code, severity):
+        return dataclasses.make_dataclass("F", ["link", "code", "severity"])(link, code, severity)
+
+    before = [
+        finding("imu", "IN020", Severity.WARNING),
+        finding("roll", "IN066", Severity.WARNING),
+        finding("wheel", "IN023", Severity.ERROR),
+    ]
+    after = [
+        finding("planted", "IN021", Severity.ERROR),  # on the planted link: not elsewhere
+        finding("imu", "IN020", Severity.ERROR),  # raised
+        finding("roll", "IN013", Severity.WARNING),  # the copy told by the other rule
+        finding("wheel", "IN023", Severity.WARNING),  # lowered
+        finding("wheel", "IN020", Severity.WARNING),  # new
+        finding("twin", "IN065", Severity.WARNING),  # new
+    ]
+    assert ps.changes_elsewhere(before, after, "planted") == (
+        ["twin:IN065", "wheel:IN020"],
+        ["imu:IN020"],
+        ["wheel:IN023"],
+    )

@@ -11,6 +11,7 @@ from inertia_kit.analysis.fault import at_fault, departure
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.analysis.twins import (
     COM_TOLERANCE,
+    FAULT_MARGINS,
     MASS_TOLERANCE,
     TENSOR_TOLERANCE,
     Disagreement,
@@ -94,6 +95,9 @@ def _which(twin: Twins) -> tuple[Twins, str]:
     geometry (analysis.fault), else the right one as written, the file unable to tell.
     """
     culprit = at_fault(twin.left, twin.right)
+    clearly = culprit is not None
+    if culprit is None:
+        culprit = at_fault(twin.left, twin.right, FAULT_MARGINS)
     if culprit is None:
         return twin, (
             "Which twin is right the file cannot say: check both against the CAD part (a "
@@ -104,6 +108,13 @@ def _which(twin: Twins) -> tuple[Twins, str]:
         twin = _turned(twin)
     good, bad = departure(twin.left), departure(twin.right)
     assert good is not None and bad is not None
+    if not clearly:
+        return twin, (
+            f"`{twin.right.name}`'s values depart a little more from its geometry "
+            f"({bad.text()}; `{twin.left.name}`'s {good.text()}), where mirrored twins' "
+            f"should depart alike: check it first against the CAD part, or write "
+            f"`{twin.left.name}`'s mirror into it"
+        )
     return twin, (
         f"`{twin.right.name}`'s values are the ones that depart from the geometry ({bad.text()}; "
         f"`{twin.left.name}`'s {good.text()}): check it against the CAD part, or write "

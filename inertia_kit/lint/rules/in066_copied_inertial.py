@@ -35,7 +35,7 @@ def _message(copy: Copy) -> str:
     block = f"{fmt(declared.mass)} kg at {vector_text(declared.com)} m and the same six values"
     return (
         f"link `{link}`: its `<inertial>` is the one of `{original}`, copied ({block}): it "
-        f"fits `{original}`'s geometry ({copy.theirs.text()}) but not its own "
+        f"fits `{original}`'s geometry ({copy.theirs.text()}) far better than its own "
         f"({copy.mine.text()})"
     )
 

@@ -95,3 +95,17 @@ def test_a_plausible_heavy_body_leaves_the_light_one_named(lint):
     # a light side itself implausible (0.00002 kg: 2.5 kg/m³) leaves the finding on it
     findings = lint(boxed(2700.0, 0.00002), "IN042")
     assert [f.link for f in findings] == ["tip"]
+
+
+def test_a_negligible_welded_frame_does_not_hide_the_slipped_mass(lint):
+    # HyQ's shape: a 1 µg foot frame (a 2 cm sphere: far too light for any material) welded
+    # to the tip; it carries 1/20000 of the tip's body and cannot have set its weight
+    text = boxed(2700.0, 0.0216).replace(
+        "</robot>",
+        joint("tip", "foot", "fixed", name="foot_joint")
+        + link("foot", box_inertial(1e-6, (0.02, 0.02, 0.02)), collision(box(0.02, 0.02, 0.02)))
+        + "</robot>",
+    )
+    (finding,) = lint(text, "IN042")
+    assert finding.link == "body"
+    assert "`body` is the likely slip" in finding.message

@@ -186,10 +186,26 @@ def test_the_twin_at_fault_is_named_whichever_side(lint, meshes):
 
 
 def test_twins_that_depart_alike_keep_one_finding_on_the_right(lint, meshes):
-    # both hips' tensors are off the geometry alike (products unflipped): the file cannot say
-    findings = lint(pair(VALUES), "IN065")
+    # the same tensor mirrored and the same mass; each centre of mass 0.01 m (5 % of the
+    # size) from its centroid, but along x on the left and z on the right: they disagree
+    # (0.014 m apart mirrored, over the 0.01 m tolerance) and depart from their geometry alike
+    left = hip("l_hip", "left_hip.stl", "0 0.1 -0.15", VALUES, com=(0.035, 0.0125, -0.05))
+    right = hip(
+        "r_hip", "right_hip.stl", "0 -0.1 -0.15", mirrored(VALUES), com=(0.025, -0.0125, -0.04)
+    )
+    findings = lint(biped(left, right), "IN065")
     assert [f.link for f in findings] == ["r_hip"]
     assert "Which twin is right the file cannot say" in findings[0].help
+
+
+def test_products_left_unflipped_put_the_finding_on_the_twin_that_departs_more(lint, meshes):
+    # VALUES on both: the right hip's products have the sign of the left's geometry, not its
+    # own; twins should depart from their geometry alike, so the one departing more (by far
+    # less than a clear culprit's margin) gets the finding, with a hedged help
+    findings = lint(pair(VALUES), "IN065")
+    assert [f.link for f in findings] == ["r_hip"]
+    assert "depart a little more from its geometry" in findings[0].help
+    assert "where mirrored twins' should depart alike" in findings[0].help
 
 
 def test_mass_within_tolerance_is_quiet(lint, meshes):

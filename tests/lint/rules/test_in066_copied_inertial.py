@@ -94,3 +94,31 @@ def test_no_owner_when_the_centre_of_mass_fits_no_real_part(lint):
     # link as a real part's would, so neither holds the other's copy
     off = inertial(2.0, *box_moments(2.0, UPPER), xyz=(0, 0, 0.29))
     assert lint(arm(off, off), "IN066") == []
+
+
+def test_a_block_its_own_link_fits_loosely_is_still_named_where_it_fits_nothing(lint):
+    # the upper arm's tensor 3 times its box's about every axis (log distance 1.1: beyond the
+    # 0.92 band real CAD parts keep, so not an owner by that test, as Panda's link5 against
+    # its collision mesh) pasted on a 3 cm fingertip, where it is ~50 times off and its centre
+    # of mass 4 fingertips away: plainly the arm's, not the tip's
+    tip = (0.03, 0.03, 0.03)
+    loose = inertial(2.0, *(3 * m for m in box_moments(2.0, UPPER)), xyz=(0, 0, 0.15))
+    text = robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", loose, UPPER),
+        joint("upper_arm", "tip", xyz=(0, 0, 0.3)),
+        part("tip", loose, tip),
+    )
+    (finding,) = lint(text, "IN066")
+    assert finding.link == "tip" and finding.expected["original"] == "upper_arm"
+    assert "far better than its own" in finding.message
+    # the same loose block on a link it fits about as well: no copy named
+    text = robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        part("upper_arm", loose, UPPER),
+        joint("upper_arm", "twin", xyz=(0, 0, 0.3)),
+        part("twin", loose, (0.08, 0.08, 0.28)),
+    )
+    assert lint(text, "IN066") == []
