@@ -258,6 +258,13 @@ class RobotAnalysis:
             self._group_facts[key] = compute(group)
         return self._group_facts[key]
 
+    def fact(self, name: str, compute: Callable[[RobotAnalysis], Any]) -> Any:
+        """``compute(self)``, once per robot and ``name``: what several rules ask of all links."""
+        key = ("\0", name)  # no link is named "\0": XML cannot hold it
+        if key not in self._group_facts:
+            self._group_facts[key] = compute(self)
+        return self._group_facts[key]
+
     def welded_to_world(self, name: str) -> bool:
         """Whether a fixed-joint path joins ``name`` to the link ``world`` (a static body)."""
         return self.group_fact(

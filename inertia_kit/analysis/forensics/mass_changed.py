@@ -17,17 +17,28 @@ beyond what any silent real link shows (:data:`SCALE`), the departure within wha
 (:data:`SHAPE`), every axis off the same way, and the factor no unit's (:data:`MOST`: a
 factor of 30 or more is a unit, IN063, or a made-up value). Nothing is corrected:
 which of the two numbers is right, the mass or the tensor, the values cannot say.
+
+A real part's scatter hides a factor under 2.5 from its own geometry, but not from its twin: a
+link whose six ``<inertia>`` values are another link's (a left/right twin, a repeated finger),
+whose geometry is the same shape per kilogram, and whose mass is a factor beyond :data:`SCALE`
+from that link's, holds a tensor computed for the other mass (:func:`mass_beside_copy`); the
+link whose values depart more from its geometry (analysis.fault) is the one whose mass changed.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from inertia_kit.analysis.fault import departure, worse
 from inertia_kit.analysis.forensics.measure import symmetric
 from inertia_kit.physics.mass import MassProperties
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 
 #: the common factor must be beyond this log (a factor of 2.5, the forensics' BAND): over the
 #: 2218 silent links of the installed robot packages (``benchmarks/cad_band.py``, best basis)
@@ -79,3 +90,75 @@ def mass_change(declared: MassProperties, expected: MassProperties) -> MassChang
         return None
     factor = math.exp(scale)
     return MassChange(factor, shape, factor * declared.mass)
+
+
+#: two geometries are one shape per kilogram when their principal moments per kilogram are
+#: within this factor of each other (IN013's default ``copy_factor``: a box of sides 1 : 1 : 1.7
+#: already has moments 1 : 2)
+SAME_SHAPE = 2.0
+
+
+@dataclass(frozen=True)
+class RetypedMass:
+    """The link's six values are :attr:`other`'s, its mass :attr:`factor` times that link's."""
+
+    other: LinkAnalysis
+    factor: float
+
+
+def _six(link: LinkAnalysis) -> tuple[float, ...] | None:
+    inertial = link.link.inertial
+    declared = link.declared
+    if inertial is None or declared is None or not (declared.mass > 0):
+        return None
+    values = tuple(inertial.tensor_values().values())
+    if not all(isinstance(v, float) and math.isfinite(v) for v in values) or not any(values):
+        return None
+    return values  # type: ignore[return-value]
+
+
+def _by_values(robot: RobotAnalysis) -> dict[tuple[float, ...], list[LinkAnalysis]]:
+    found: dict[tuple[float, ...], list[LinkAnalysis]] = {}
+    for link in robot.links:
+        values = _six(link)
+        if values is not None:
+            found.setdefault(values, []).append(link)
+    return found
+
+
+def _unit_moments(link: LinkAnalysis) -> np.ndarray | None:
+    try:
+        unit = link.geometry.at_mass(1.0)
+    except (ValueError, FloatingPointError, np.linalg.LinAlgError):
+        return None
+    if unit is None:
+        return None
+    moments = np.linalg.eigvalsh(symmetric(unit.inertia))
+    return moments if moments[0] > 0 and np.isfinite(moments).all() else None
+
+
+def mass_beside_copy(link: LinkAnalysis) -> RetypedMass | None:
+    """The other link whose tensor this link's mass was changed beside, or ``None`` (module doc)."""
+    robot = link.robot
+    values = _six(link)
+    if robot is None or values is None:
+        return None
+    others = [o for o in robot.fact("links by six values", _by_values)[values] if o is not link]
+    mine = _unit_moments(link)
+    own = departure(link)
+    if not others or mine is None or own is None:
+        return None
+    assert link.declared is not None
+    for other in others:
+        assert other.declared is not None
+        factor = link.declared.mass / other.declared.mass
+        if not (SCALE <= abs(math.log(factor)) < MOST):
+            continue
+        theirs, fit = _unit_moments(other), departure(other)
+        if theirs is None or fit is None:
+            continue
+        if float(np.max(np.maximum(mine / theirs, theirs / mine))) > SAME_SHAPE:
+            continue  # another shape: a copied tensor, IN013's
+        if worse(own, fit):
+            return RetypedMass(other, factor)
+    return None

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.copies import copies as whole_copies
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
+from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy
 from inertia_kit.analysis.forensics.measure import BAND, LogMetric
 from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
@@ -228,6 +229,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             apart = _spread(written.tensor, original_written.tensor)
             if apart <= copy_factor or _negligible(robot, member, written.tensor):
                 continue
+            if mass_beside_copy(member) is not None:
+                continue  # the tensor kept while the mass changed: IN068's
             inertial = member.link.inertial
             assert inertial is not None
             flagged.add(member.name)

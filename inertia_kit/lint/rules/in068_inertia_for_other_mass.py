@@ -8,7 +8,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.forensics.links import diagnose_link
-from inertia_kit.analysis.forensics.mass_changed import mass_change
+from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy, mass_change
 from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
@@ -46,9 +46,11 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         expected = basis.at_mass(declared.mass)
         change = None if expected is None else mass_change(declared, expected)
         if change is None:
-            return  # either geometry reads the values otherwise: which slip it was is unknown
+            found = []  # either geometry reads the values otherwise: its own scatter hides it
+            break
         found.append((basis, change))
     if not found:
+        yield from _beside_copy(link, ctx)
         return
     basis, change = found[0]
     relation = (
@@ -73,4 +75,36 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         help=f"check the mass: if it is right, multiply the six values by {fmt(change.scaled, 3)} "
         f"(the part's shape kept); if the tensor is, the mass it was computed for is about "
         f"{fmt(change.tensor_mass, 3)} kg",
+    )
+
+
+def _beside_copy(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    """The tensor is another link's of the same shape per kilogram, for its mass (module doc of
+    analysis.forensics.mass_changed)."""
+    found = mass_beside_copy(link)
+    if found is None:
+        return
+    declared, inertial = link.declared, link.link.inertial
+    other = found.other
+    assert declared is not None and inertial is not None and other.declared is not None
+    relation = (
+        f"{fmt(found.factor, 3)} times" if found.factor > 1 else f"1/{fmt(1 / found.factor, 3)} of"
+    )
+    yield ctx.finding(
+        f"link `{link.name}`: its six `<inertia>` values are those of `{other.name}`, whose "
+        f"geometry is the same shape per kilogram, but its mass is {relation} `{other.name}`'s "
+        f"({fmt(declared.mass)} kg against {fmt(other.declared.mass)} kg): the mass was likely "
+        "changed after the tensor was computed",
+        inertial.mass_source or inertial.source,
+        link=link.name,
+        expected={
+            "mass": declared.mass,
+            "tensor_mass": other.declared.mass,
+            "factor": found.factor,
+            "original": other.name,
+        },
+        help=f"check the mass: if it is right, multiply the six values by {fmt(found.factor, 3)} "
+        f"(the part's shape kept); if the tensor is, the mass is `{other.name}`'s "
+        f"{fmt(other.declared.mass)} kg; `{link.name}`'s values depart more from its geometry "
+        "than the other's do from theirs",
     )

@@ -164,3 +164,40 @@ def test_a_mass_in_grams_is_named_against_the_geometry_of_the_mass_in_kg():
     assert found.slip.mass_factor == 1000 and found.slip.factor == 1.0
     assert found.corrected.mass == pytest.approx(MASS)
     assert found.likely is not None and found.likely[1] == pytest.approx(LogMetric(GEOMETRY)(REAL))
+
+
+def _turned_x(degrees: float) -> np.ndarray:
+    c, s = np.cos(np.radians(degrees)), np.sin(np.radians(degrees))
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def _negated_products(tensor: np.ndarray) -> np.ndarray:
+    return np.diag(np.diag(tensor)) - (tensor - np.diag(np.diag(tensor)))
+
+
+@pytest.mark.parametrize("moments, named", [((0.2, 0.17, 0.05), True), ((0.2, 0.17, 0.12), False)])
+def test_turned_axes_put_back_need_a_smaller_gain(moments, named):
+    # a part's geometry turned 30° about x (products in its tensor), its CAD tensor 1.3, 0.8 and
+    # 1.2 times the geometry's moments along the same axes, written with its products negated.
+    # Undoing that gains 0.58 in log distance, under MARGIN (0.8): the moments alone would not
+    # name it. With a well-defined axis of least inertia (gap 1.2) the declared one lies 60°
+    # from the geometry's, beyond what a real part shows, and the undone one on it: named. With
+    # all gaps under MIN_GAP (0.12 beside 0.17) the axes prove nothing: not named.
+    from inertia_kit.analysis.forensics.diagnosis import AXES_GAIN
+    from inertia_kit.physics.mass import MassProperties
+
+    turn = _turned_x(30.0)
+    geometry = turn @ np.diag(np.array(moments) / 12) @ turn.T
+    true = turn @ np.diag(np.array(moments) / 12 * (1.3, 0.8, 1.2)) @ turn.T
+    declared = _negated_products(true)
+    logs = LogMetric(geometry)
+    if named:
+        assert AXES_GAIN <= logs(declared) - logs(true) < MARGIN
+    found = diagnose_part(
+        MassProperties(1.0, np.zeros(3), declared), MassProperties(1.0, np.zeros(3), geometry)
+    )
+    if not named:
+        assert found is None
+        return
+    assert isinstance(found.slip, FlippedSigns)
+    assert found.corrected.inertia == pytest.approx(true, rel=1e-9, abs=1e-12)

@@ -36,3 +36,40 @@ def test_the_right_mass_a_placeholder_and_a_unit_are_not_it(lint):
     # the tensor in kg·mm²: IN063's
     mm2 = (ixx * 1e6, iyy * 1e6, izz * 1e6)
     assert in068(lint, moving(inertial(2.0, *mm2) + collision(box(0.4, 0.2, 0.1)))) == []
+
+
+def _twins(left_mass: float, right_mass: float) -> str:
+    from kit.urdf import joint, link, robot
+
+    # a CAD part's tensor: the box's at 2 kg times 1.8, 0.6 and 1 along its axes, too unlike its
+    # geometry in shape (0.56 in log, over SHAPE) for the geometry alone to say "another mass"
+    ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
+    values = (1.8 * ixx, 0.6 * iyy, izz)
+    shape = collision(box(0.4, 0.2, 0.1))
+    return robot(
+        link("world"),
+        joint("world", "base", "fixed"),
+        link("base"),
+        joint("base", "left_leg"),
+        link("left_leg", inertial(left_mass, *values), shape),
+        joint("base", "right_leg"),
+        link("right_leg", inertial(right_mass, *values), shape),
+    )
+
+
+def test_a_mass_changed_beside_its_twin(lint):
+    assert in068(lint, _twins(2.0, 2.0)) == []
+    # the right leg's mass retyped: its twin, same shape and values, says the tensor is for 2 kg
+    (finding,) = in068(lint, _twins(2.0, 6.0))
+    assert finding.link == "right_leg"
+    assert finding.message == (
+        "link `right_leg`: its six `<inertia>` values are those of `left_leg`, whose geometry is "
+        "the same shape per kilogram, but its mass is 3 times `left_leg`'s (6 kg against 2 kg): "
+        "the mass was likely changed after the tensor was computed"
+    )
+    assert finding.expected["tensor_mass"] == pytest.approx(2.0)
+    assert "multiply the six values by 3" in finding.help
+    # one finding for the slip: IN013 leaves the copy alone
+    assert [f.link for f in lint(_twins(2.0, 6.0), "IN013")] == []
+    # a factor within real parts' scatter (2) is not named
+    assert in068(lint, _twins(2.0, 4.0)) == []
