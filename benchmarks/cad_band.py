@@ -32,6 +32,10 @@ rules do), at the declared mass:
 - ``com fraction``: how far the declared COM lies from the centroid of the nearer of the two
   geometries, as a fraction of the way to the edge of its hull (analysis/com_offset.py, what
   IN021 and IN067 measure): the band a centre of mass slip undone must land in.
+- ``gains``: per forensic rule (IN060 … IN064), how much closer to the geometry (log distance)
+  the rule's best reading of the link brings its tensor, among readings landing within the
+  band (analysis.forensics.links.link_gains): on links that are right, what a coincidence
+  gains, the margin each hypothesis must beat (analysis/forensics/diagnosis.py).
 
 Printed: quantiles per measure, for mesh links and primitive links, and overall.
 """
@@ -100,6 +104,7 @@ def axis_angles(declared, geometry) -> list[float]:
 def measure_file(args: tuple[str, str, str]) -> list[dict]:
     package, path, root = args
     from inertia_kit.analysis.com_offset import least_fraction
+    from inertia_kit.analysis.forensics.links import link_gains
     from inertia_kit.analysis.links import analyse
     from inertia_kit.analysis.principal_axes import compare_axes
     from inertia_kit.description.loader import load
@@ -163,6 +168,7 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
         if best is not None:
             best["bases"] = bases
             best["com_fraction"] = least_fraction(link.bases, declared.com)
+            best["gains"] = link_gains(link)
             rows.append(best)
     return rows
 
@@ -220,6 +226,24 @@ def print_axes(rows: list[dict]) -> None:
         print(f"  {need:6.3f} {package} {file} {link}")
 
 
+def print_gains(rows: list[dict]) -> None:
+    """What each forensic rule's best reading gains on these (right) links, and the largest."""
+    codes = sorted({code for r in rows for code in r.get("gains", {})})
+    print(f"forensic readings' gain in log distance on these links; quantiles {QUANTILES}")
+    for code in codes:
+        found = sorted(
+            (
+                (r["gains"][code], r["package"], r["file"], r["link"])
+                for r in rows
+                if code in r.get("gains", {})
+            ),
+            reverse=True,
+        )
+        print(f"  {code} ({len(found)} links read) {quantiles([g for g, *_ in found])}")
+        for gain, package, file, link in found[:3]:
+            print(f"      {gain:6.3f} {package} {file} {link}")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--save", type=Path)
@@ -227,7 +251,9 @@ def main() -> int:
     parser.add_argument("--load", type=Path, help="the rows of an earlier --save, not measured")
     args = parser.parse_args()
     if args.load:
-        print_axes(json.loads(args.load.read_text()))
+        rows = json.loads(args.load.read_text())
+        print_axes(rows)
+        print_gains(rows)
         return 0
     from inertia_kit.lint.discovery import expand_paths
 
@@ -256,6 +282,7 @@ def main() -> int:
         fractions = [r["com_fraction"] for r in chosen if np.isfinite(r["com_fraction"])]
         print(f"  COM fraction      {quantiles(fractions)}")
     print_axes(rows)
+    print_gains(rows)
     if args.save:
         args.save.write_text(json.dumps(rows, indent=1))
     return 0

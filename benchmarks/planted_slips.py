@@ -98,11 +98,12 @@ on the link, any rule) of all cases and of the identifiable ones, named (an erro
 the own rule on the link, or of an equivalent rule that restores the true values) of the
 identifiable ones, and the cases with a new finding (any severity) on another link of the
 robot than the one planted ("untouched+"). A finding there is new when that link had no finding
-of its rule before, or of the rule's family (:data:`FAMILIES`: a copied tensor is IN013's, or
-IN066's when the whole block is the same; a centre of mass slip on the original changes which of
-the two speaks of the copy); a finding there whose severity only changed is counted apart
-("raised", "lowered": a helper frame's share of its body judged again when the body's own values
-slip, rules/README.md "Severity by consequence"). ``--save FILE`` writes every case as JSON.
+of its rule before, or of the rule's family (:data:`FAMILIES`: a copied tensor is IN013's,
+IN066's when the whole block is the same, IN068's when the two parts are one shape with other
+masses; a slip on the original changes which of them speaks of the copy); a finding there
+whose severity only changed is counted apart ("raised", "lowered": a helper frame's share of its
+body judged again when the body's own values slip, rules/README.md "Severity by consequence").
+``--save FILE`` writes every case as JSON.
 """
 
 from __future__ import annotations
@@ -560,6 +561,8 @@ FAMILIES = {"IN013": "copied", "IN066": "copied"}
 
 def _subject(finding) -> tuple:
     """The link and the defect a finding is about, whatever its severity."""
+    if finding.code == "IN068" and "original" in (getattr(finding, "expected", None) or {}):
+        return (finding.link, "copied")  # the six values of another link, for its mass
     return (finding.link, FAMILIES.get(finding.code, finding.code))
 
 

@@ -17,7 +17,12 @@ from numpy.typing import ArrayLike, NDArray
 from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.describe import TABLE, describe_geometry
 from inertia_kit.analysis.forensics.candidate import Candidate
-from inertia_kit.analysis.forensics.diagnosis import Diagnosis, diagnose, diagnose_part
+from inertia_kit.analysis.forensics.diagnosis import (
+    Diagnosis,
+    diagnose,
+    diagnose_part,
+    part_gains,
+)
 from inertia_kit.analysis.forensics.measure import (
     BETTER,
     LOOSE,
@@ -146,6 +151,35 @@ def _diagnose_basis(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis
             **common,
         )
     return None if diagnosis is None else replace(diagnosis, basis=basis.kind)
+
+
+def link_gains(link: LinkAnalysis) -> dict[str, float]:
+    """
+    :func:`~.diagnosis.part_gains` of the link's declared values against each of its bases,
+    the larger of the two per rule: what a reading of a real part gains where nothing slipped
+    (``benchmarks/cad_band.py``).
+    """
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return {}
+    inertial = link.link.inertial
+    points, rotations = _named_frames(link)
+    found: dict[str, float] = {}
+    for basis in link.bases:
+        expected = basis.at_mass(declared.mass)
+        if expected is None:
+            continue
+        gains = part_gains(
+            declared,
+            expected,
+            points=points,
+            rotations=rotations,
+            axes=None if inertial is None else _origin_rotation(inertial.origin),
+            volume=basis.volume,
+        )
+        for code, gain in gains.items():
+            found[code] = max(found.get(code, gain), gain)
+    return found
 
 
 def diagnose_link(link: LinkAnalysis) -> Diagnosis | None:

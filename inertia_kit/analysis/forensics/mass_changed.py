@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from inertia_kit.analysis.fault import departure, worse
-from inertia_kit.analysis.forensics.measure import symmetric
+from inertia_kit.analysis.forensics.measure import BAND, LogMetric, symmetric
 from inertia_kit.physics.mass import MassProperties
 
 if TYPE_CHECKING:
@@ -92,6 +92,10 @@ def mass_change(declared: MassProperties, expected: MassProperties) -> MassChang
     return MassChange(factor, shape, factor * declared.mass)
 
 
+#: ... and at the other link's mass the tensor must fit the link's geometry this much better
+#: (log distance; a factor of 1.65) than at its own: a mass ×3 on a part within the band gains
+#: up to ln 3 = 1.1, a twin whose values fit better at the retyped mass gains nothing
+RETYPED_GAIN = 0.5
 #: two geometries are one shape per kilogram when their principal moments per kilogram are
 #: within this factor of each other (IN013's default ``copy_factor``: a box of sides 1 : 1 : 1.7
 #: already has moments 1 : 2)
@@ -143,22 +147,36 @@ def mass_beside_copy(link: LinkAnalysis) -> RetypedMass | None:
     values = _six(link)
     if robot is None or values is None:
         return None
-    others = [o for o in robot.fact("links by six values", _by_values)[values] if o is not link]
     mine = _unit_moments(link)
     own = departure(link)
-    if not others or mine is None or own is None:
+    if mine is None or own is None:
         return None
-    assert link.declared is not None
-    for other in others:
-        assert other.declared is not None
-        factor = link.declared.mass / other.declared.mass
-        if not (SCALE <= abs(math.log(factor)) < MOST):
-            continue
+    # the links of the same shape holding the values, the one they fit best first: the part
+    # they were computed for (a twin whose mass was retyped too is no reference)
+    alike = []
+    for other in robot.fact("links by six values", _by_values)[values]:
         theirs, fit = _unit_moments(other), departure(other)
-        if theirs is None or fit is None:
+        if other is link or theirs is None or fit is None:
             continue
-        if float(np.max(np.maximum(mine / theirs, theirs / mine))) > SAME_SHAPE:
-            continue  # another shape: a copied tensor, IN013's
-        if worse(own, fit):
-            return RetypedMass(other, factor)
-    return None
+        if float(np.max(np.maximum(mine / theirs, theirs / mine))) <= SAME_SHAPE:
+            alike.append((fit.tensor, other, fit))
+    if not alike:
+        return None  # no other part of this shape: a copied tensor, IN013's
+    _, other, fit = min(alike, key=lambda item: item[0])
+    assert link.declared is not None and other.declared is not None
+    factor = link.declared.mass / other.declared.mass
+    if not (SCALE <= abs(math.log(factor)) < MOST) or not worse(own, fit):
+        return None
+    # the other's mass must explain the values: at it the link fits its geometry clearly
+    # better than at its own (a part that fits better with the retyped mass, a real part's
+    # scatter the other way, is no evidence: which twin changed is then unknown)
+    expected = link.geometry.at_mass(other.declared.mass)
+    if expected is None:
+        return None
+    try:
+        at_theirs = LogMetric(expected.inertia)(link.declared.inertia)
+    except (ValueError, np.linalg.LinAlgError):
+        return None
+    if not (at_theirs <= BAND and own.tensor - at_theirs >= RETYPED_GAIN):
+        return None
+    return RetypedMass(other, factor)

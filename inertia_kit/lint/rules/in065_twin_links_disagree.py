@@ -88,37 +88,50 @@ def _turned(twin: Twins) -> Twins:
     )
 
 
-def _which(twin: Twins) -> tuple[Twins, str]:
+def _which(twin: Twins) -> tuple[Twins, str, bool]:
     """
-    The pair with the twin at fault as ``right`` (the one the finding lands on), and the help's
-    sentence on which one is right: the twin whose values depart clearly more from its own
-    geometry (analysis.fault), else the right one as written, the file unable to tell.
+    The pair with the twin at fault as ``right`` (the one the finding lands on), the help's
+    sentence on which one is right, and whether the file tells: the twin whose values depart
+    more from its own geometry (analysis.fault), else the pair as written, the file unable to
+    tell (the finding then blames neither link).
     """
     culprit = at_fault(twin.left, twin.right)
     clearly = culprit is not None
     if culprit is None:
         culprit = at_fault(twin.left, twin.right, FAULT_MARGINS)
     if culprit is None:
-        return twin, (
-            "Which twin is right the file cannot say: check both against the CAD part (a "
-            "mirrored part's products change sign), then write the right one's mirror into "
-            "the other"
+        return (
+            twin,
+            (
+                "Which twin is right the file cannot say: check both against the CAD part (a "
+                "mirrored part's products change sign), then write the right one's mirror into "
+                "the other"
+            ),
+            False,
         )
     if culprit is twin.left:
         twin = _turned(twin)
     good, bad = departure(twin.left), departure(twin.right)
     assert good is not None and bad is not None
     if not clearly:
-        return twin, (
-            f"`{twin.right.name}`'s values depart a little more from its geometry "
-            f"({bad.text()}; `{twin.left.name}`'s {good.text()}), where mirrored twins' "
-            f"should depart alike: check it first against the CAD part, or write "
-            f"`{twin.left.name}`'s mirror into it"
+        return (
+            twin,
+            (
+                f"`{twin.right.name}`'s values depart a little more from its geometry "
+                f"({bad.text()}; `{twin.left.name}`'s {good.text()}), where mirrored twins' "
+                f"should depart alike: check it first against the CAD part, or write "
+                f"`{twin.left.name}`'s mirror into it"
+            ),
+            True,
         )
-    return twin, (
-        f"`{twin.right.name}`'s values are the ones that depart from the geometry ({bad.text()}; "
-        f"`{twin.left.name}`'s {good.text()}): check it against the CAD part, or write "
-        f"`{twin.left.name}`'s mirror into it"
+    return (
+        twin,
+        (
+            f"`{twin.right.name}`'s values are the ones that depart from the geometry "
+            f"({bad.text()}; `{twin.left.name}`'s {good.text()}): check it against the CAD "
+            f"part, or write `{twin.left.name}`'s mirror into it"
+        ),
+        True,
     )
 
 
@@ -127,7 +140,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     for pair in pairs:
         if compare(pair) is None:
             continue
-        twin, verdict = _which(pair)
+        twin, verdict, told = _which(pair)
         found = compare(twin)
         if found is None:
             continue
@@ -150,7 +163,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         yield ctx.finding(
             message,
             source or twin.right.link.source,
-            link=right,
+            # a pair the file cannot judge blames neither twin (their names are in the message)
+            link=right if told else None,
             expected={
                 "twin": left,
                 "mirror_normal": [float(v) for v in twin.plane.normal],

@@ -201,3 +201,22 @@ def test_turned_axes_put_back_need_a_smaller_gain(moments, named):
         return
     assert isinstance(found.slip, FlippedSigns)
     assert found.corrected.inertia == pytest.approx(true, rel=1e-9, abs=1e-12)
+
+
+def test_part_gains_are_what_each_rule_reading_gains():
+    # the part above with its products negated: undoing that (IN061) gains exactly the log
+    # distance between the written and the true tensor's; the true part itself gains nothing
+    from inertia_kit.analysis.forensics.diagnosis import part_gains
+    from inertia_kit.physics.mass import MassProperties
+
+    turn = _turned_x(30.0)
+    moments = np.array((0.2, 0.17, 0.05)) / 12
+    geometry = MassProperties(1.0, np.zeros(3), turn @ np.diag(moments) @ turn.T)
+    true = turn @ np.diag(moments * (1.3, 0.8, 1.2)) @ turn.T
+    logs = LogMetric(geometry.inertia)
+    written = MassProperties(1.0, np.zeros(3), _negated_products(true))
+    gains = part_gains(written, geometry)
+    assert gains["IN061"] == pytest.approx(logs(written.inertia) - logs(true))
+    right = part_gains(MassProperties(1.0, np.zeros(3), true), geometry)
+    assert right["IN061"] == pytest.approx(logs(true) - logs(_negated_products(true)))
+    assert right["IN061"] < 0
