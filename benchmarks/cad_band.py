@@ -174,10 +174,14 @@ def measure_file(args: tuple[str, str, str]) -> list[dict]:
 
 
 def quantiles(values: list[float]) -> str:
-    if not values:
-        return "-"
-    q = np.quantile(values, QUANTILES)
-    return "  ".join(f"{v:7.3f}" for v in q)
+    """The :data:`QUANTILES` of the finite values, and how many are not (a tensor no body has)."""
+    finite = [v for v in values if np.isfinite(v)]
+    left_out = len(values) - len(finite)
+    if not finite:
+        return f"- ({left_out} not finite)" if left_out else "-"
+    q = np.quantile(finite, QUANTILES)
+    text = "  ".join(f"{v:7.3f}" for v in q)
+    return text + (f"  ({left_out} not finite, left out)" if left_out else "")
 
 
 #: bins of the log gap ``g`` of an axis (analysis/principal_axes.py)

@@ -120,6 +120,10 @@ def source_encoding(original: bytes) -> tuple[bytes, str]:
         if not reads_declared(encoding) and _is_utf8(original):
             # the parser read it as UTF-8, and told positions in those characters
             encoding = "utf-8"
+    elif original.startswith((b"<\x00\x00\x00", b"\x00\x00\x00<")):  # UTF-32, no mark (F.1)
+        # before UTF-16's test, which its first two bytes also pass (fuzz s1, input 15055:
+        # read as UTF-16, the columns of every element were off and the fix hit no tag)
+        encoding = "utf-32-le" if original[0] else "utf-32-be"
     elif original.startswith((b"<\x00", b"\x00<")):  # UTF-16 without a mark (XML 1.0, F.1)
         encoding = "utf-16-le" if original[0] else "utf-16-be"
     return bom, encoding

@@ -395,3 +395,18 @@ def test_read_source_reads_utf32_by_its_own_mark(tmp_path, codec):
     assert (source.encoding, source.bom) == (codec, mark)
     assert source.text[source.offset(2, 1)] == "<"
     assert source.encode(source.text) == path.read_bytes()
+
+
+@pytest.mark.parametrize("codec", ["utf-32-le", "utf-32-be"])
+def test_read_source_reads_utf32_without_a_mark(tmp_path, codec):
+    """UTF-32 without a mark begins with the two bytes of UTF-16's ``<`` too (XML 1.0, F.1): read
+    as UTF-16 the columns were another text's and a fix hit no tag (fuzz s1, input 15055, whose
+    declaration even said UTF-16)."""
+    path = tmp_path / "r.urdf"
+    text = '<?xml version="1.0" encoding="UTF-16"?>\n<robot name="é"><link name="a"/></robot>\n'
+    path.write_bytes(text.encode(codec))
+    source = read_source(path)
+    assert (source.encoding, source.bom) == (codec, b"")
+    assert source.text == text
+    assert source.text[source.offset(2, 17)] == "<"
+    assert source.encode(source.text) == path.read_bytes()

@@ -160,3 +160,32 @@ def test_a_product_is_noise_by_the_moments_written_not_the_old_ones(tmp_path):
     filled = path.read_text()
     assert f'ixx="{xml_number(side, 6)}" ixy="0" ixz="0"' in filled
     assert CliRunner().invoke(fill_command, ["--fix", "all", "--check", str(path)]).exit_code == 0
+
+
+# a base box whose only mass is a broken `<inertial/>` on a small link welded to it: filled,
+# that link makes the base implausibly light (IN001), which a first fill must see too
+LIGHT_BASE = """<robot name="r">
+  <link name="base_link">
+    <collision><geometry><box size="0.5 0.4 0.5"/></geometry></collision>
+  </link>
+  <link name="link_1">
+    <inertial/>
+    <collision><geometry><box size="0.16 0.05 0.03"/></geometry></collision>
+  </link>
+  <joint name="weld" type="fixed"><parent link="base_link"/><child link="link_1"/></joint>
+</robot>
+"""
+
+
+def test_a_fill_that_makes_another_needed_does_both_at_once(tmp_path):
+    """Fuzz s1, input 15852: the first fill filled `link_1` only, the second `base_link`."""
+    path = write(tmp_path / "robot.urdf", LIGHT_BASE)
+    plan = plan_fill(path, fix="all")
+    assert [fill.link for fill in plan.changed_links] == ["link_1", "base_link"]
+    apply(plan)
+    once = path.read_bytes()
+    assert not plan_fill(path, fix="all").changed
+    # both edits land where a run per link would put them: the file parses, each link once
+    text = once.decode()
+    assert text.count("<inertial>") == 2 and text.count("<mass ") == 2
+    assert text.index('<mass value="100"/>') < text.index('<link name="link_1">')

@@ -377,3 +377,20 @@ def test_a_xacro_fragment_is_a_plan_with_nothing_to_fill(tmp_path: Path):
         (),
         False,
     )
+
+
+def test_an_edit_after_others_moves_back_onto_the_text_as_read():
+    from inertia_kit.description.edits import Edit, apply_edits
+    from inertia_kit.fill.plan import _moved_back
+
+    original = "aaaa<x/>bbbb<y/>cccc"
+    before = [Edit("f", 4, 8, "<x>1</x>"), Edit("f", 12, 12, "<z/>")]
+    after, _ = apply_edits(original, before)
+    # an edit of the text after them, in the part between the two
+    later = Edit("f", after.index("bbbb"), after.index("bbbb") + 4, "BB")
+    moved = _moved_back(later, before)
+    assert moved == Edit("f", 8, 12, "BB")
+    both, _ = apply_edits(original, [*before, moved])
+    assert both == apply_edits(after, [later])[0]
+    # one inside what they wrote cannot be moved back
+    assert _moved_back(Edit("f", after.index("1"), after.index("1") + 1, "2"), before) is None
