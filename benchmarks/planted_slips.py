@@ -93,14 +93,15 @@ within :data:`RESTORED`); the ``equiv.`` column counts the identifiable cases na
 
 Measured
 --------
-Per kind: cases, identifiable cases (and by the older test), detected (a new error or warning
-on the link, any rule) of all cases and of the identifiable ones, named (an error or warning of
-the own rule on the link, or of an equivalent rule that restores the true values) of the
-identifiable ones, and the cases with a new finding (any severity) on another link of the
-robot than the one planted ("untouched+"). A finding there is new when that link had no finding
-of its rule before, or of the rule's family (:data:`FAMILIES`: a copied tensor is IN013's,
-IN066's when the whole block is the same, IN068's when the two parts are one shape with other
-masses; a slip on the original changes which of them speaks of the copy); a finding there
+Per kind: cases, identifiable cases (and by the older test), detected (a new error or warning on
+the link, any rule) of all cases and of the identifiable ones, named (an error or warning of the
+own rule on the link, or of an equivalent rule that restores the true values) of the
+identifiable ones, and the cases with a new finding (any severity) on another link of the robot
+than the one planted ("untouched+"; a finding on no link, IN065's pair of twins the file cannot
+judge, blames no untouched link and is not counted). A finding there is new when that link had
+no finding of its rule before, or of the rule's family (:data:`FAMILIES`: a copied tensor is
+IN013's, IN066's when the whole block is the same, IN068's when the two parts are one shape with
+other masses; a slip on the original changes which of them speaks of the copy); a finding there
 whose severity only changed is counted apart ("raised", "lowered": a helper frame's share of its
 body judged again when the body's own values slip, rules/README.md "Severity by consequence").
 ``--save FILE`` writes every case as JSON.
@@ -576,8 +577,8 @@ def changes_elsewhere(before: list, after: list, planted: str) -> tuple[list, li
         severities[_subject(f)].add(int(f.severity))
     new, raised, lowered = set(), set(), set()
     for f in after:
-        if f.link == planted:
-            continue
+        if f.link == planted or f.link is None:
+            continue  # on the planted link, or on none (a twin pair the file cannot judge)
         known = severities.get(_subject(f))
         if not known:
             new.add(f"{f.link}:{f.code}")

@@ -368,12 +368,6 @@ COM_TOLERANCE = 0.05
 #: against 0.016), and twins carry small asymmetric details (a connector, a cable)
 TENSOR_TOLERANCE = 0.10
 
-#: twins' values mirror as their geometries do, so both depart from their geometry alike but
-#: for mesh noise (mirrored meshes: well under 1 %); when they disagree, the one departing more
-#: by this much (log tensor distance, centre of mass over size) is the likelier slip, though
-#: far less than analysis.fault's margins between unrelated links
-FAULT_MARGINS = (0.03, 0.01)
-
 _NAMES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _INDEX = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
 

@@ -75,10 +75,13 @@ def add_noqa(
     run = merge(results)
     try:
         # placed in the text each robot's lint read (else: changed meanwhile, nothing written)
-        planned = plan(run.findings, writable_under(paths), combined(r.reads for r in results))
+        reads = combined(r.reads for r in results)
+        planned = plan(run.findings, writable_under(paths), reads)
         writes = [(p, old.encode(new), old.original) for p, (old, new) in planned.texts.items()]
         refuse_links_out([path for path, _, _ in writes], follow_symlinks)
-        write_all_atomic(writes)
+        # the comments are for the findings of the files as read: any of them saved since
+        # by another writer (an included xacro --fix edited) makes them stale
+        write_all_atomic(writes, unchanged=reads)
     except InputError as error:
         say(f"error: {error}")  # it says what was left as it was
         return 2

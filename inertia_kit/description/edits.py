@@ -10,7 +10,7 @@ import contextlib
 import itertools
 import os
 import re
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -259,7 +259,10 @@ def write_atomic(
         return _write_set([(target, path, data, expected)], create)
 
 
-def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
+def write_all_atomic(
+    writes: Sequence[tuple[str | Path, bytes, bytes]],
+    unchanged: Mapping[str, str | None] | None = None,
+) -> bool:
     """
     ``(path, data, expected)`` for several files, each written as :func:`write_atomic` does,
     as one change: every file is checked first (its links lead to a file, still ``expected``,
@@ -267,20 +270,33 @@ def write_all_atomic(writes: Sequence[tuple[str | Path, bytes, bytes]]) -> bool:
     written; then every new file is written beside its target, checked once more against
     ``expected`` and only then all renamed into place. Returns whether any was written.
 
+    ``unchanged``: the other files the edits were computed from, real path -> digest of the
+    bytes read (:data:`~inertia_kit.description.reads.Reads`), checked at that last look too:
+    edits to ``robot.xacro`` computed while ``base.xacro`` held other text are stale when
+    another writer has saved ``base.xacro`` since (fuzz s1, input 17823: ``--fix`` on the
+    included files and ``--add-noqa`` on the main one at once kept comments for findings the
+    fix had removed).
+
     Our writers (``--fix``, ``inertia-fill``, ``--add-noqa``, in any process) check and
     replace one at a time in a folder (:func:`_commit_lock`), so two of them never both see
     the text they expect and then both replace it: the second finds the first one's bytes
     and writes nothing.
     """
     planned = [(real_target(path), path, data, expected) for path, data, expected in writes]
-    with _commit_lock([target.parent for target, *_ in planned]):
-        return _write_set(planned, create=False)
+    written = {str(target) for target, *_ in planned}
+    others = {n: found for n, found in (unchanged or {}).items() if n not in written}
+    folders = [target.parent for target, *_ in planned] + [Path(n).parent for n in others]
+    with _commit_lock(folders):
+        return _write_set(planned, create=False, unchanged=others)
 
 
 def _write_set(
-    planned: Sequence[tuple[Path, str | Path, bytes, bytes | None]], create: bool
+    planned: Sequence[tuple[Path, str | Path, bytes, bytes | None]],
+    create: bool,
+    unchanged: Mapping[str, str | None] | None = None,
 ) -> bool:
-    """Check, write beside, check again, rename: ``(target, name told, data, expected)``."""
+    """Check, write beside, check again, rename: ``(target, name told, data, expected)``;
+    the files of ``unchanged`` must still hold the bytes of their digests."""
     states = []
     for target, path, data, expected in planned:
         current, mode = _state(target, create, path)
@@ -294,6 +310,8 @@ def _write_set(
         for target, path, expected, _, _ in prepared:
             if expected is not None and target.read_bytes() != expected:
                 raise ChangedWhileEditing(CHANGED, path)
+        if prepared:
+            _check_unchanged(unchanged or {})
         for target, path, _, temporary, stream in prepared:
             try:
                 if os.name == "nt":  # pragma: no cover - Windows renames no open file
@@ -312,6 +330,21 @@ def _write_set(
         for *_, stream in prepared:
             stream.close()
     return bool(prepared)
+
+
+def _check_unchanged(unchanged: Mapping[str, str | None]) -> None:
+    """``ChangedWhileEditing`` when a file read (not written) holds other bytes than read."""
+    from inertia_kit.description.reads import digest
+
+    for name, found in unchanged.items():
+        if found is None:
+            continue  # read twice with two texts: the load already told (or refused) it
+        try:
+            now = digest(Path(name).read_bytes())
+        except OSError:
+            now = None
+        if now != found:
+            raise ChangedWhileEditing(CHANGED, name)
 
 
 def _prepare(target: Path, path: str | Path, data: bytes, current: bytes | None, mode: int):

@@ -87,6 +87,9 @@ class FillPlan:
     # what the environment gave the robot's xacro expansion: kept out of fill's messages by
     # --redact-env (description.redaction), never out of the files written
     environment_values: tuple[str, ...] = ()
+    # every file the robot was read from (real path -> digest): the write checks that those it
+    # does not edit still hold what was read
+    reads: Mapping[str, str | None] = field(default_factory=dict)
 
     @property
     def edits(self) -> list[Edit]:
@@ -343,6 +346,7 @@ def plan_robot(
         input_path=input_path,
         others=others,
         environment_values=robot.environment_values,
+        reads=dict(robot.reads),
     )
 
 
@@ -356,7 +360,8 @@ def apply(plan: FillPlan) -> bool:
     from inertia_kit.description.edits import write_all_atomic
 
     return write_all_atomic(
-        [(source.path, source.encode(text), source.original) for source, text in plan.changes()]
+        [(source.path, source.encode(text), source.original) for source, text in plan.changes()],
+        unchanged=plan.reads,
     )
 
 

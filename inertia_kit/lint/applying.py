@@ -214,7 +214,8 @@ def fix_file(
         try:
             if check is not None:
                 check([path for path, _, _ in writes])
-            write_all_atomic(writes)
+            # the files the first lint read and no pass edited must still hold those bytes
+            write_all_atomic(writes, unchanged=first.reads)
         except InputError as error:
             assert first is not None
             first.error = error

@@ -31,7 +31,14 @@ class Option:
     minimum: float = 0.0
 
 
-_TYPE_NAMES = {float: "a number", int: "an integer", bool: "true or false", str: "a string"}
+_TYPE_NAMES = {
+    float: "a number",
+    int: "an integer",
+    bool: "true or false",
+    str: "a string",
+    list: "a list",
+    tuple: "a list",  # TOML's arrays
+}
 
 
 def type_name(kind: Any) -> str:
@@ -84,5 +91,7 @@ def convert(value: Any, kind: Any) -> tuple[bool, Any]:
     if kind is int:
         return (not isinstance(value, bool) and isinstance(value, int)), value
     if kind in (list, tuple):
-        return isinstance(value, list), (tuple(value) if kind is tuple else value)
+        if not isinstance(value, list):  # `= inf` where a list belongs (fuzz s1, input 17767)
+            return False, None
+        return True, (tuple(value) if kind is tuple else value)
     return isinstance(value, kind), value

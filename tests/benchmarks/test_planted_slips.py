@@ -173,6 +173,7 @@ def test_changes_elsewhere_tells_new_findings_from_changed_severities():
         finding("wheel", "IN023", Severity.WARNING),  # lowered
         finding("wheel", "IN020", Severity.WARNING),  # new
         finding("twin", "IN065", Severity.WARNING),  # new
+        finding(None, "IN065", Severity.WARNING),  # a pair blaming neither twin: not counted
     ]
     assert ps.changes_elsewhere(before, after, "planted") == (
         ["twin:IN065", "wheel:IN020"],

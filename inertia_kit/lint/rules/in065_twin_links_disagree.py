@@ -11,7 +11,6 @@ from inertia_kit.analysis.fault import at_fault, departure
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.analysis.twins import (
     COM_TOLERANCE,
-    FAULT_MARGINS,
     MASS_TOLERANCE,
     TENSOR_TOLERANCE,
     Disagreement,
@@ -92,13 +91,10 @@ def _which(twin: Twins) -> tuple[Twins, str, bool]:
     """
     The pair with the twin at fault as ``right`` (the one the finding lands on), the help's
     sentence on which one is right, and whether the file tells: the twin whose values depart
-    more from its own geometry (analysis.fault), else the pair as written, the file unable to
-    tell (the finding then blames neither link).
+    clearly more from its own geometry (analysis.fault), else the pair as written, the file
+    unable to tell (the finding then blames neither link).
     """
     culprit = at_fault(twin.left, twin.right)
-    clearly = culprit is not None
-    if culprit is None:
-        culprit = at_fault(twin.left, twin.right, FAULT_MARGINS)
     if culprit is None:
         return (
             twin,
@@ -113,17 +109,6 @@ def _which(twin: Twins) -> tuple[Twins, str, bool]:
         twin = _turned(twin)
     good, bad = departure(twin.left), departure(twin.right)
     assert good is not None and bad is not None
-    if not clearly:
-        return (
-            twin,
-            (
-                f"`{twin.right.name}`'s values depart a little more from its geometry "
-                f"({bad.text()}; `{twin.left.name}`'s {good.text()}), where mirrored twins' "
-                f"should depart alike: check it first against the CAD part, or write "
-                f"`{twin.left.name}`'s mirror into it"
-            ),
-            True,
-        )
     return (
         twin,
         (

@@ -105,7 +105,8 @@ def test_products_not_flipped_are_named(lint, meshes):
     findings = lint(pair(VALUES), "IN065")
     assert len(findings) == 1
     finding = findings[0]
-    assert finding.severity == Severity.WARNING and finding.link == "r_hip"
+    # both hips depart from their geometry alike: the finding blames neither
+    assert finding.severity == Severity.WARNING and finding.link is None
     assert finding.message == (
         "`l_hip` and `r_hip` mirror in geometry, but their products of inertia do not: "
         "ixy 0.00015, iyz -0.0002 on both; mirrored, `r_hip` should have ixy -0.00015, iyz 0.0002"
@@ -124,7 +125,8 @@ def test_products_not_flipped_are_named(lint, meshes):
 )
 def test_name_spellings_pair(lint, meshes, names):
     findings = lint(pair(VALUES, names=names), "IN065")
-    assert [f.link for f in findings] == [names[1]]
+    assert len(findings) == 1  # blaming neither (the same values as below: the file cannot say)
+    assert findings[0].message.startswith(f"`{names[0]}` and `{names[1]}` mirror in geometry")
 
 
 def test_masses_differ(lint, meshes):
@@ -200,14 +202,14 @@ def test_twins_that_depart_alike_keep_one_finding_for_the_pair(lint, meshes):
     assert "Which twin is right the file cannot say" in findings[0].help
 
 
-def test_products_left_unflipped_put_the_finding_on_the_twin_that_departs_more(lint, meshes):
+def test_products_left_unflipped_blame_neither_twin(lint, meshes):
     # VALUES on both: the right hip's products have the sign of the left's geometry, not its
-    # own; twins should depart from their geometry alike, so the one departing more (by far
-    # less than a clear culprit's margin) gets the finding, with a hedged help
+    # own, but the two depart from their geometry by about as much (the products are small
+    # beside the moments): no twin is clearly at fault, and the planted-slip benchmark showed
+    # a smaller margin picking the wrong twin too often (21 of its cases)
     findings = lint(pair(VALUES), "IN065")
-    assert [f.link for f in findings] == ["r_hip"]
-    assert "depart a little more from its geometry" in findings[0].help
-    assert "where mirrored twins' should depart alike" in findings[0].help
+    assert [f.link for f in findings] == [None]
+    assert "Which twin is right the file cannot say" in findings[0].help
 
 
 def test_mass_within_tolerance_is_quiet(lint, meshes):
@@ -250,7 +252,8 @@ def test_leg_codes_pair_left_and_right(lint, meshes):
     left = hip("FL_hip", "left_hip.stl", "0.2 0.1 -0.15", VALUES)
     right = hip("FR_hip", "right_hip.stl", "0.2 -0.1 -0.15", VALUES, com=(0.025, -0.0125, -0.05))
     findings = lint(biped(left, right), "IN065")
-    assert [f.link for f in findings] == ["FR_hip"]
+    assert len(findings) == 1
+    assert findings[0].message.startswith("`FL_hip` and `FR_hip` mirror in geometry")
 
 
 def test_frames_that_take_the_reflection_are_quiet(lint, meshes):
