@@ -250,6 +250,21 @@ def _part_candidates(
     ]
 
 
+def _part_case(
+    declared: MassProperties, expected: MassProperties, axes: ArrayLike | None, geometry: str
+) -> tuple[Case, LogMetric] | None:
+    """The case of a real part and its log metric; ``None`` when nothing can be judged."""
+    if not _finite(declared):
+        return None
+    try:
+        metric = Metric(expected.inertia)
+        logs = LogMetric(expected.inertia)
+    except np.linalg.LinAlgError:
+        return None
+    frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
+    return Case(declared, expected, frame, metric, geometry), logs
+
+
 def _per_kg(candidate: Candidate, declared: MassProperties) -> np.ndarray:
     """
     The corrected tensor at the declared mass: each reading is judged against the geometry at
@@ -275,15 +290,10 @@ def part_gains(
     within :data:`~.measure.BAND`: on links that are right, what a coincidence gains
     (``benchmarks/cad_band.py`` calibrates the margins on it). Empty when nothing is read.
     """
-    if not _finite(declared):
+    found_case = _part_case(declared, expected, axes, "geometry")
+    if found_case is None:
         return {}
-    try:
-        metric = Metric(expected.inertia)
-        logs = LogMetric(expected.inertia)
-    except np.linalg.LinAlgError:
-        return {}
-    frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
-    case = Case(declared, expected, frame, metric, "geometry")
+    case, logs = found_case
     plain = logs(declared.inertia)
     found: dict[str, float] = {}
     for candidate in _part_candidates(case, points, rotations, volume):
@@ -312,21 +322,17 @@ def diagnose_part(
     points, named frames and axis permutations, signs, units and transcriptions are tried:
     what is read from the file, not fitted to the geometry. Parameters as :func:`diagnose`.
     """
-    if not _finite(declared):
+    found_case = _part_case(declared, expected, axes, geometry)
+    if found_case is None:
         return None
-    try:
-        metric = Metric(expected.inertia)
-        logs = LogMetric(expected.inertia)
-    except np.linalg.LinAlgError:
-        return None
+    case, logs = found_case
+    metric = case.metric
     plain_log = logs(declared.inertia)
     # principal axes turned beyond a real part's (analysis.principal_axes, IN069's test): a
     # reading that turns them back needs a smaller gain than MARGIN (below)
     turned = axes_mismatch(declared.inertia, expected.inertia) is not None
     if not plain_log >= (AXES_GAIN if turned else min(MARGIN, *RULE_MARGINS.values())):
         return None  # real-part scatter could put it there: nothing to explain
-    frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
-    case = Case(declared, expected, frame, metric, geometry)
     candidates = _part_candidates(case, points, rotations, volume)
 
     def per_kg(c: Candidate) -> np.ndarray:

@@ -34,6 +34,11 @@ def _isotropic_placeholder(tensor: np.ndarray) -> bool:
     return bool(moments[-1] - moments[0] <= 1e-9 * moments[-1] and one_digit(float(moments[-1])))
 
 
+def _times(factor: float) -> str:
+    """``3 times`` or ``1/3 of``: a factor as a message says it."""
+    return f"{fmt(factor, 3)} times" if factor > 1 else f"1/{fmt(1 / factor, 3)} of"
+
+
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     declared = link.declared
     inertial = link.link.inertial
@@ -53,11 +58,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         yield from _beside_copy(link, ctx)
         return
     basis, change = found[0]
-    relation = (
-        f"{fmt(change.factor, 3)} times"
-        if change.factor > 1
-        else f"1/{fmt(1 / change.factor, 3)} of"
-    )
+    relation = _times(change.factor)
     yield ctx.finding(
         f"link `{link.name}`: the tensor is its {basis.describe()}'s for "
         f"{fmt(change.tensor_mass, 3)} kg, not the declared {fmt(declared.mass)} kg: every "
@@ -87,9 +88,7 @@ def _beside_copy(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     declared, inertial = link.declared, link.link.inertial
     other = found.other
     assert declared is not None and inertial is not None and other.declared is not None
-    relation = (
-        f"{fmt(found.factor, 3)} times" if found.factor > 1 else f"1/{fmt(1 / found.factor, 3)} of"
-    )
+    relation = _times(found.factor)
     yield ctx.finding(
         f"link `{link.name}`: its six `<inertia>` values are those of `{other.name}`, whose "
         f"geometry is the same shape per kilogram, but its mass is {relation} `{other.name}`'s "
