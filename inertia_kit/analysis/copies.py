@@ -21,8 +21,11 @@ named the copy of another (two dummy frames sharing 1e-6 kg could each be either
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
+
+import numpy as np
 
 from inertia_kit.analysis.fault import (
     COM_MARGIN,
@@ -55,14 +58,30 @@ class Copy:
     theirs: Departure  # ... against the original's
 
 
+def six_values(link: LinkAnalysis) -> tuple[float, ...] | None:
+    """
+    The six ``<inertia>`` values as written, what links that share them share, when the link's
+    declared values are complete and finite with a mass > 0 (others are other rules'), and not
+    all zero (a zero tensor is IN012's, not a copy of anything); else ``None``.
+    """
+    inertial, declared = link.link.inertial, link.declared
+    if inertial is None or declared is None:
+        return None
+    if not (declared.mass > 0 and math.isfinite(declared.mass)):
+        return None
+    if not np.isfinite(declared.inertia).all():
+        return None
+    values = tuple(inertial.tensor_values().values())  # numbers: ``declared`` read them
+    return values if any(values) else None  # type: ignore[return-value]
+
+
 def block(link: LinkAnalysis) -> tuple | None:
     """The whole ``<inertial>`` as numbers (mass, xyz, rpy, six values), or ``None``."""
-    inertial = link.link.inertial
-    if inertial is None or link.declared is None or not link.declared.mass > 0:
+    values = six_values(link)
+    if values is None:
         return None
-    values = tuple(inertial.tensor_values().values())
-    if not any(values):
-        return None  # a zero tensor is IN012's, not a copy of anything
+    inertial = link.link.inertial
+    assert inertial is not None
     return (inertial.mass, inertial.origin.xyz, inertial.origin.rpy, values)
 
 

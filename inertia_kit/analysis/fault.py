@@ -84,31 +84,22 @@ def departure(link: LinkAnalysis) -> Departure | None:
     return Departure(tensor, com)
 
 
-def worse(
-    a: Departure, b: Departure, margins: tuple[float, float] = (TENSOR_MARGIN, COM_MARGIN)
-) -> bool:
-    """
-    Whether ``a`` departs clearly more than ``b`` (module doc): by ``margins`` (tensor, centre
-    of mass), :data:`TENSOR_MARGIN` and :data:`COM_MARGIN` unless a rule knows the two should
-    depart alike (mirrored twins).
-    """
-    tensor_margin, com_margin = margins
+def worse(a: Departure, b: Departure) -> bool:
+    """Whether ``a`` departs clearly more than ``b`` (module doc)."""
     tensor, com = a.tensor - b.tensor, a.com - b.com
-    if tensor > tensor_margin and com >= -com_margin:
+    if tensor > TENSOR_MARGIN and com >= -COM_MARGIN:
         return True
-    return com > com_margin and tensor >= -tensor_margin
+    return com > COM_MARGIN and tensor >= -TENSOR_MARGIN
 
 
-def at_fault(
-    a: LinkAnalysis, b: LinkAnalysis, margins: tuple[float, float] = (TENSOR_MARGIN, COM_MARGIN)
-) -> LinkAnalysis | None:
+def at_fault(a: LinkAnalysis, b: LinkAnalysis) -> LinkAnalysis | None:
     """``a`` or ``b``, whichever departs clearly more from its geometry; ``None`` when unclear."""
     first, second = departure(a), departure(b)
     if first is None or second is None:
         return None
-    if worse(first, second, margins):
+    if worse(first, second):
         return a
-    if worse(second, first, margins):
+    if worse(second, first):
         return b
     return None
 

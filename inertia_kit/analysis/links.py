@@ -209,6 +209,7 @@ class RobotAnalysis:
             self.by_name.setdefault(link.name, link)
         self._groups: dict[str, tuple[LinkAnalysis, ...]] | None = None
         self._group_facts: dict[tuple[str, str], Any] = {}
+        self._facts: dict[str, Any] = {}
 
     def group_of(self, name: str) -> tuple[LinkAnalysis, ...]:
         """
@@ -260,10 +261,9 @@ class RobotAnalysis:
 
     def fact(self, name: str, compute: Callable[[RobotAnalysis], Any]) -> Any:
         """``compute(self)``, once per robot and ``name``: what several rules ask of all links."""
-        key = ("\0", name)  # no link is named "\0": XML cannot hold it
-        if key not in self._group_facts:
-            self._group_facts[key] = compute(self)
-        return self._group_facts[key]
+        if name not in self._facts:
+            self._facts[name] = compute(self)
+        return self._facts[name]
 
     def welded_to_world(self, name: str) -> bool:
         """Whether a fixed-joint path joins ``name`` to the link ``world`` (a static body)."""

@@ -120,6 +120,19 @@ def _cached(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis | None:
     return cache[key]
 
 
+def _readings_from_file(link: LinkAnalysis, basis: Geometry) -> dict[str, Any]:
+    """What the file names for the hypotheses to try against ``basis``: the points and frames
+    of the link, the axes its six values are written in, the geometry's volume."""
+    inertial = link.link.inertial
+    points, rotations = _named_frames(link)
+    return {
+        "points": points,
+        "rotations": rotations,
+        "axes": None if inertial is None else _origin_rotation(inertial.origin),
+        "volume": basis.volume,
+    }
+
+
 def _diagnose_basis(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis | None:
     """:func:`diagnose` (``mode`` ``exact`` or ``loose``) or :func:`diagnose_part`
     (``likely``) of the link's declared values against ``basis``."""
@@ -129,15 +142,7 @@ def _diagnose_basis(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis
     expected = basis.at_mass(declared.mass)
     if expected is None:
         return None
-    inertial = link.link.inertial
-    points, rotations = _named_frames(link)
-    common: dict[str, Any] = {
-        "points": points,
-        "rotations": rotations,
-        "axes": None if inertial is None else _origin_rotation(inertial.origin),
-        "volume": basis.volume,
-        "geometry": basis.describe(),
-    }
+    common: dict[str, Any] = {**_readings_from_file(link, basis), "geometry": basis.describe()}
     if mode == "likely":
         diagnosis = diagnose_part(declared, expected, **common)
     else:
@@ -162,21 +167,12 @@ def link_gains(link: LinkAnalysis) -> dict[str, float]:
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return {}
-    inertial = link.link.inertial
-    points, rotations = _named_frames(link)
     found: dict[str, float] = {}
     for basis in link.bases:
         expected = basis.at_mass(declared.mass)
         if expected is None:
             continue
-        gains = part_gains(
-            declared,
-            expected,
-            points=points,
-            rotations=rotations,
-            axes=None if inertial is None else _origin_rotation(inertial.origin),
-            volume=basis.volume,
-        )
+        gains = part_gains(declared, expected, **_readings_from_file(link, basis))
         for code, gain in gains.items():
             found[code] = max(found.get(code, gain), gain)
     return found

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from inertia_kit.analysis.copies import six_values
 from inertia_kit.analysis.fault import departure, worse
 from inertia_kit.analysis.forensics.measure import BAND, LogMetric, symmetric
 from inertia_kit.physics.mass import MassProperties
@@ -110,17 +111,6 @@ class RetypedMass:
     factor: float
 
 
-def _six(link: LinkAnalysis) -> tuple[float, ...] | None:
-    inertial = link.link.inertial
-    declared = link.declared
-    if inertial is None or declared is None or not (declared.mass > 0):
-        return None
-    values = tuple(inertial.tensor_values().values())
-    if not all(isinstance(v, float) and math.isfinite(v) for v in values) or not any(values):
-        return None
-    return values  # type: ignore[return-value]
-
-
 def _best_fits(robot: RobotAnalysis) -> dict[tuple[float, ...], list[tuple[float, LinkAnalysis]]]:
     """
     For each six values held by two links or more, the two links they fit best (tensor log
@@ -129,7 +119,7 @@ def _best_fits(robot: RobotAnalysis) -> dict[tuple[float, ...], list[tuple[float
     """
     groups: dict[tuple[float, ...], list[LinkAnalysis]] = {}
     for link in robot.links:
-        values = _six(link)
+        values = six_values(link)
         if values is not None:
             groups.setdefault(values, []).append(link)
     found = {}
@@ -155,7 +145,7 @@ def _unit_moments(link: LinkAnalysis) -> np.ndarray | None:
 def mass_beside_copy(link: LinkAnalysis) -> RetypedMass | None:
     """The other link whose tensor this link's mass was changed beside, or ``None`` (module doc)."""
     robot = link.robot
-    values = _six(link)
+    values = six_values(link)
     if robot is None or values is None:
         return None
     mine = _unit_moments(link)

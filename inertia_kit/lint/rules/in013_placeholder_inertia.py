@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.copies import copies as whole_copies
+from inertia_kit.analysis.copies import six_values
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy
 from inertia_kit.analysis.forensics.measure import BAND, LogMetric
@@ -114,16 +115,6 @@ def _agreement(
     }
 
 
-def _values(link: LinkAnalysis) -> tuple[float, ...] | None:
-    inertial = link.link.inertial
-    if inertial is None or positive_mass(link) is None:
-        return None
-    values = tuple(inertial.tensor_values().values())
-    if not all(isinstance(v, float) for v in values) or not any(values):
-        return None
-    return values  # type: ignore[return-value]
-
-
 def _isotropic(values: tuple[float, ...]) -> bool:
     ixx, ixy, ixz, iyy, iyz, izz = values
     return (
@@ -145,7 +136,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     flagged: set[str] = set()
     copies: dict[tuple[float, ...], list[LinkAnalysis]] = {}
     for link in robot.links:
-        values = _values(link)
+        values = six_values(link)
         if values is None:
             continue
         copies.setdefault(values, []).append(link)
