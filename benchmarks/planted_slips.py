@@ -104,6 +104,11 @@ IN013's, IN066's when the whole block is the same, IN068's when the two parts ar
 other masses; a slip on the original changes which of them speaks of the copy); a finding there
 whose severity only changed is counted apart ("raised", "lowered": a helper frame's share of its
 body judged again when the body's own values slip, rules/README.md "Severity by consequence").
+So is a new finding of a rule that judges a link by its share of the body the engines lump
+(``WEIGHED`` rules) on a link welded to the planted one ("welded"): that body changed with the
+slip (Go1's 1 g IMU frame, a placeholder negligible beside a 5 kg trunk, is most of the body
+once the trunk holds a 1 µg block), so the finding is the slip's consequence, not a claim about
+an untouched part.
 ``--save FILE`` writes every case as JSON.
 """
 
@@ -567,26 +572,31 @@ def _subject(finding) -> tuple:
     return (finding.link, FAMILIES.get(finding.code, finding.code))
 
 
-def changes_elsewhere(before: list, after: list, planted: str) -> tuple[list, list, list]:
+def changes_elsewhere(
+    before: list, after: list, planted: str, body: frozenset[str] = frozenset()
+) -> tuple[list, list, list, list]:
     """
     The findings on links other than ``planted``: new (``link:code``), raised and lowered in
-    severity (module doc).
+    severity, and new weighed findings on the links of ``body``, welded to ``planted``
+    (module doc).
     """
     severities: dict[tuple, set[int]] = defaultdict(set)
     for f in before:
         severities[_subject(f)].add(int(f.severity))
-    new, raised, lowered = set(), set(), set()
+    new, raised, lowered, welded = set(), set(), set(), set()
     for f in after:
         if f.link == planted or f.link is None:
             continue  # on the planted link, or on none (a twin pair the file cannot judge)
         known = severities.get(_subject(f))
-        if not known:
+        if not known and f.weighed and f.link in body:
+            welded.add(f"{f.link}:{f.code}")
+        elif not known:
             new.add(f"{f.link}:{f.code}")
         elif int(f.severity) > max(known):
             raised.add(f"{f.link}:{f.code}")
         elif int(f.severity) < min(known):
             lowered.add(f"{f.link}:{f.code}")
-    return sorted(new), sorted(raised), sorted(lowered)
+    return sorted(new), sorted(raised), sorted(lowered), sorted(welded)
 
 
 def plant(jobs: list[dict]) -> list[dict]:
@@ -619,7 +629,12 @@ def plant(jobs: list[dict]) -> list[dict]:
             except Exception as error:  # a crash is a result too
                 after, crash, seen = [], f"{type(error).__name__}: {error}", False
             on_link = [f for f in after if f.link == name and _loud(f)]
-            elsewhere, raised, lowered = changes_elsewhere(findings, after, name)
+            body = (
+                frozenset(m.name for m in slipped_analysis.group_of(name))
+                if crash is None
+                else frozenset()
+            )
+            elsewhere, raised, lowered, welded = changes_elsewhere(findings, after, name, body)
             own = OWN_RULE[kind]
             named = own is not None and any(
                 f.code in (own, *ALSO_NAMED_BY.get(own, ())) for f in on_link
@@ -646,6 +661,7 @@ def plant(jobs: list[dict]) -> list[dict]:
                     "elsewhere": elsewhere,
                     "raised": raised,
                     "lowered": lowered,
+                    "welded": welded,
                     "crash": crash,
                 }
             )
@@ -786,13 +802,17 @@ def main() -> int:
         print("new findings on untouched links (slip, rule: cases):")
         for (kind, code), n in sorted(elsewhere.items()):
             print(f"  {kind} {code}: {n}")
-    for change in ("raised", "lowered"):
+    for change, what in (
+        ("raised", "findings on untouched links whose severity raised"),
+        ("lowered", "findings on untouched links whose severity lowered"),
+        ("welded", "new weighed findings on links welded to the slipped one"),
+    ):
         changed = defaultdict(int)
         for r in results:
             for item in r.get(change, ()):
                 changed[r["kind"], item.split(":")[1]] += 1
         if changed:
-            print(f"findings on untouched links whose severity {change} (slip, rule: cases):")
+            print(f"{what} (slip, rule: cases):")
             for (kind, code), n in sorted(changed.items()):
                 print(f"  {kind} {code}: {n}")
     crashes = [r for r in results if r["crash"]]

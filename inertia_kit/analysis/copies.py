@@ -11,7 +11,7 @@ best (:func:`~inertia_kit.analysis.fault.departure`, the smallest) is its owner 
 a real part does (its tensor within :data:`~inertia_kit.analysis.forensics.measure.BAND`, its
 centre of mass within :data:`OWNER_COM` of its size from the centroid); each
 other one whose values depart clearly more from its own geometry
-(:func:`~inertia_kit.analysis.fault.worse`) holds a copy. Real CAD values sometimes fit their
+(:func:`~inertia_kit.analysis.fault.worse_part`) holds a copy. Real CAD values sometimes fit their
 own part more loosely than that (Panda's ``link5`` a factor of 4.9 from its collision mesh); a
 block that fits its best link only so is still that link's where on another link it is no real
 part's values and departs far more (:func:`_foreign`). A block that fits no link plausibly is a
@@ -28,12 +28,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from inertia_kit.analysis.fault import (
-    COM_MARGIN,
     IMPLAUSIBLE,
-    TENSOR_MARGIN,
+    PLAUSIBLE_COM,
     Departure,
     departure,
-    worse,
+    least_departure,
+    score,
+    worse_part,
 )
 from inertia_kit.analysis.forensics.measure import BAND, MARGIN
 
@@ -41,9 +42,8 @@ if TYPE_CHECKING:
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 
 
-#: ... and its centre of mass within this fraction of the link's size from the centroid: a
-#: motor at one end moves a real part's a third of the way to that end (rules/IN021)
-OWNER_COM = 1 / 3
+#: ... and its centre of mass within this fraction of the link's size from the centroid
+OWNER_COM = PLAUSIBLE_COM
 #: a centre of mass farther than half the link's size from its centroid is outside its geometry
 OUTSIDE = 1 / 2
 
@@ -85,11 +85,6 @@ def block(link: LinkAnalysis) -> tuple | None:
     return (inertial.mass, inertial.origin.xyz, inertial.origin.rpy, values)
 
 
-def _score(d: Departure) -> float:
-    """One number to rank fits: the centre of mass's departure in tensor units."""
-    return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
-
-
 def _foreign(copy: Departure, best: Departure) -> bool:
     """
     Whether a block that fits its best link only roughly (a real part's CAD values off by more
@@ -106,6 +101,12 @@ def _foreign(copy: Departure, best: Departure) -> bool:
     return copy.tensor - best.tensor > MARGIN or copy.com - best.com > OWNER_COM
 
 
+def _unfit_anywhere(link: LinkAnalysis, best: Departure) -> bool:
+    """Whether the block departs clearly more on every geometry of ``link`` (collision, visual)."""
+    least = least_departure(link)
+    return least is not None and worse_part(least, best)
+
+
 def copies(robot: RobotAnalysis) -> list[Copy]:
     """The links holding another link's copied block, in file order (module doc)."""
     groups: dict[tuple, list[LinkAnalysis]] = {}
@@ -118,12 +119,15 @@ def copies(robot: RobotAnalysis) -> list[Copy]:
         judged = [(m, d) for m in members if (d := departure(m)) is not None]
         if len(judged) < 2:
             continue
-        original, best = min(judged, key=lambda item: _score(item[1]))
+        original, best = min(judged, key=lambda item: score(item[1]))
         owned = best.tensor <= BAND and best.com <= OWNER_COM
         found += [
             Copy(m, original, d, best)
             for m, d in judged
-            if m is not original and worse(d, best) and (owned or _foreign(d, best))
+            if m is not original
+            and worse_part(d, best)
+            and (owned or _foreign(d, best))
+            and _unfit_anywhere(m, best)
         ]
     order = {link.name: i for i, link in enumerate(robot.links)}
     return sorted(found, key=lambda c: order[c.link.name])

@@ -13,10 +13,26 @@ A link's departure has two parts, judged apart because a slip moves one and not 
   (its bounding box's largest extent). A motor at one end moves a real one a third of the
   way to that end.
 
-One link is at fault when it departs more than the other by :data:`TENSOR_MARGIN` in tensor or
-:data:`COM_MARGIN` in centre of mass, and is not the clearly closer one in the other part. Two
-links that depart alike, or one without geometry to judge by, give no culprit: the rule then
-keeps one finding for the pair, as it would without this module.
+Of two links of the same part (mirrored twins, one shape at two masses: :func:`worse`), one is
+at fault when it departs more than the other by :data:`TENSOR_MARGIN` in tensor or
+:data:`COM_MARGIN` in centre of mass, and is not the clearly closer one in the other part: their
+values scatter alike about their geometry (the same CAD part, the same simplified collision
+shape), so what differs is the slip's.
+
+Of two different parts (a block copied from one onto the other: :func:`worse_part`), the one at
+fault must also depart there more than a real part does (a tensor beyond
+:data:`~inertia_kit.analysis.forensics.measure.BAND`, a centre of mass beyond
+:data:`PLAUSIBLE_COM`), unless the other's values are exactly its geometry's. Real parts' values
+scatter about their geometry's by up to those bounds, each part its own way, so a link whose
+values fit as a real part's do is not the culprit beside another part: UR3e's cylinder-formula
+tensors fit ``base_link_inertia`` at a factor of 1.82 and ``shoulder_link`` at 2.13, which tells
+nothing about which of the two a shared block was made for. Beside values computed from their
+geometry (within :data:`~inertia_kit.analysis.forensics.measure.TOLERANCE`, the centre of mass
+within :data:`EXACT_COM` of the centroid) the file's values are its geometry's, and the margin
+alone tells (the textbook cases stay exact).
+
+Two links that depart alike, or one without geometry to judge by, give no culprit: the rule
+then keeps one finding for the pair, as it would without this module.
 """
 
 from __future__ import annotations
@@ -27,11 +43,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from inertia_kit.analysis.forensics.measure import AMBIGUITY, BAND, MARGIN, LogMetric
+from inertia_kit.analysis.forensics.measure import AMBIGUITY, BAND, MARGIN, TOLERANCE, LogMetric
 from inertia_kit.physics.formatting import fmt
 
 if TYPE_CHECKING:
+    from inertia_kit.analysis.geometry import Geometry
     from inertia_kit.analysis.links import LinkAnalysis
+    from inertia_kit.physics.mass import MassProperties
 
 #: a link departs clearly more in tensor than another when its log distance is this much larger
 #: (a factor of 1.22 about some axis: the scatter within which two readings fit a real part
@@ -40,6 +58,11 @@ TENSOR_MARGIN = AMBIGUITY
 #: ... or in centre of mass when its offset from the centroid is larger by this fraction of the
 #: link's size (twins' own tolerance, analysis.twins.COM_TOLERANCE)
 COM_MARGIN = 0.05
+#: a real part's centre of mass lies within this fraction of its size from its centroid: a
+#: motor at one end moves it a third of the way to that end (rules/IN021)
+PLAUSIBLE_COM = 1 / 3
+#: a centre of mass within this fraction of the link's size from the centroid is the geometry's
+EXACT_COM = 0.01
 
 
 @dataclass(frozen=True)
@@ -58,14 +81,41 @@ class Departure:
         )
 
 
+def score(d: Departure) -> float:
+    """One number to rank departures: the centre of mass's counted in tensor units."""
+    return d.tensor + d.com * (TENSOR_MARGIN / COM_MARGIN)
+
+
 def departure(link: LinkAnalysis) -> Departure | None:
-    """The link's :class:`Departure`, or ``None`` without declared values or geometry."""
+    """
+    The link's :class:`Departure` from the geometry mass comes from (collision, else visual),
+    or ``None`` without declared values or geometry: two links of one part are compared on the
+    same kind of geometry.
+    """
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return None
+    return _departure(declared, link.geometry)
+
+
+def least_departure(link: LinkAnalysis) -> Departure | None:
+    """
+    The link's :class:`Departure` from the geometry (collision or visual) its values fit best:
+    a link is blamed for another part's values only when they fit none of its geometries as
+    its own would. GR3's upper arm roll link has a 5 cm collision sphere standing in for its
+    part; its own values, a factor of 3.5 from the sphere's, fit its visual mesh within 1.5.
+    """
+    declared = link.declared
+    if declared is None or not declared.mass > 0:
+        return None
+    found = [d for geometry in link.bases if (d := _departure(declared, geometry)) is not None]
+    return min(found, key=score) if found else None
+
+
+def _departure(declared: MassProperties, geometry: Geometry) -> Departure | None:
     try:
-        expected = link.geometry.at_mass(declared.mass)
-        corners = link.geometry.corners
+        expected = geometry.at_mass(declared.mass)
+        corners = geometry.corners
     except (ValueError, FloatingPointError, np.linalg.LinAlgError):
         return None
     if expected is None or corners is None or not np.isfinite(corners).all():
@@ -85,11 +135,26 @@ def departure(link: LinkAnalysis) -> Departure | None:
 
 
 def worse(a: Departure, b: Departure) -> bool:
-    """Whether ``a`` departs clearly more than ``b`` (module doc)."""
+    """Whether ``a`` departs clearly more than ``b``, ``b`` a link of the same part (module doc)."""
     tensor, com = a.tensor - b.tensor, a.com - b.com
     if tensor > TENSOR_MARGIN and com >= -COM_MARGIN:
         return True
     return com > COM_MARGIN and tensor >= -TENSOR_MARGIN
+
+
+def worse_part(a: Departure, b: Departure) -> bool:
+    """
+    Whether ``a`` departs clearly more than ``b``, a link of another part, and more than a real
+    part does, unless ``b``'s values are exactly its geometry's (module doc).
+    """
+    if not worse(a, b):
+        return False
+    if b.tensor <= TOLERANCE and b.com <= EXACT_COM:
+        return True
+    tensor, com = a.tensor - b.tensor, a.com - b.com
+    return (tensor > TENSOR_MARGIN and a.tensor > BAND) or (
+        com > COM_MARGIN and a.com > PLAUSIBLE_COM
+    )
 
 
 def at_fault(a: LinkAnalysis, b: LinkAnalysis) -> LinkAnalysis | None:

@@ -155,11 +155,12 @@ def test_an_equivalent_rule_names_a_slip_when_its_repair_restores_the_true_value
     assert not any(ps.restored(f, true.replace(tensor=1.1 * true.tensor)) for f in found)
 
 
-def test_changes_elsewhere_tells_new_findings_from_changed_severities():
+def test_changes_elsewhere_tells_new_findings_from_changed_severities_and_welded_ones():
     from inertia_kit.lint.findings import Severity
 
-    def finding(link, code, severity):
-        return dataclasses.make_dataclass("F", ["link", "code", "severity"])(link, code, severity)
+    def finding(link, code, severity, weighed=False):
+        kind = dataclasses.make_dataclass("F", ["link", "code", "severity", "weighed"])
+        return kind(link, code, severity, weighed)
 
     before = [
         finding("imu", "IN020", Severity.WARNING),
@@ -174,9 +175,13 @@ def test_changes_elsewhere_tells_new_findings_from_changed_severities():
         finding("wheel", "IN020", Severity.WARNING),  # new
         finding("twin", "IN065", Severity.WARNING),  # new
         finding(None, "IN065", Severity.WARNING),  # a pair blaming neither twin: not counted
+        finding("imu", "IN013", Severity.WARNING, weighed=True),  # its body changed: welded
+        finding("camera", "IN022", Severity.WARNING, weighed=True),  # not welded: new
+        finding("imu", "IN042", Severity.WARNING),  # welded, but not judged by its share: new
     ]
-    assert ps.changes_elsewhere(before, after, "planted") == (
-        ["twin:IN065", "wheel:IN020"],
+    assert ps.changes_elsewhere(before, after, "planted", frozenset({"planted", "imu"})) == (
+        ["camera:IN022", "imu:IN042", "twin:IN065", "wheel:IN020"],
         ["imu:IN020"],
         ["wheel:IN023"],
+        ["imu:IN013"],
     )

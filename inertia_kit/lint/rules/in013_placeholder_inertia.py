@@ -8,11 +8,11 @@ from collections.abc import Iterator
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.analysis.copies import copies as whole_copies
-from inertia_kit.analysis.copies import six_values
+from inertia_kit.analysis.copies import block, six_values
 from inertia_kit.analysis.expected import basis_text, geometry_tensor
+from inertia_kit.analysis.fault import TENSOR_MARGIN
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy
-from inertia_kit.analysis.forensics.measure import BAND, LogMetric
+from inertia_kit.analysis.forensics.measure import BAND, TOLERANCE, LogMetric
 from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
@@ -182,10 +182,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
-    # a whole block copied (mass and centre of mass too) is IN066's (analysis.copies)
-    named = {c.link.name for c in whole_copies(robot)}
     for values, members in copies.items():
-        members = [m for m in members if m.name not in named]
         if len({m.name for m in members}) < 2:
             continue
         declared_tensor = _written(values)
@@ -206,14 +203,29 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         # whose mass slipped), among those the values fit as a real part's fit its geometry;
         # when they fit none so (a placeholder on every link), the one they fit best
         owners = [i for i, c in enumerate(closeness) if c <= OWNER_FIT]
+        agree = _agreement(
+            [w.tensor for _, _, w in candidates], list(range(len(candidates))), copy_factor
+        )
         if owners:
-            agree = _agreement([w.tensor for _, _, w in candidates], owners, copy_factor)
             index = min(owners, key=lambda i: (-agree[i], closeness[i]))
         else:
             index = int(np.argmin(closeness))
         original, original_mass, original_written = candidates[index]
-        for member, mass, written in candidates:
-            if member is original or member.name in flagged:
+        # a whole block shared with the original (mass and centre of mass too) is IN066's
+        # (analysis.copies), which judges the centre of mass as well and names no copy when
+        # no link owns the block
+        whole = {m.name for m, _, _ in candidates if block(m) == block(original)}
+        for i, (member, mass, written) in enumerate(candidates):
+            if member is original or member.name in flagged or member.name in whole:
+                continue
+            # the copy is the link outvoted by identical parts, or the one the values fit
+            # clearly worse than the original and worse than a real part's fit its geometry,
+            # unless they are the original's exactly (analysis.fault): UR5e's two wrists share
+            # a tensor, and with one's mass tripled both still fit alike, so neither is named
+            fit, best = closeness[i], closeness[index]
+            outvoted = agree[i] < agree[index]
+            beyond = fit > OWNER_FIT or best <= 1 + TOLERANCE
+            if not (outvoted or (beyond and math.log(fit / best) > TENSOR_MARGIN)):
                 continue
             # principal moments at each link's mass: a mirrored or turned copy of the same
             # part is the same body, and a part whose mass slipped is not

@@ -61,7 +61,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"; `{culprit.name}` is the likely slip: its {fmt(culprit.declared.mass, 4)} kg "
                 f"is {fmt(_density(culprit), 4)} kg/m³ over its geometry, no material"
             )
-        named = light if culprit is None else culprit.name
+        # else the light body's link too light for any material is at fault; without either
+        # the ratio is the joint's, not a link's: the finding blames neither (a heavy body of
+        # plausible density beside a light one of plausible density, either may be wrong)
+        named = culprit.name if culprit is not None else _too_light(robot, light)
         yield ctx.finding(
             f"joint `{joint.name}`: {_body(robot, light)} weighs "
             f"{fmt(min(parent, child), 4)} kg, 1/{_ratio(ratio)} of {_body(robot, heavy)} at "
@@ -100,7 +103,7 @@ def _slipped(robot: RobotAnalysis, heavy: str, light: str) -> LinkAnalysis | Non
     no link of the light body's is: the mass that slipped. ``None`` when unclear.
     """
     # once per group: a base welded to thousands of links is on every one of its joints
-    found = robot.group_fact(heavy, "densest", densest)
+    found = robot.group_fact(heavy, "densest weighing", _densest_weighing)
     if found is None:
         return None
     if robot.group_fact(light, "any density excess", _any_excess):
@@ -108,7 +111,23 @@ def _slipped(robot: RobotAnalysis, heavy: str, light: str) -> LinkAnalysis | Non
     return found[0]
 
 
-def _any_excess(group: tuple[LinkAnalysis, ...]) -> bool:
+def _too_light(robot: RobotAnalysis, light: str) -> str | None:
+    """The link of the light body whose density is furthest below any material's, if any."""
+    found = [(density_excess(m), m.name) for m in _weighing(robot.group_of(light))]
+    below = [(excess, name) for excess, name in found if excess is not None and excess < 0]
+    return min(below)[1] if below else None
+
+
+def _weighing(group: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, ...]:
     # a member with a share of the body's mass below 1 % cannot have set its weight (HyQ's
-    # 1e-6 kg foot frames welded to a 0.88 kg lower leg)
-    return any(density_excess(m) and m.mass_share >= NEGLIGIBLE for m in group)
+    # 1e-6 kg foot frames welded to a 0.88 kg lower leg; Go1's 1 g IMU frame welded to a trunk
+    # whose mass was typed in grams)
+    return tuple(m for m in group if m.mass_share >= NEGLIGIBLE)
+
+
+def _densest_weighing(group: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, float] | None:
+    return densest(_weighing(group))
+
+
+def _any_excess(group: tuple[LinkAnalysis, ...]) -> bool:
+    return any(density_excess(m) for m in _weighing(group))

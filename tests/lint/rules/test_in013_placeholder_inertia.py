@@ -116,6 +116,34 @@ def test_a_slipped_mass_among_identical_parts_is_named_on_it(lint):
     assert "it declares 3 times `second`'s mass on a shape alike per kilogram" in finding.message
 
 
+def test_a_pair_that_fits_alike_names_neither(lint):
+    # UR5e's two wrists share a tensor (1.6 times their box's, a real part's fit); the first's
+    # mass tripled leaves it at a factor of 1.9 from its geometry: both fit as real parts do,
+    # neither outvotes the other, and the file cannot say which mass is wrong
+    size = (0.1, 0.1, 0.2)
+    moments = [1.6 * m for m in box_moments(1.2, size)]
+    text = on_base(
+        first=inertial(3.6, *moments) + collision(box(*size)),
+        second=inertial(1.2, *moments) + collision(box(*size)),
+    )
+    assert in013(lint, text) == []
+
+
+def test_a_whole_block_shared_is_left_to_in066(lint):
+    # Baxter's shape: a block whose tensor fits one link (1.3 times its box's) but whose centre
+    # of mass lies 60 % of that link's size from its centroid, and which sits at the centroid
+    # of the other (a cube, its tensor 6 times off): the centre of mass and the tensor point
+    # at different owners, so no link is named the copy (IN021 and IN020 judge each link)
+    moments = [1.3 * m for m in box_moments(2.0, (0.1, 0.1, 0.3))]
+    block = inertial(2.0, *moments, xyz=(0, 0, 0.18))
+    text = on_base(
+        long=block + collision(box(0.1, 0.1, 0.3)),
+        cube=block + collision(box(0.1, 0.1, 0.1), xyz=(0, 0, 0.18)),
+    )
+    assert in013(lint, text) == []
+    assert lint(text, "IN066") == []
+
+
 def test_a_placeholder_on_every_link_keeps_the_best_fit_as_original(lint):
     # about 1 kg·m² on a 5 kg chassis and on four identical 0.25 kg motors (not isotropic:
     # the copy is judged, not the isotropy): the motors agree with each other, but the values

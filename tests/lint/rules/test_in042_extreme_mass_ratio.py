@@ -29,7 +29,8 @@ def test_ratio_beyond_default_warns(lint):
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.WARNING
-    assert finding.joint == "tip_joint" and finding.link == "tip"
+    # no geometry to tell which mass is wrong: the ratio is the joint's, no link is blamed
+    assert finding.joint == "tip_joint" and finding.link is None
     assert "`tip` weighs 0.005 kg, 1/4000 of `body` at 20 kg (beyond 1/1000)" in finding.message
     assert finding.expected["ratio"] == 4000.0
 
@@ -87,14 +88,32 @@ def test_a_mass_no_material_gives_is_named_on_its_link(lint):
     assert "check `body`'s mass" in finding.help
 
 
-def test_a_plausible_heavy_body_leaves_the_light_one_named(lint):
-    # a 0.0005 kg tip in its 2 cm cube is 62.5 kg/m³ (foam): plausible both sides, the light
-    # body is named as always
+def test_plausible_densities_on_both_sides_blame_neither(lint):
+    # a 0.0005 kg tip in its 2 cm cube is 62.5 kg/m³ (foam), the body aluminium: either mass
+    # may be the wrong one (GR1-T2's 17 kg torso, its mass tripled, beside a 10 g head link)
     findings = lint(boxed(2.7, 0.0005), "IN042")
+    assert [(f.link, f.joint) for f in findings] == [(None, "tip_joint")]
+    assert "check both masses" in findings[0].help
+
+
+def test_a_light_side_too_light_for_any_material_is_named(lint):
+    # 0.00002 kg in a 2 cm cube is 2.5 kg/m³, below any material: the tip, whatever the body
+    findings = lint(boxed(2.7, 0.00002), "IN042")
     assert [f.link for f in findings] == ["tip"]
-    # a light side itself implausible (0.00002 kg: 2.5 kg/m³) leaves the finding on it
     findings = lint(boxed(2700.0, 0.00002), "IN042")
     assert [f.link for f in findings] == ["tip"]
+
+
+def test_a_negligible_welded_frame_is_not_the_slip_of_its_body(lint):
+    # Go1's shape: a 10 g IMU frame in a 1 mm cube (10⁷ kg/m³, denser still than the body)
+    # welded to a body whose 2.7 kg were typed in grams (2700 kg: 2.7e6 kg/m³ in its 0.1 m
+    # cube): the frame carries 4e-6 of the body and cannot have set its weight
+    imu = link("imu", box_inertial(0.01, (0.001,) * 3), collision(box(0.001, 0.001, 0.001)))
+    text = boxed(2700.0, 0.0216).replace(
+        "</robot>", joint("body", "imu", "fixed", name="imu_joint") + imu + "</robot>"
+    )
+    (finding,) = lint(text, "IN042")
+    assert finding.link == "body"
 
 
 def test_a_negligible_welded_frame_does_not_hide_the_slipped_mass(lint):

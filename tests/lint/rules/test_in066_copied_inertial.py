@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from kit.moments import box_moments
-from kit.urdf import box, collision, inertial, joint, link, robot
+from kit.urdf import box, collision, inertial, joint, link, robot, sphere, visual
 
 UPPER = (0.08, 0.08, 0.3)
 FORE = (0.07, 0.07, 0.24)
@@ -43,6 +43,31 @@ def test_the_copy_is_named_on_the_link_it_does_not_fit(lint):
     # the forearm's block pasted into the upper arm, the first link in the file: named there
     (finding,) = lint(arm(block(1.4, FORE), block(1.4, FORE)), "IN066")
     assert finding.link == "upper_arm" and finding.expected["original"] == "forearm"
+
+
+def test_a_block_fitting_both_as_real_parts_is_no_copy(lint):
+    # CAD-like values 1.3 times the upper arm's box, pasted into the forearm: there they are
+    # a factor of 2 from its box and 12.5 % of its size from its centroid, which real parts'
+    # values also are; the file cannot tell which link the block was made for
+    moments = [1.3 * m for m in box_moments(2.0, UPPER)]
+    shared = inertial(2.0, *moments, xyz=(0, 0, UPPER[2] / 2))
+    assert lint(arm(shared, shared), "IN066") == []
+
+
+def test_a_link_whose_visual_mesh_fits_its_block_is_not_named_the_copy(lint):
+    # GR3's shape: the upper arm's collision is a 5 cm sphere standing in for its 0.3 m part,
+    # its values are the part's (its visual box's); the same block pasted into the forearm
+    # fits the forearm's collision box better than the sphere, but the upper arm's own
+    # geometry, its visual box, holds it exactly: the upper arm holds no copy
+    shared = inertial(2.0, *box_moments(2.0, UPPER))
+    text = robot(
+        link("world"),
+        joint("world", "upper_arm"),
+        link("upper_arm", shared, collision(sphere(0.05)), visual(box(*UPPER))),
+        joint("upper_arm", "forearm", xyz=(0, 0, 0.3)),
+        link("forearm", shared, collision(box(*FORE))),
+    )
+    assert [f.link for f in lint(text, "IN066")] != ["upper_arm"]
 
 
 def test_identical_parts_share_a_block(lint):
