@@ -61,7 +61,9 @@ def lint(folder: Path, extra: list[str]) -> list[dict]:
 
 
 def key(package: str, finding: dict) -> tuple:
-    return (package, finding["file"], finding["link"] or finding["joint"] or "", finding["code"])
+    # a finding on no link (a twin pair blaming neither) is told apart by its line
+    place = finding["link"] or finding["joint"] or f"line {finding['line']}"
+    return (package, finding["file"], place, finding["code"])
 
 
 def main() -> int:

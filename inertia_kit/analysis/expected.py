@@ -66,6 +66,17 @@ def geometry_tensor(link: LinkAnalysis, mass: float) -> WrittenTensor | None:
     return WrittenTensor(tensor_fields(inertia), inertia, axes)
 
 
+def base_tensors(link: LinkAnalysis, mass: float) -> list[WrittenTensor]:
+    """:func:`geometry_tensor` for each of the link's geometries (``LinkAnalysis.bases``)."""
+    found = []
+    for geometry in link.bases:
+        body = geometry.at_mass(mass)
+        if body is not None:
+            inertia, axes = _written_axes(link.link.inertial, body.inertia)
+            found.append(WrittenTensor(tensor_fields(inertia), inertia, axes))
+    return found
+
+
 def basis_text(link: LinkAnalysis, mass: float) -> str:
     """``its collision box (0.4 × 0.4 × 0.1 m) with the declared 2 kg gives``: what introduces
     the geometry's values in a message."""

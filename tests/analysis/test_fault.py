@@ -28,6 +28,15 @@ def test_two_real_parts_fitting_alike_blame_neither():
     assert worse(shoulder, base) and not worse(base, shoulder)
 
 
+def test_evidence_pointing_both_ways_names_neither_twin():
+    # GR3's upper arm yaw twins, one given its neighbour's block: it departs 0.18 more in
+    # tensor, its twin 11 % of the size more in centre of mass
+    given, twin = Departure(0.805, 0.057), Departure(0.624, 0.168)
+    assert not worse(twin, given) and not worse(given, twin)
+    # ... while a centre of mass as far off with the tensor closer only by noise is told
+    assert worse(Departure(0.6, 0.168), Departure(0.65, 0.057))
+
+
 def test_a_link_beyond_any_real_part_is_worse():
     good = Departure(math.log(1.5), 0.05)
     assert worse_part(Departure(BAND + 0.3, 0.05), good)

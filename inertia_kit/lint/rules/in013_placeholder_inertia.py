@@ -9,8 +9,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.copies import block, six_values
-from inertia_kit.analysis.expected import basis_text, geometry_tensor
-from inertia_kit.analysis.fault import TENSOR_MARGIN
+from inertia_kit.analysis.copies import copies as whole_copies
+from inertia_kit.analysis.expected import base_tensors, basis_text, geometry_tensor
+from inertia_kit.analysis.fault import COM_MARGIN, PLAUSIBLE_COM, TENSOR_MARGIN, departure
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy
 from inertia_kit.analysis.forensics.measure import BAND, TOLERANCE, LogMetric
 from inertia_kit.analysis.forensics.unit_slip import one_digit
@@ -115,6 +116,28 @@ def _agreement(
     }
 
 
+def _least_closeness(declared: NDArray[np.float64], link: LinkAnalysis, mass: float) -> float:
+    """How close the values come to any of the link's geometries (compare_tensors' factor)."""
+    found = [compare_tensors(declared, w.tensor) for w in base_tensors(link, mass)]
+    return min((c.factor for c in found if c is not None), default=math.inf)
+
+
+def _carried_offsets(members: list[LinkAnalysis]) -> list[float]:
+    """
+    For each link, its centre of mass's offset from its centroid over its size when its whole
+    block (mass and centre of mass too) is another's of ``members``, else 0: a centre of mass
+    copied along with the tensor tells which part the block was made for (Baxter's hand given
+    a wrist's block: its tensor a factor of 1.3 from the hand's, its centre of mass half the
+    hand's size off it), a link's own one tells nothing about a shared tensor.
+    """
+    blocks = [block(m) for m in members]
+    offsets = []
+    for member, key in zip(members, blocks, strict=True):
+        found = departure(member) if blocks.count(key) > 1 else None
+        offsets.append(0.0 if found is None else found.com)
+    return offsets
+
+
 def _isotropic(values: tuple[float, ...]) -> bool:
     ixx, ixy, ixz, iyy, iyz, izz = values
     return (
@@ -182,7 +205,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
+    # a whole block that fits its owner and is named copied is IN066's (analysis.copies)
+    named = {c.link.name for c in whole_copies(robot)}
     for values, members in copies.items():
+        members = [m for m in members if m.name not in named]
         if len({m.name for m in members}) < 2:
             continue
         declared_tensor = _written(values)
@@ -199,30 +225,35 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if any(c is None for c in comparisons):
             continue  # not positive definite: IN010/IN011's
         closeness = [c.factor for c in comparisons if c is not None]
+        offsets = _carried_offsets([m for m, _, _ in candidates])
         # the original is the link most others agree with (identical parts outvote the one
-        # whose mass slipped), among those the values fit as a real part's fit its geometry;
-        # when they fit none so (a placeholder on every link), the one they fit best
-        owners = [i for i, c in enumerate(closeness) if c <= OWNER_FIT]
+        # whose mass slipped), among those the values fit as a real part's fit its geometry
+        # (with the centre of mass too, when it came along); when they fit none so (a
+        # placeholder on every link), the one they fit best
+        owners = [
+            i for i, c in enumerate(closeness) if c <= OWNER_FIT and offsets[i] <= PLAUSIBLE_COM
+        ]
         agree = _agreement(
             [w.tensor for _, _, w in candidates], list(range(len(candidates))), copy_factor
         )
         if owners:
             index = min(owners, key=lambda i: (-agree[i], closeness[i]))
         else:
-            index = int(np.argmin(closeness))
+            index = min(
+                range(len(candidates)),
+                key=lambda i: math.log(closeness[i]) + offsets[i] * TENSOR_MARGIN / COM_MARGIN,
+            )
         original, original_mass, original_written = candidates[index]
-        # a whole block shared with the original (mass and centre of mass too) is IN066's
-        # (analysis.copies), which judges the centre of mass as well and names no copy when
-        # no link owns the block
-        whole = {m.name for m, _, _ in candidates if block(m) == block(original)}
         for i, (member, mass, written) in enumerate(candidates):
-            if member is original or member.name in flagged or member.name in whole:
+            if member is original or member.name in flagged:
                 continue
             # the copy is the link outvoted by identical parts, or the one the values fit
             # clearly worse than the original and worse than a real part's fit its geometry,
             # unless they are the original's exactly (analysis.fault): UR5e's two wrists share
             # a tensor, and with one's mass tripled both still fit alike, so neither is named
-            fit, best = closeness[i], closeness[index]
+            # ... on each of its geometries: a crude collision shape standing in for the part
+            # (GR3's upper arm roll link, a 5 cm sphere) does not make its own values a copy
+            fit, best = _least_closeness(declared_tensor, member, mass), closeness[index]
             outvoted = agree[i] < agree[index]
             beyond = fit > OWNER_FIT or best <= 1 + TOLERANCE
             if not (outvoted or (beyond and math.log(fit / best) > TENSOR_MARGIN)):

@@ -16,6 +16,7 @@ from kit.urdf import (
     moving,
     robot,
     sphere,
+    visual,
 )
 
 from inertia_kit.analysis.tensors import compare_tensors
@@ -129,11 +130,12 @@ def test_a_pair_that_fits_alike_names_neither(lint):
     assert in013(lint, text) == []
 
 
-def test_a_whole_block_shared_is_left_to_in066(lint):
-    # Baxter's shape: a block whose tensor fits one link (1.3 times its box's) but whose centre
-    # of mass lies 60 % of that link's size from its centroid, and which sits at the centroid
-    # of the other (a cube, its tensor 6 times off): the centre of mass and the tensor point
-    # at different owners, so no link is named the copy (IN021 and IN020 judge each link)
+def test_a_centre_of_mass_carried_along_counts_for_the_owner(lint):
+    # Baxter's shape: a whole block whose tensor fits one link (1.3 times its box's) but whose
+    # centre of mass lies 60 % of that link's size from its centroid, and which sits at the
+    # centroid of the other (a cube, its tensor 6 times off): the centre of mass and the
+    # tensor point at different owners, so no link is named the copy (IN021 and IN020 judge
+    # each link)
     moments = [1.3 * m for m in box_moments(2.0, (0.1, 0.1, 0.3))]
     block = inertial(2.0, *moments, xyz=(0, 0, 0.18))
     text = on_base(
@@ -142,6 +144,19 @@ def test_a_whole_block_shared_is_left_to_in066(lint):
     )
     assert in013(lint, text) == []
     assert lint(text, "IN066") == []
+
+
+def test_a_link_whose_visual_part_fits_the_values_holds_no_copy(lint):
+    # GR3's upper arm roll link: a 5 cm collision sphere stands in for the part, the values
+    # are its visual box's; the same six values on a forearm box they fit within a factor of
+    # 1.5 make the forearm the best fit by collision, but the upper arm's own part holds them
+    upper = (0.06, 0.06, 0.3)
+    moments = box_moments(2.0, upper)
+    text = on_base(
+        upper=inertial(2.0, *moments) + collision(sphere(0.05)) + visual(box(*upper)),
+        fore=inertial(2.0, *moments, xyz=(0, 0, 0.01)) + collision(box(0.06, 0.06, 0.24)),
+    )
+    assert "upper" not in [f.link for f in in013(lint, text)]
 
 
 def test_a_placeholder_on_every_link_keeps_the_best_fit_as_original(lint):
