@@ -109,6 +109,10 @@ def _unfit_anywhere(link: LinkAnalysis, best: Departure) -> bool:
 
 def copies(robot: RobotAnalysis) -> list[Copy]:
     """The links holding another link's copied block, in file order (module doc)."""
+    return robot.fact("whole copies", _copies)
+
+
+def _copies(robot: RobotAnalysis) -> list[Copy]:
     groups: dict[tuple, list[LinkAnalysis]] = {}
     for link in robot.links:
         key = block(link)

@@ -96,6 +96,17 @@ def departure(link: LinkAnalysis) -> Departure | None:
     or ``None`` without declared values or geometry: two links of one part are compared on the
     same kind of geometry.
     """
+    robot = link.robot
+    if robot is None:
+        return _plain_departure(link)
+    # several rules ask of every link sharing a block (thousands on an asset library's robots)
+    known = robot.fact("departures", lambda _: {})
+    if link.name not in known:
+        known[link.name] = _plain_departure(link)
+    return known[link.name]
+
+
+def _plain_departure(link: LinkAnalysis) -> Departure | None:
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return None

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections import Counter
 from collections.abc import Iterator
 
 import numpy as np
@@ -131,9 +132,10 @@ def _carried_offsets(members: list[LinkAnalysis]) -> list[float]:
     hand's size off it), a link's own one tells nothing about a shared tensor.
     """
     blocks = [block(m) for m in members]
+    counts = Counter(blocks)
     offsets = []
     for member, key in zip(members, blocks, strict=True):
-        found = departure(member) if blocks.count(key) > 1 else None
+        found = departure(member) if counts[key] > 1 else None
         offsets.append(0.0 if found is None else found.com)
     return offsets
 
