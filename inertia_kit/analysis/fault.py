@@ -100,10 +100,11 @@ def departure(link: LinkAnalysis) -> Departure | None:
     if robot is None:
         return _plain_departure(link)
     # several rules ask of every link sharing a block (thousands on an asset library's robots)
+    # (by identity: a malformed file may name two links alike; the robot keeps its links alive)
     known = robot.fact("departures", lambda _: {})
-    if link.name not in known:
-        known[link.name] = _plain_departure(link)
-    return known[link.name]
+    if id(link) not in known:
+        known[id(link)] = _plain_departure(link)
+    return known[id(link)]
 
 
 def _plain_departure(link: LinkAnalysis) -> Departure | None:
