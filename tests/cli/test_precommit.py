@@ -374,3 +374,52 @@ def test_hook_fill_on_a_fragment_fills_it_then_passes(hook_repo, tmp_path):
     assert done.returncode == 0, output
     assert re.search(r"inertia-fill\.+Passed", output), output
     assert (project / WHEELS).read_text() == filled
+
+
+# --- the hooks on many files: pre-commit must not split them into batches run in parallel ----
+
+
+def _examples(path: Path) -> Path:
+    """A repository holding every example robot (two robots share wheels.xacro's fragment)."""
+    shutil.copytree(ROOT / "examples", path)
+    _git("init", "-q", cwd=path)
+    _git("add", "-A", cwd=path)
+    return path
+
+
+def _findings(output: str) -> list[str]:
+    return [line for line in output.splitlines() if re.search(r":\d+(:\d+)?: IN\d{3} \[", line)]
+
+
+def test_the_hooks_run_serially():
+    # pre-commit splits the files among as many parallel batches as there are cores unless a
+    # hook asks not to; two batches reach a fragment through their robots (both fill it, or
+    # both report its findings)
+    assert all(
+        entry.get("require_serial") is True for entry in yaml.safe_load(MANIFEST.read_text())
+    )
+
+
+@pytest.mark.slow
+def test_the_hooks_give_one_result_each_run_on_the_examples(hook_repo, tmp_path):
+    project = _examples(tmp_path / "examples")
+    runs = [_run_hook(hook_repo, project) for _ in range(10)]
+    first = runs[0].stdout + runs[0].stderr
+    assert runs[0].returncode == 1, first
+    found = _findings(first)
+    assert found and len(found) == len(set(found)), first  # each finding once
+    for done in runs[1:]:
+        assert (done.returncode, _findings(done.stdout + done.stderr)) == (1, found)
+    # the fill hook: the first run fills and stops the commit, every later one changes nothing
+    filled = _run_hook(hook_repo, project, "inertia-fill")
+    assert filled.returncode == 1, filled.stdout + filled.stderr
+    assert "changed while it was being processed" not in filled.stdout + filled.stderr
+    after = {p: p.read_bytes() for p in project.rglob("*") if p.is_file() and ".git" not in p.parts}
+    for _ in range(9):
+        done = _run_hook(hook_repo, project, "inertia-fill")
+        output = done.stdout + done.stderr
+        assert done.returncode == 0 and re.search(r"inertia-fill\.+Passed", output), output
+        now = {
+            p: p.read_bytes() for p in project.rglob("*") if p.is_file() and ".git" not in p.parts
+        }
+        assert now == after
