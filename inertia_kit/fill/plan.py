@@ -322,6 +322,7 @@ def plan_robot(
         repairs=REPAIRS[fix],
         asked=(*asked, *choice.masses),
         recompute=fix == "all",
+        path=source.path,
     )
     fills: list[LinkFill] = []
     refused: list[Refusal] = []

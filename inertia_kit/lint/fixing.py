@@ -317,11 +317,22 @@ def robot_fixes(
     repairs: Collection[Repairs] | None = None,
     asked: Collection[str] = (),
     recompute: bool = False,
+    path: str | None = None,
 ) -> RobotFixes:
-    """Run :func:`fixing_rules` (default options) on ``analysis`` and plan their fixes."""
+    """
+    Run :func:`fixing_rules` (default options) on ``analysis`` and plan their fixes; findings
+    a suppression comment covers are not fixed (as ruff's fixers honour ``noqa``), ``path``
+    being the file of the findings that name none.
+    """
     from inertia_kit.lint.runner import Selection, run_rules
+    from inertia_kit.lint.suppress import suppressed
 
-    findings = run_rules(analysis, Selection(), fixing_rules())
+    found = run_rules(analysis, Selection(), fixing_rules())
+    findings = [
+        f
+        for f in found
+        if not suppressed(f if f.path or path is None else dataclasses.replace(f, path=path))
+    ]
     return plan_fixes(
         analysis, findings, choice, files, repairs=repairs, asked=asked, recompute=recompute
     )
