@@ -10,6 +10,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import click
+
 from inertia_kit.cli.printing import say
 
 if TYPE_CHECKING:
@@ -59,11 +61,13 @@ def add_noqa(
     relint: Callable[[], list[FileResult]],
     quiet: bool = False,
     follow_symlinks: bool = False,
+    diff: bool = False,
 ) -> int:
     """
     Write the comments, lint again to prove them, say what was done (``quiet``: only errors and
     the findings that still fail); the exit code. A file that is a symbolic link out of its
-    repository is not written (nor any other), unless ``follow_symlinks``.
+    repository is not written (nor any other), unless ``follow_symlinks``. ``diff``: print the
+    comments as a unified diff instead and write nothing (exit 1 when there is one).
     """
     from inertia_kit.description.edits import write_all_atomic
     from inertia_kit.description.reads import combined
@@ -77,6 +81,14 @@ def add_noqa(
         # placed in the text each robot's lint read (else: changed meanwhile, nothing written)
         reads = combined(r.reads for r in results)
         planned = plan(run.findings, writable_under(paths), reads)
+        if diff:
+            from inertia_kit.description.edits import unified_diff
+
+            shown = unified_diff(
+                (os.path.relpath(p), old.text, new) for p, (old, new) in planned.texts.items()
+            )
+            click.echo(shown, nl=False)
+            return 1 if shown else 0
         writes = [(p, old.encode(new), old.original) for p, (old, new) in planned.texts.items()]
         refuse_links_out([path for path, _, _ in writes], follow_symlinks)
         # the comments are for the findings of the files as read: any of them saved since

@@ -319,7 +319,12 @@ def lint(
         from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
 
         return write_suppressions(
-            paths, results, lint_all, quiet=quiet, follow_symlinks=follow_symlinks
+            paths,
+            results,
+            lint_all,
+            quiet=quiet,
+            follow_symlinks=follow_symlinks,
+            diff=show_diff,
         )
     run = merge(results)
     for level, text in run.messages:

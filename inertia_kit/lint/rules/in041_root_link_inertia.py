@@ -36,6 +36,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         return
     mass = inertial.mass if isinstance(inertial.mass, float) else None
     weight = "" if mass is None else f" ({fmt(mass)} kg)"
+    root = _new_root(robot, name)
     yield ctx.finding(
         f"root link `{name}` has an <inertial>{weight}: KDL, so robot_state_publisher, "
         f'MoveIt\'s KDL plugins and KDL dynamics, leave it out ("{KDL.format(name=name)}"), '
@@ -44,9 +45,18 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         inertial.source,
         link=name,
         expected={"root": name, "mass": mass},
-        help=f'add a massless root above it: <link name="base_footprint"/> and <joint '
-        f'name="base_footprint_joint" type="fixed"><parent link="base_footprint"/><child '
+        help=f'add a massless root above it: <link name="{root}"/> and <joint '
+        f'name="{root}_joint" type="fixed"><parent link="{root}"/><child '
         f'link="{name}"/></joint>; Gazebo and Drake lump the two into one body (PyBullet fixes '
         "a massless base to the world: load a floating robot with "
         "flags=p.URDF_MERGE_FIXED_LINKS)",
+    )
+
+
+def _new_root(robot: RobotAnalysis, root: str) -> str:
+    """A name for a root above ``root`` that no link or joint of the robot has yet."""
+    taken = {link.name for link in robot.robot.links} | {j.name for j in robot.robot.joints}
+    candidates = ("base_footprint", f"{root}_root", *(f"{root}_root{i}" for i in range(2, 100)))
+    return next(
+        (c for c in candidates if c not in taken and f"{c}_joint" not in taken), f"{root}_root"
     )

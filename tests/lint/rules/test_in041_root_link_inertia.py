@@ -25,6 +25,16 @@ def test_root_with_inertial_warns_with_kdl_message_and_dummy_root(lint):
     assert finding.expected == {"root": "base_link", "mass": 10.0}
 
 
+def test_the_suggested_root_is_a_name_the_robot_does_not_use(lint):
+    # a root named base_footprint: the help suggested a link base_footprint above it, and a
+    # joint from base_footprint to itself
+    text = robot(link("base_footprint", INERTIAL), joint("base_footprint", "arm", name="j"))
+    text = text.replace("</robot>", link("arm", INERTIAL) + "</robot>")
+    (finding,) = lint(text, "IN041")
+    assert '<link name="base_footprint_root"/>' in finding.help
+    assert '<parent link="base_footprint_root"/><child link="base_footprint"/>' in finding.help
+
+
 def test_massless_dummy_root_is_quiet(lint):
     text = robot(
         link("base_footprint"),
