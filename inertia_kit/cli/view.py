@@ -165,7 +165,11 @@ def view(
     findings = sum(len(link["findings"]) for link in scene["links"])
     findings += len(scene.get("findings_elsewhere", ()))
     megabytes = len(page) / 1e6
-    say(f"wrote {output}: {len(scene['links'])} links, {findings} findings, {megabytes:.1f} MB")
+    links = len(scene["links"])
+    say(
+        f"wrote {output}: {links} link{'' if links == 1 else 's'}, {findings} "
+        f"finding{'' if findings == 1 else 's'}, {megabytes:.1f} MB"
+    )
     if png and size:
         from inertia_kit.view.screenshot import RendererError, screenshot
 

@@ -169,4 +169,4 @@ def selector_error(text: str, known: Mapping[str, str]) -> str:
     """Why ``text`` is no selector, with what it may have meant."""
     close = suggestions(text, known)
     hint = f" (did you mean {', '.join(f'`{c}`' for c in close)}?)" if close else ""
-    return f"`{text}` is no rule code, code prefix or rule name{hint}"
+    return f"`{text}` is not a rule code, code prefix or rule name{hint}"

@@ -46,7 +46,7 @@ def explain(selector: str) -> str:
     if code is None:
         close = catalog.suggestions(text, known)
         hint = f" (did you mean {', '.join(f'`{c}`' for c in close)}?)" if close else ""
-        raise LookupError(f"`{text}` is no rule code or name{hint}")
+        raise LookupError(f"`{text}` is not a rule code or name{hint}")
     raise LookupError(f"{code} ({known[code]}) has no document in this version")
 
 

@@ -198,7 +198,7 @@ def test_unknown_selector_is_a_usage_error(here):
     assert run("--select", "IN9x", "r.urdf") == (
         2,
         "",
-        "error: --select: `IN9x` is no rule code, code prefix or rule name\n",
+        "error: --select: `IN9x` is not a rule code, code prefix or rule name\n",
     )
 
 
@@ -288,7 +288,7 @@ def test_suppression_notes_reach_stderr_once(here):
     assert run("a.xacro", "b.xacro", "p.xacro") == (
         0,
         "",
-        "warning: p.xacro:3: inertia-lint comment ignored: `IN5` is no rule code, code prefix "
+        "warning: p.xacro:3: inertia-lint comment ignored: `IN5` is not a rule code, code prefix "
         "or rule name\n"
         "note: p.xacro: linted through the robots that include it: a.xacro, b.xacro\n"
         "No findings in 2 files.\n",
@@ -337,12 +337,12 @@ def test_explain_unknown_or_undocumented(monkeypatch, tmp_path):
     assert run("--explain", "IN0") == (
         2,
         "",
-        "error: --explain: `IN0` is no rule code or name (did you mean `IN000`?)\n",
+        "error: --explain: `IN0` is not a rule code or name (did you mean `IN000`?)\n",
     )
     assert run("--explain", "non-positive-mas") == (
         2,
         "",
-        "error: --explain: `non-positive-mas` is no rule code or name (did you mean "
+        "error: --explain: `non-positive-mas` is not a rule code or name (did you mean "
         "`non-positive-mass`?)\n",
     )
     from inertia_kit.lint import documents

@@ -92,8 +92,8 @@ def test_suggestions_and_selector_error():
     assert catalog.suggestions("IN99", known) == []
     assert catalog.suggestions("inertia-to-small", known) == ["inertia-too-small"]
     assert catalog.selector_error("IN12", known) == (
-        "`IN12` is no rule code, code prefix or rule name (did you mean `IN012`?)"
+        "`IN12` is not a rule code, code prefix or rule name (did you mean `IN012`?)"
     )
     assert catalog.selector_error("IN777", known) == (
-        "`IN777` is no rule code, code prefix or rule name"
+        "`IN777` is not a rule code, code prefix or rule name"
     )

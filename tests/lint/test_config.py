@@ -104,16 +104,16 @@ def test_every_key_of_pyproject(tmp_path):
         ),
         (
             '[tool.inertia-kit]\nignore = ["IN9"]\n',
-            "`tool.inertia-kit.ignore`: `IN9` is no rule code, code prefix or rule name",
+            "`tool.inertia-kit.ignore`: `IN9` is not a rule code, code prefix or rule name",
         ),
         (
             '[tool.inertia-kit]\nselect = ["stub-hevy"]\n',
-            "`tool.inertia-kit.select`: `stub-hevy` is no rule code, code prefix or rule name "
+            "`tool.inertia-kit.select`: `stub-hevy` is not a rule code, code prefix or rule name "
             "(did you mean `stub-heavy`?)",
         ),
         (
             '[tool.inertia-kit.per-file-ignores]\n"*.urdf" = ["IN777"]\n',
-            '`tool.inertia-kit.per-file-ignores."*.urdf"`: `IN777` is no rule code, code prefix '
+            '`tool.inertia-kit.per-file-ignores."*.urdf"`: `IN777` is not a rule code, code prefix '
             "or rule name",
         ),
         (
@@ -151,7 +151,7 @@ def test_every_key_of_pyproject(tmp_path):
         ),
         (
             "[tool.inertia-kit.rules.IN999]\nseverity = 'error'\n",
-            "`tool.inertia-kit.rules.IN999`: unknown rule: `IN999` is no rule code, code prefix "
+            "`tool.inertia-kit.rules.IN999`: unknown rule: `IN999` is not a rule code, code prefix "
             "or rule name",
         ),
         (

@@ -25,9 +25,9 @@ def test_explain_by_code_or_name(selector):
 @pytest.mark.parametrize(
     ("selector", "message"),
     [
-        ("IN0", "`IN0` is no rule code or name"),
-        ("IN02", "`IN02` is no rule code or name (did you mean `IN002`?)"),
-        ("non-positive-mas", "`non-positive-mas` is no rule code or name (did you mean "),
+        ("IN0", "`IN0` is not a rule code or name"),
+        ("IN02", "`IN02` is not a rule code or name (did you mean `IN002`?)"),
+        ("non-positive-mas", "`non-positive-mas` is not a rule code or name (did you mean "),
     ],
 )
 def test_explain_names_no_rule(selector, message):

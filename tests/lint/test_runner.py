@@ -83,9 +83,9 @@ def test_fail_on_from_config_and_command_line(tmp_path):
 
 
 def test_command_line_selectors_are_checked(tmp_path):
-    with pytest.raises(ConfigError, match=r"--select: `IN98` is no rule code.*`IN098`"):
+    with pytest.raises(ConfigError, match=r"--select: `IN98` is not a rule code.*`IN098`"):
         lint_paths([tmp_path], select=("IN98",))
-    with pytest.raises(ConfigError, match=r"--ignore: `stub-heavyy` is no rule code.*stub-heavy"):
+    with pytest.raises(ConfigError, match=r"--ignore: `stub-heavyy` is not a rule.*stub-heavy"):
         lint_paths([tmp_path], ignore=("stub-heavyy",))
 
 

@@ -211,7 +211,7 @@ def test_comments_we_do_not_understand_become_notes(tmp_path):
         f"{path}:7: inertia-lint comment ignored: `ignore[]` names no rule: give codes or names",
         f"{path}:8: inertia-lint comment ignored: `ignore[...]` is not followed by an element "
         "it could cover",
-        f"{tmp_path / 'parts.xacro'}:6: inertia-lint comment ignored: `IN98` is no rule code, "
+        f"{tmp_path / 'parts.xacro'}:6: inertia-lint comment ignored: `IN98` is not a rule code, "
         "code prefix or rule name (did you mean `IN098`?)",
     ]
 
