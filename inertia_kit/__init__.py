@@ -7,10 +7,29 @@ run) pays only for what it touches.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+import _signal  # builtin, loaded: `signal` builds enums first, 10 ms a Ctrl-C can land in
+import os
+import sys
 
-from inertia_kit.version import __version__
+
+def _interrupted(signum: int, frame: object) -> None:
+    os.write(2, b"interrupted\n")
+    os._exit(130)
+
+
+# Ctrl-C while a console script still imports its command (~0.6 s on a cold machine): its guard
+# (cli/guard.py) does not exist yet, and Python would print a traceback. In a console script
+# (not a program that imports the package) answer as the guard does, until it restores Python's
+# handler; first thing, before any import that reads a file
+if os.path.basename(sys.argv[0]) in ("inertia-lint", "inertia-fill", "inertia-kit") and (
+    _signal.getsignal(_signal.SIGINT) is _signal.default_int_handler
+):
+    _signal.signal(_signal.SIGINT, _interrupted)
+
+import importlib  # noqa: E402
+from typing import TYPE_CHECKING, Any  # noqa: E402
+
+from inertia_kit.version import __version__  # noqa: E402
 
 _EXPORTS = {
     "MassProperties": "inertia_kit.physics.mass",

@@ -22,6 +22,7 @@ import contextlib
 import contextvars
 import errno
 import os
+import signal
 import sys
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
@@ -89,6 +90,8 @@ class _Guard:
     def invoke(self, ctx: click.Context) -> Any:
         from inertia_kit.cli import printing
 
+        if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+            signal.signal(signal.SIGINT, signal.default_int_handler)  # KeyboardInterrupt below
         _processing.set(None)
         printing.start()
         _tolerant_streams()

@@ -114,3 +114,36 @@ def test_sigint_with_worker_processes_is_exit_130_and_leaves_no_process(tmp_path
         time.sleep(0.05)
     left = [pid for pid in tree if Path(f"/proc/{pid}").exists()]
     assert not left, f"processes outlived Ctrl-C: {left}"
+
+
+def test_sigint_while_the_command_imports_is_exit_130_without_a_traceback(tmp_path):
+    """
+    Ctrl-C in the first moments, before the command's guard exists (cli/__init__.py): at
+    delays spread over a small robot's whole run, never a traceback; interrupted, exit 130.
+    """
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    outcomes = []
+    for step in range(15):
+        process = subprocess.Popen(
+            [console_script("inertia-lint"), str(robot)],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env={**os.environ, "PYTHONPATH": WORKTREE},
+            preexec_fn=default_sigint,
+        )
+        time.sleep(0.02 * step)
+        process.send_signal(signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=30)
+        if "init_import_site" in stderr:
+            continue  # Python itself was still starting (its site module), before any of ours
+        if "Traceback" in stderr and "/inertia_kit/" not in stderr:
+            continue  # the console script's own lines (`import re`, finding the package)
+        assert "Traceback" not in stderr and "KeyboardInterrupt" not in stderr, stderr
+        if process.returncode == -signal.SIGINT and not stderr:
+            continue  # killed before Python set up its own handler: silent, as any program
+        if "No findings" not in stdout + stderr:  # interrupted before it finished
+            assert (process.returncode, stderr[-12:]) == (130, "interrupted\n"), stderr
+        outcomes.append(process.returncode)
+    assert outcomes
