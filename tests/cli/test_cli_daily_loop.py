@@ -25,32 +25,33 @@ ROOTED = """<robot name="r">
 """
 
 
-def test_add_noqa_with_diff_prints_the_comments_and_writes_nothing(tmp_path, monkeypatch):
+def _lint(path, *args: str):
+    """`inertia-lint --select IN041 ARGS PATH`, in this process."""
+    return CliRunner().invoke(lint_command, ["--select", "IN041", *args, str(path)])
+
+
+def _rooted(tmp_path, monkeypatch):
     lint_in_process(monkeypatch)
     path = tmp_path / "r.urdf"
     path.write_text(ROOTED)
-    done = CliRunner().invoke(
-        lint_command, ["--add-noqa", "--diff", "--select", "IN041", str(path)]
-    )
+    return path
+
+
+def test_add_noqa_with_diff_prints_the_comments_and_writes_nothing(tmp_path, monkeypatch):
+    path = _rooted(tmp_path, monkeypatch)
+    done = _lint(path, "--add-noqa", "--diff")
     assert done.exit_code == 1, done.output
     assert "+    <!-- inertia-lint: ignore[IN041] -->" in done.stdout
     assert path.read_text() == ROOTED
     # nothing to add: no diff, exit 0
-    written = CliRunner().invoke(lint_command, ["--add-noqa", "--select", "IN041", str(path)])
+    written = _lint(path, "--add-noqa")
     assert written.exit_code == 0, written.output
-    again = CliRunner().invoke(
-        lint_command, ["--add-noqa", "--diff", "--select", "IN041", str(path)]
-    )
+    again = _lint(path, "--add-noqa", "--diff")
     assert (again.exit_code, again.stdout) == (0, "")
 
 
 def test_in041_suggests_a_root_the_robot_does_not_have(tmp_path, monkeypatch):
-    lint_in_process(monkeypatch)
-    path = tmp_path / "r.urdf"
-    path.write_text(ROOTED)
-    done = CliRunner().invoke(
-        lint_command, ["--select", "IN041", "--output-format", "full", str(path)]
-    )
+    done = _lint(_rooted(tmp_path, monkeypatch), "--output-format", "full")
     assert done.exit_code == 1
     assert '<link name="base_footprint_root"/>' in done.output
     assert '<child link="base_footprint"/>' in done.output
