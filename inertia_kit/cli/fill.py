@@ -314,7 +314,10 @@ def fill(
         )
     if not changed and not refused:
         checked = len(plans)
-        say(f"inertia-fill: {checked} file{'s' if checked != 1 else ''} checked, nothing to change")
+        files = f"{checked} file{'s' if checked != 1 else ''} checked"
+        # after an error the files not read may well need a change: say what was done
+        done = "nothing written (errors above)" if failed else "nothing to change"
+        say(f"inertia-fill: {files}, {done}")
     if failed:
         return 2
     return 1 if changed or refused else 0

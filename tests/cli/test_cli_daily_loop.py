@@ -1,7 +1,7 @@
 """
 Small surprises of the daily loop (issue 21), each through the real command: `--add-noqa
 --diff` shows the comments and writes nothing; IN041's help suggests a root name the robot does
-not use.
+not use; inertia-fill does not say "nothing to change" after an error.
 """
 
 from __future__ import annotations
@@ -9,6 +9,7 @@ from __future__ import annotations
 from click.testing import CliRunner
 from kit.in_process import lint_in_process
 
+from inertia_kit.cli.fill import fill_command
 from inertia_kit.cli.lint import lint_command
 
 ROOTED = """<robot name="r">
@@ -56,3 +57,15 @@ def test_in041_suggests_a_root_the_robot_does_not_have(tmp_path, monkeypatch):
     assert '<link name="base_footprint_root"/>' in done.output
     assert '<child link="base_footprint"/>' in done.output
     assert '<link name="base_footprint"/>' not in done.output
+
+
+def test_fill_does_not_say_nothing_to_change_after_an_error(tmp_path):
+    bad, good = tmp_path / "bad.urdf", tmp_path / "good.urdf"
+    bad.write_text("<robot")
+    good.write_text(ROOTED)
+    done = CliRunner().invoke(fill_command, [str(bad), str(good)])
+    assert done.exit_code == 2
+    assert "nothing to change" not in done.output
+    assert "inertia-fill: 1 file checked, nothing written (errors above)" in done.output
+    alone = CliRunner().invoke(fill_command, [str(good)])
+    assert "inertia-fill: 1 file checked, nothing to change" in alone.output
