@@ -18,6 +18,7 @@ from inertia_kit.physics.frames import rpy_matrix
 from inertia_kit.physics.tensor_names import INDEX, TENSOR
 
 if TYPE_CHECKING:
+    from inertia_kit.analysis.geometry import Geometry
     from inertia_kit.analysis.links import LinkAnalysis
 
 
@@ -59,22 +60,21 @@ def geometry_tensor(link: LinkAnalysis, mass: float) -> WrittenTensor | None:
     The link geometry's tensor for ``mass`` at uniform density, in the axes the link's
     ``<inertia>`` is written in; ``None`` when its geometry has no usable volume.
     """
-    body = link.geometry.at_mass(mass)
-    if body is None:
-        return None
-    inertia, axes = _written_axes(link.link.inertial, body.inertia)
-    return WrittenTensor(tensor_fields(inertia), inertia, axes)
+    return _written_tensor(link, link.geometry, mass)
 
 
 def base_tensors(link: LinkAnalysis, mass: float) -> list[WrittenTensor]:
     """:func:`geometry_tensor` for each of the link's geometries (``LinkAnalysis.bases``)."""
-    found = []
-    for geometry in link.bases:
-        body = geometry.at_mass(mass)
-        if body is not None:
-            inertia, axes = _written_axes(link.link.inertial, body.inertia)
-            found.append(WrittenTensor(tensor_fields(inertia), inertia, axes))
-    return found
+    found = (_written_tensor(link, geometry, mass) for geometry in link.bases)
+    return [written for written in found if written is not None]
+
+
+def _written_tensor(link: LinkAnalysis, geometry: Geometry, mass: float) -> WrittenTensor | None:
+    body = geometry.at_mass(mass)
+    if body is None:
+        return None
+    inertia, axes = _written_axes(link.link.inertial, body.inertia)
+    return WrittenTensor(tensor_fields(inertia), inertia, axes)
 
 
 def basis_text(link: LinkAnalysis, mass: float) -> str:

@@ -76,6 +76,12 @@ class Departure:
     tensor: float  # log distance, 0 for the geometry's own tensor
     com: float  # centre of mass from the centroid, over the geometry's size
 
+    @property
+    def exact(self) -> bool:
+        """Whether the values are the geometry's own (tensor within TOLERANCE, centre of mass
+        within EXACT_COM): computed from it, as textbook files are."""
+        return self.tensor <= TOLERANCE and self.com <= EXACT_COM
+
     def text(self) -> str:
         """How far, in words: ``tensor a factor of 1.52 from its geometry's, ...``."""
         factor = math.exp(self.tensor) if self.tensor < 700 else math.inf
@@ -165,7 +171,7 @@ def worse_part(a: Departure, b: Departure) -> bool:
     """
     if not worse(a, b):
         return False
-    if b.tensor <= TOLERANCE and b.com <= EXACT_COM:
+    if b.exact:
         return True
     tensor, com = a.tensor - b.tensor, a.com - b.com
     return (tensor > TENSOR_MARGIN and a.tensor > BAND) or (
@@ -214,6 +220,13 @@ def densest(links: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, float] | Non
     judged = [(link, density_excess(link)) for link in links]
     found = [(link, excess) for link, excess in judged if excess is not None and excess > 0]
     return max(found, key=lambda item: item[1]) if found else None
+
+
+def lightest(links: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, float] | None:
+    """The link of ``links`` whose density is furthest below the plausible range, and how far."""
+    judged = [(link, density_excess(link)) for link in links]
+    found = [(link, excess) for link, excess in judged if excess is not None and excess < 0]
+    return min(found, key=lambda item: item[1]) if found else None
 
 
 #: values this far from their geometry (log distance, a factor of 5.6: BAND + MARGIN, beyond

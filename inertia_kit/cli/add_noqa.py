@@ -10,9 +10,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import click
-
-from inertia_kit.cli.printing import say
+from inertia_kit.cli.printing import say, show
 
 if TYPE_CHECKING:
     from inertia_kit.lint.runner import FileResult
@@ -87,7 +85,7 @@ def add_noqa(
             shown = unified_diff(
                 (os.path.relpath(p), old.text, new) for p, (old, new) in planned.texts.items()
             )
-            click.echo(shown, nl=False)
+            show(shown, nl=False)  # redacted, as lint's --diff
             return 1 if shown else 0
         writes = [(p, old.encode(new), old.original) for p, (old, new) in planned.texts.items()]
         refuse_links_out([path for path, _, _ in writes], follow_symlinks)

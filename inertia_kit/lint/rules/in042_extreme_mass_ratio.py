@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from inertia_kit.analysis.fault import densest, density_excess
+from inertia_kit.analysis.fault import densest, density_excess, lightest
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.engines.shares import NEGLIGIBLE
 from inertia_kit.lint.findings import Finding, Severity
@@ -113,9 +113,8 @@ def _slipped(robot: RobotAnalysis, heavy: str, light: str) -> LinkAnalysis | Non
 
 def _too_light(robot: RobotAnalysis, light: str) -> str | None:
     """The link of the light body whose density is furthest below any material's, if any."""
-    found = [(density_excess(m), m.name) for m in _weighing(robot.group_of(light))]
-    below = [(excess, name) for excess, name in found if excess is not None and excess < 0]
-    return min(below)[1] if below else None
+    found = lightest(_weighing(robot.group_of(light)))
+    return None if found is None else found[0].name
 
 
 def _weighing(group: tuple[LinkAnalysis, ...]) -> tuple[LinkAnalysis, ...]:

@@ -7,9 +7,9 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.fault import EXACT_COM, at_fault, departure
+from inertia_kit.analysis.fault import at_fault, departure
 from inertia_kit.analysis.forensics.diagnosis import RULE_MARGINS
-from inertia_kit.analysis.forensics.measure import MARGIN, TOLERANCE
+from inertia_kit.analysis.forensics.measure import MARGIN
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.twins import (
     COM_TOLERANCE,
@@ -111,7 +111,7 @@ def _tensor_told(twin: Twins, culprit: LinkAnalysis) -> bool:
     other = twin.right if culprit is twin.left else twin.left
     mine, theirs = departure(culprit), departure(other)
     assert mine is not None and theirs is not None  # at_fault judged them
-    if theirs.tensor <= TOLERANCE and theirs.com <= EXACT_COM:
+    if theirs.exact:
         return True
     return mine.tensor - theirs.tensor >= TENSOR_EVIDENCE
 
