@@ -138,6 +138,9 @@ class Event:
       The link (and joint) the event is about.
     facts : dict
       What the finding's ``expected`` holds besides the engine, verdict and engine message.
+    detail : str or None
+      The finding's detail: what the one-line message leaves out (the engine's own words, what
+      follows from the event).
     """
 
     engine: str
@@ -149,6 +152,7 @@ class Event:
     link: str | None = None
     joint: str | None = None
     facts: dict[str, Any] = field(default_factory=dict)
+    detail: str | None = None
 
     @property
     def expected(self) -> dict[str, Any]:

@@ -189,7 +189,8 @@ def _advice(
 ) -> str:
     """What to do: for an element one macro writes for several links, per call (pasting one
     link's values into the shared body would be wrong for the others): the macro, the values
-    that differ between its links, this link's call and its own values; else paste the block."""
+    that differ between its links, this link's call and its own values; else paste the block
+    (the caller shows it: ``inertia-fill`` below the reason, the linter in its ``unfixable``)."""
     if len(sharers) > 1 and where.calls:
         call = where.calls[-1]
         macro = _macro_name(where, files)
@@ -204,9 +205,9 @@ def _advice(
         return (
             f"; a value written once cannot be right for links that differ: give {macro} a "
             "parameter for each value that differs and pass each link's own at its call "
-            f"(this link's call: {location(call)}; its values: the block below)"
+            f"(this link's call: {location(call)})"
         )
-    return "; paste the block below there"
+    return "; paste its <inertial> there"
 
 
 def _macro_name(where: Source, files: Files | None) -> str:

@@ -120,7 +120,8 @@ class Finding:
     One problem at one place. Sorts by file, line, column, code, then message.
 
     ``expected`` holds the computed values a rule has (JSON-ready, SI units), e.g.
-    ``{"ixx": 0.0163}``; ``help`` says what to do.
+    ``{"ixx": 0.0163}``; ``message`` is the one-line claim with its key numbers, ``detail`` the
+    basis and arithmetic behind it, ``help`` says what to do.
     """
 
     path: str
@@ -136,6 +137,9 @@ class Finding:
     joint: str | None = field(default=None, compare=True)
     expected: dict[str, Any] | None = field(default=None, compare=False)
     help: str | None = field(default=None, compare=False)
+    # what the one-line message leaves out: the basis, the arithmetic, what each engine does,
+    # quotes (``full``, JSON, SARIF and JUnit show it; ``concise`` does not)
+    detail: str | None = field(default=None, compare=False)
     fix: Fix | None = field(default=None, compare=False)
     # for xacro: where the element stands in the macro body, when path/line is the macro call
     # that produced it
@@ -159,6 +163,7 @@ class Finding:
             "name": self.name,
             "severity": str(self.severity),
             "message": self.message,
+            "detail": self.detail,
             "file": self.path,
             "line": self.line,
             "column": self.column,

@@ -272,7 +272,10 @@ def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files) -> list
         if found is not None and finding.wants.how == "com-slip" and found.safety is Safety.SAFE:
             found = None  # a centre of mass slip fix is never safe: a safe one leaves it (_slip)
         if found is not None and found.reason is not None:
-            finding = dataclasses.replace(finding, unfixable=found.reason)
+            reason = found.reason
+            if found.block:  # the values to paste, on the reason's one line
+                reason += "; its <inertial>: " + "".join(s.strip() for s in found.block.split("\n"))
+            finding = dataclasses.replace(finding, unfixable=reason)
         elif found is not None and found.edits:
             places = tuple(_edit_place(edit, files) for edit in found.edits)
             fix = Fix(found.title, found.edits, found.safety, places)

@@ -41,11 +41,12 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
     # members whose own values are in doubt
     if not found.massless and not _negligible_beside_real_parts(robot, finding.link):
         return finding
-    message = f"{finding.message}; {found.text()}"
+    # the share is the reason for the severity: the detail's first sentence
+    detail = found.text() + (f"; {finding.detail}" if finding.detail else "")
     if found.massless:
         # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
-        return dataclasses.replace(finding, severity=Severity.INFO, message=message, wants=None)
-    return dataclasses.replace(finding, severity=Severity.WARNING, message=message)
+        return dataclasses.replace(finding, severity=Severity.INFO, detail=detail, wants=None)
+    return dataclasses.replace(finding, severity=Severity.WARNING, detail=detail)
 
 
 def _negligible_beside_real_parts(robot: RobotAnalysis, name: str) -> bool:

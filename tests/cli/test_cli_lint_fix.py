@@ -211,6 +211,14 @@ def test_wheels_of_different_sizes_are_not_fixed_in_the_shared_body(tmp_path: Pa
     for finding in findings:
         assert finding["fix"] is None
         assert "cannot be right for links that differ" in finding["unfixable"]
+        # the values to paste come with the reason on its line, not "below" where nothing comes
+        assert "below" not in finding["unfixable"]
+        pasted = finding["unfixable"].partition("its <inertial>: ")[2]
+        radius = 0.05 if finding["link"] == "left_wheel" else 0.08
+        mass = solid_cylinder(radius, 0.02, density=1000)[0]
+        assert pasted.startswith("<inertial>") and f'<mass value="{mass:.6g}"/>' in pasted
+    code, stdout, _ = lint("--unsafe-fixes", "--select", "IN001", str(path))
+    assert "block below" not in stdout and stdout.count("its <inertial>: <inertial>") == 2
 
 
 # --- JSON and SARIF -------------------------------------------------------------------------------

@@ -252,6 +252,7 @@ class Explanation:
     impossible: bool
     # a real part's likely slip (diagnosis.diagnose_part), not an exact fit: its fix is unsafe
     likely: bool = False
+    detail: str | None = None  # the basis and arithmetic the one-line message leaves out
 
 
 def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:

@@ -1,6 +1,7 @@
 """
 ``full``: ``path:line:col: CODE [severity] message``, the source line with a caret under the
-element, the macro body line for an element a xacro macro produced, and ``help``.
+element, the macro body line for an element a xacro macro produced, the ``detail``, the fix and
+``help``.
 """
 
 from __future__ import annotations
@@ -145,6 +146,9 @@ def _block(finding: Finding, style: Style, sources: _Sources, unsafe_fixes: bool
                 + " " * offset
                 + style("^" * length, fg=colour, bold=True)
             )
+    if finding.detail:
+        detail = printable(finding.detail)
+        lines.append(f"{gutter} {style('=', bold=True)} {style('detail', bold=True)}: {detail}")
     if finding.fix is not None and applicable(finding, unsafe_fixes):
         title = printable(finding.fix.title)
         lines.append(f"{gutter} {style('=', bold=True)} {style('fix', bold=True)}: {title}")

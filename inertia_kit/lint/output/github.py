@@ -61,6 +61,8 @@ def _command(finding: Finding) -> str:
     head = _head(finding.code, finding.path, finding.line, finding.column)
     where = location(finding.path, finding.line, finding.column)
     text = f"{where}: {finding.code} {message(finding)}"
+    if finding.detail:
+        text += f"\n{finding.detail}"
     if finding.help:
         text += f"\nhelp: {finding.help}"
     return f"::{_LEVELS[finding.severity]} {head}::{_escape_data(text)}"

@@ -122,6 +122,8 @@ def _failure(finding: Finding) -> ET.Element:
     case = _case(f"{finding.code} {finding.name}", finding.path, finding.line, finding.column)
     failure = ET.SubElement(case, "failure", message=message(finding), type=str(finding.severity))
     failure.text = _where(finding.line, finding.column) + _content(message(finding))
+    if finding.detail:
+        failure.text += f"\n{_content(finding.detail)}"
     if finding.help:
         failure.text += f"\nhelp: {_content(finding.help)}"
     return case

@@ -62,6 +62,10 @@ def _rule(code: str, name: str, rule: ModuleType | None) -> dict[str, Any]:
     return entry
 
 
+def _text(finding: Finding) -> str:
+    return message(finding) + (f"\n\n{finding.detail}" if finding.detail else "")
+
+
 def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[str, Any]:
     """A SARIF 2.1.0 log of one run; the rules listed are those with findings."""
     names = dict(sorted({(f.code, f.name) for f in findings}))
@@ -72,7 +76,8 @@ def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[
             "ruleId": finding.code,
             "ruleIndex": index[finding.code],
             "level": _LEVELS[finding.severity],
-            "message": {"text": message(finding)},
+            # the first line is the claim SARIF viewers show as the result's summary
+            "message": {"text": _text(finding)},
             "locations": [_physical(finding.path, finding.line, finding.column)],
         }
         if finding.macro_path is not None:
@@ -86,6 +91,7 @@ def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[
                 ("link", finding.link),
                 ("joint", finding.joint),
                 ("expected", finite(finding.expected)),
+                ("detail", finding.detail),
                 ("help", finding.help),
                 ("via", list(finding.via) or None),
             )

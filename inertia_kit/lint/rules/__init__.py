@@ -107,6 +107,7 @@ class RuleContext:
         joint: str | None = None,
         expected: dict[str, Any] | None = None,
         help: str | None = None,
+        detail: str | None = None,
         fix: Fix | None = None,
         severity: Severity | None = None,
         repairs: Repairs | None = None,
@@ -148,6 +149,7 @@ class RuleContext:
             joint=joint,
             expected=expected,
             help=help,
+            detail=detail,
             fix=fix,
             macro_path=macro_path,
             macro_line=macro_line,
@@ -165,6 +167,7 @@ class RuleContext:
             joint=event.joint,
             expected=event.expected,
             help=help,
+            detail=event.detail,
             severity=severity_of(event.verdict),
         )
 
@@ -182,6 +185,7 @@ class RuleContext:
             link=why.link,
             expected=why.expected,
             help=why.help,
+            detail=why.detail,
             severity=Severity.ERROR if why.impossible else None,
             repairs=Repairs.LIKELY if why.likely else None,
         )

@@ -70,7 +70,7 @@ WHEEL = """<?xml version="1.0"?>
 FILES = {"robots/arm.urdf": ARM, "robots/cart.urdf.xacro": CART, "robots/wheel.xacro": WHEEL}
 
 
-def stub_rule(code, name, severity, test, message, *, help=None, expected=False):
+def stub_rule(code, name, severity, test, message, *, help=None, detail=None, expected=False):
     """A link rule on the declared mass: ``test(mass)`` fires it at the ``<mass>`` element."""
     rule = types.ModuleType(f"inertia_kit.lint.rules.{code.lower()}_{name.replace('-', '_')}")
     rule.CODE, rule.NAME, rule.SEVERITY, rule.SCOPE = code, name, severity, "link"
@@ -86,6 +86,7 @@ def stub_rule(code, name, severity, test, message, *, help=None, expected=False)
                 link=link.name,
                 expected={"mass": 10.0} if expected else None,
                 help=help,
+                detail=detail,
             )
 
     rule.check = check
@@ -106,6 +107,7 @@ HEAVY = stub_rule(
     Severity.WARNING,
     lambda m: m > 10,
     "link `{link}`: {mass:g} kg, more than 10 kg",
+    detail="a stub's limit: 10 kg",
     expected=True,
 )
 LIGHT = stub_rule("IN099", "stub-light", Severity.INFO, lambda m: 0 < m < 0.01, "{mass:g} kg")

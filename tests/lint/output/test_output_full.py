@@ -19,6 +19,7 @@ robots/arm.urdf:20:7: IN098 [warning] link `fore`: 25 kg, more than 10 kg
    |
 20 |       <mass value="25"/>
    |       ^^^^^
+   = detail: a stub's limit: 10 kg
 
 robots/cart.urdf.xacro:6:7: IN099 [info] 0.005 kg
   |

@@ -12,7 +12,7 @@ GITHUB = """\
 ::error title=inertia-lint (IN097),file=robots/arm.urdf,line=10,col=7::robots/arm.urdf:10:7: \
 IN097 link `upper`: mass = 0 kg is not positive%0Ahelp: give the link's real mass
 ::warning title=inertia-lint (IN098),file=robots/arm.urdf,line=20,col=7::robots/arm.urdf:20:7: \
-IN098 link `fore`: 25 kg, more than 10 kg
+IN098 link `fore`: 25 kg, more than 10 kg%0Aa stub's limit: 10 kg
 ::notice title=inertia-lint (IN099),file=robots/cart.urdf.xacro,line=6,col=7::\
 robots/cart.urdf.xacro:6:7: IN099 0.005 kg
 ::error title=inertia-lint (IN097),file=robots/cart.urdf.xacro,line=10,col=3::\

@@ -11,6 +11,7 @@ def _json_finding(code, name, severity, message, file, line, column, link, **ext
         "name": name,
         "severity": severity,
         "message": message,
+        "detail": extra.get("detail"),
         "file": file,
         "line": line,
         "column": column,
@@ -46,6 +47,7 @@ JSON = [
         7,
         "fore",
         expected={"mass": 10.0},
+        detail="a stub's limit: 10 kg",
     ),
     _json_finding(
         "IN099", "stub-light", "info", "0.005 kg", "robots/cart.urdf.xacro", 6, 7, "body"

@@ -26,7 +26,8 @@ help: give the link's real mass</failure>
         <testcase name="IN098 stub-heavy" classname="robots/arm" file="robots/arm.urdf" \
 line="20" column="7">
             <failure message="link `fore`: 25 kg, more than 10 kg" type="warning">\
-line 20, col 7, link `fore`: 25 kg, more than 10 kg</failure>
+line 20, col 7, link `fore`: 25 kg, more than 10 kg
+a stub's limit: 10 kg</failure>
         </testcase>
     </testsuite>
     <testsuite name="robots/cart.urdf.xacro" tests="2" disabled="0" errors="0" failures="2" \

@@ -66,12 +66,15 @@ SARIF = {
                     "ruleId": "IN098",
                     "ruleIndex": 1,
                     "level": "warning",
-                    "message": {"text": "link `fore`: 25 kg, more than 10 kg"},
+                    "message": {
+                        "text": "link `fore`: 25 kg, more than 10 kg\n\na stub's limit: 10 kg"
+                    },
                     "locations": [_location("robots/arm.urdf", 20, 7)],
                     "properties": {
                         "severity": "warning",
                         "link": "fore",
                         "expected": {"mass": 10.0},
+                        "detail": "a stub's limit: 10 kg",
                     },
                 },
                 {

@@ -45,6 +45,7 @@ def test_json_has_an_entry_with_the_keys_of_a_finding(broken):
         "name": "unreadable-file",
         "severity": "error",
         "message": ERROR,
+        "detail": None,
         "file": "robots/broken.urdf",
         "line": 4,
         "column": 9,
