@@ -30,8 +30,9 @@ _TEXTS: contextvars.ContextVar[Mapping[str, bytes]] = contextvars.ContextVar(
 
 @contextlib.contextmanager
 def overlaid(texts: Mapping[str, bytes]) -> Iterator[None]:
-    """Within the block, a file whose real path ``texts`` holds reads as its bytes there."""
-    token = _TEXTS.set(MappingProxyType(dict(texts)))
+    """Within the block, a file whose real path ``texts`` holds reads as its bytes there (an
+    overlay in force still holds the others: a fix probing an expansion during a pass)."""
+    token = _TEXTS.set(MappingProxyType({**_TEXTS.get(), **texts}))
     try:
         yield
     finally:

@@ -14,6 +14,7 @@ perhaps a macro body or a macro call), and the links refused with their reasons.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -221,7 +222,21 @@ def plan_fill(
         )
         # the text the robot was read from, or ChangedWhileEditing
         source = as_loaded(path, dict(robot.reads))
-        return plan_robot(str(path), source, robot, choice, fix=fix, asked=links)
+        return plan_robot(
+            str(path),
+            source,
+            robot,
+            choice,
+            fix=fix,
+            asked=links,
+            reload=functools.partial(
+                load,
+                path,
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                xacro_limits=xacro_limits,
+            ),
+        )
 
     return _settled(once)
 
@@ -293,8 +308,10 @@ def plan_robot(
     fix: str,
     input_path: str | None = None,
     asked: Sequence[str] = (),
+    reload: Callable[[], Robot] | None = None,
 ) -> FillPlan:
-    """The fill plan of ``robot``, whose elements are written literally in ``source``."""
+    """The fill plan of ``robot``, whose elements are written literally in ``source``
+    (``reload``: load it again as it was, for :attr:`~inertia_kit.fixes.files.Files.reload`)."""
     from inertia_kit.analysis.links import analyse
     from inertia_kit.fixes.files import key
     from inertia_kit.fixes.sites import Files
@@ -315,6 +332,7 @@ def plan_robot(
         source.path, dict(robot.reads), only_itself=is_stand_in(os.path.basename(source.path))
     )
     files.add(source)
+    files.reload = reload
     fixes = robot_fixes(
         analysis,
         choice,

@@ -22,6 +22,7 @@ only the calls that need another origin pass one.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -34,7 +35,6 @@ from inertia_kit.fixes.xacro_macros import (
     enclosing_macro,
     parameter_names,
     parameter_reference,
-    property_definition,
     used_elsewhere,
     uses,
 )
@@ -46,8 +46,14 @@ if TYPE_CHECKING:
     from inertia_kit.description.model import Source
     from inertia_kit.fixes.sites import Target
 
+_EXPRESSION = re.compile(r"\$\{([^}]*)\}")
 _ELEMENT = {"xyz": ("origin", "xyz"), "rpy": ("origin", "rpy"), "mass": ("mass", "value")}
 DEFAULT_ORIGIN = "0 0 0"
+
+
+class ArgumentsChoose(str):
+    """Why a value cannot be written: the arguments choose what the link reads there, so no
+    number may replace the expression, in that place or by replacing the whole block."""
 
 
 @dataclass(frozen=True)
@@ -290,13 +296,20 @@ def _write_value(
             new, lost = text_at(slot.element, name, decision, slot.users, decisions, files)
             note_lost(writer, target, name, new, lost, slot, shape=True)
             return writer.set(slot.element, slot.attribute, new)
-        definition = _definition(slot)
+        definition = _definition(slot, name, target, files)
+        if isinstance(definition, str):
+            return definition
         if definition is not None and not _expression(definition.get("value", "")):
             return writer.set(definition, "value", decision.texts[name])
     for slot in agreeing:  # then: an expression becomes the formula, else the number
         if slot.element is None or slot.text is None:
             continue
-        definition = _definition(slot)
+        definition = _definition(slot, name, target, files)
+        if isinstance(definition, str):
+            return definition
+        chosen = _chosen_by_arguments(slot, name, files) if definition is None else None
+        if chosen is not None:
+            return chosen
         place = definition if definition is not None else slot.element
         attribute = "value" if definition is not None else slot.attribute
         written = _formula(name, place, target, decision, files)
@@ -329,17 +342,73 @@ def _formula(
     return found[0]
 
 
-def _definition(slot: Slot) -> etree._Element | None:
-    """The macro's own property that the slot reads whole (``${inertia_ixx}``), read nowhere
-    else: editing its value keeps the property used."""
+def _definition(slot: Slot, name: str, target: Target, files: Files) -> etree._Element | str | None:
+    """
+    The macro's own property that the slot reads whole (``${inertia_ixx}``), read nowhere
+    else: editing its value keeps the property used. Defined in branches of a condition, the
+    one the given arguments expand (:mod:`.conditionals`), or why it cannot be edited (a str).
+    """
+    from inertia_kit.fixes import conditionals
+
     reference = None if slot.text is None else parameter_reference(slot.text)
     if reference is None or slot.element is None:
         return None
-    definition = property_definition(slot.element, reference)
-    if definition is None:
+    found = conditionals.definitions(slot.element, reference)
+    if not found:
         return None
-    macro = enclosing_macro(definition)
-    return definition if macro is not None and uses(macro, reference) == 1 else None
+    macro = enclosing_macro(found[0])
+    if macro is None or uses(macro, reference) != 1:
+        return None
+    if not conditionals.conditional(found):
+        return found[0]
+    read = files.expanded(found, target.name, name)
+    if read is not None:
+        return read  # the branch these arguments expand; the others keep their own values
+    branches = ", ".join(
+        f"{files_location(d, files)}"
+        + "".join(f" under {conditionals.written(c)}" for c in conditionals.conditions(d, macro))
+        for d in found
+    )
+    return ArgumentsChoose(
+        f"its {name} is read from property `{reference}`, defined in branches the arguments "
+        f"choose ({branches}), and which one these arguments expand could not be told: write "
+        "it in that branch"
+    )
+
+
+def _chosen_by_arguments(slot: Slot, name: str, files: Files) -> str | None:
+    """Why the expression at the slot may not become a number: it reads an argument, or a
+    property the arguments choose outside any macro, so other arguments read other values
+    (the number would hold for all of them). ``None``: it may."""
+    from inertia_kit.fixes import conditionals
+
+    text = slot.text or ""
+    if slot.element is None:
+        return None
+    if "$(arg" in text:
+        return ArgumentsChoose(
+            f'its {name} is "{text}", read from an argument: a number written there would '
+            "hold for every argument value; write it where the argument is given"
+        )
+    names = re.findall(r"[A-Za-z_]\w*", " ".join(_EXPRESSION.findall(text)))
+    chosen = conditionals.file_conditional(slot.element, names)
+    if chosen:
+        where = "; ".join(
+            f"{files_location(d, files)} under "
+            + ", ".join(conditionals.written(c) for c in conditionals.conditions(d))
+            for d in chosen[:3]
+        )
+        return ArgumentsChoose(
+            f'its {name} is "{text}", which reads properties the arguments choose ({where}): '
+            "a number written there would hold for every argument value; write it in the "
+            "branch these arguments expand"
+        )
+    return None
+
+
+def files_location(element: etree._Element, files: Files) -> str:
+    where = files.where(element)
+    return "?" if where is None else location(where)
 
 
 def note_lost(

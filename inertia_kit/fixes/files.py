@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from lxml import etree
 
     from inertia_kit.description.edits import SourceText
-    from inertia_kit.description.model import Source
+    from inertia_kit.description.model import Robot, Source
 
 #: Where an element is written: resolved path, line, column.
 Key = tuple[str, int | None, int | None]
@@ -45,6 +45,12 @@ class Files:
     only: Path | None = None
     _elements: dict[str, dict[tuple[int, int], etree._Element]] = field(default_factory=dict)
     _positions: dict[int, tuple[str, int, int]] = field(default_factory=dict)  # id -> where
+    _macros: dict[str, list[etree._Element]] | None = field(default=None, repr=False)
+    _expanded: dict[tuple[int, ...], Robot | None] = field(default_factory=dict, repr=False)
+    # the robot loaded again, as the load did, under an overlay of changed texts
+    # (:mod:`~inertia_kit.description.overlay`): how a fix tells which branch of a xacro
+    # conditional the given arguments expand (:mod:`.conditionals`); ``None``: cannot tell
+    reload: Callable[[], Robot] | None = None
 
     @classmethod
     def for_input(
@@ -156,6 +162,67 @@ class Files:
         if where.line is None or where.column is None:
             return None
         return self._elements[resolved].get((where.line, where.column))
+
+    def macros(self) -> dict[str, list[etree._Element]]:
+        """``name -> <xacro:macro> elements`` defined in the files the load read, parsed once."""
+        if self._macros is None:
+            from inertia_kit.description.model import Source
+            from inertia_kit.fixes.xacro_macros import is_xacro
+
+            self._macros = {}
+            for path in self.reads:
+                self.element(Source(path, None, None))  # parses it
+                for element in self._elements.get(str(Path(path).resolve()), {}).values():
+                    if is_xacro(element, "macro") and element.get("name"):
+                        self._macros.setdefault(element.get("name"), []).append(element)
+        return self._macros
+
+    def expanded(
+        self, candidates: Sequence[etree._Element], link: str, name: str
+    ) -> etree._Element | None:
+        """
+        Which of ``candidates`` (``<xacro:property>`` definitions of one name) the load read
+        for value ``name`` (``mass``, ``ixx``...) of ``link``: the robot loaded again with
+        each given a stand-in value of its own. ``None``: none of them, or it cannot tell.
+        """
+        stand_ins = [f"0.{7310000 + index}13" for index in range(len(candidates))]
+        robot = self._expanded_with(candidates, stand_ins)
+        found = None if robot is None else next((k for k in robot.links if k.name == link), None)
+        inertial = None if found is None else found.inertial
+        value = None if inertial is None else getattr(inertial, name, None)
+        if not isinstance(value, float):
+            return None
+        return next(
+            (c for c, s in zip(candidates, stand_ins, strict=True) if value == float(s)), None
+        )
+
+    def _expanded_with(
+        self, candidates: Sequence[etree._Element], values: Sequence[str]
+    ) -> Robot | None:
+        from inertia_kit.description.edits import apply_edits
+        from inertia_kit.description.overlay import overlaid
+        from inertia_kit.description.reads import key as key_of_read
+        from inertia_kit.fixes.writer import Writer
+
+        cached = tuple(id(c) for c in candidates)
+        if cached in self._expanded:
+            return self._expanded[cached]
+        robot = None
+        writer = Writer(self)
+        problems = [writer.set(c, "value", v) for c, v in zip(candidates, values, strict=True)]
+        if self.reload is not None and not any(problems):
+            texts = {}
+            for path in {edit.path for edit in writer.result()}:
+                source = self.source(path)
+                mine = [edit for edit in writer.result() if edit.path == path]
+                texts[key_of_read(path)] = source.encode(apply_edits(source.text, mine)[0])
+            try:
+                with overlaid(texts):
+                    robot = self.reload()
+            except InputError:  # the stand-ins broke the expansion: it cannot tell
+                robot = None
+        self._expanded[cached] = robot
+        return robot
 
     def where(self, element: etree._Element) -> Source | None:
         """Where ``element`` (of a tree :meth:`element` parsed) is written."""

@@ -32,11 +32,19 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from inertia_kit.description.edits import Edit
-from inertia_kit.fixes.attributes import Decision, Decisions, decide, write_values
+from inertia_kit.fixes.attributes import (
+    ArgumentsChoose,
+    Decision,
+    Decisions,
+    decide,
+    write_values,
+)
 from inertia_kit.fixes.files import Files, Key, key, location
 from inertia_kit.fixes.xacro_macros import macro_of, written_name
 
 if TYPE_CHECKING:
+    from lxml import etree
+
     from inertia_kit.analysis.links import LinkAnalysis
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Source
@@ -160,6 +168,13 @@ def _place(
     inertial = link.link.inertial
     if inertial is None:
         sharers = users.link[key(link.link.source)]
+        held = _conditional_inertials(files.element(link.link.source), files)
+        if held and not users.agree(sharers, wanted):
+            # what to do is the arguments, not a parameter: a block beside the condition
+            # would give two <inertial> elements where it holds
+            from inertia_kit.fixes.conditionals import refusal
+
+            return Placement(problem=refusal(held, files))
         if not users.agree(sharers, wanted):
             problem = _shared_words(link.link.source, sharers, "<link>")
             return Placement(problem=problem + _advice(link.link.source, sharers))
@@ -170,6 +185,8 @@ def _place(
     written = write_values(target, decisions, users, files)
     if not isinstance(written, str):
         return Placement(*written[:1], notes=written[1])
+    if isinstance(written, ArgumentsChoose):
+        return Placement(problem=written)
     for way in (_replace_body, _replace_call):
         result = way(target, wanted, users, files)
         if result.problem is None:
@@ -257,6 +274,9 @@ def _insert(target: Target, files: Files) -> Placement:
     span = element_span(text, offset)
     block = _block(target, source, line_indent(text, offset), inner=True)
     newline = source.newline
+    block, problem = _guarded(block, files.element(where), files, source)
+    if problem is not None:
+        return Placement(problem=problem)
     if span.empty:  # <link name="x"/>: no geometry, never filled; defensive
         return Placement(problem=f"its <link> at {location(where)} is an empty element")
     rest = re.compile(r"[ \t]*(\r\n|\n|\r)").match(text, span.start_tag_end)
@@ -270,6 +290,38 @@ def _insert(target: Target, files: Files) -> Placement:
             newline + block + newline + line_indent(text, span.start),
         )
     return Placement((edit,))
+
+
+def _conditional_inertials(link: etree._Element | None, files: Files) -> list[etree._Element]:
+    from inertia_kit.fixes.conditionals import conditional_inertials
+
+    return [] if link is None else conditional_inertials(link, files)
+
+
+def _guarded(
+    block: str, link: etree._Element | None, files: Files, source: SourceText
+) -> tuple[str, str | None]:
+    """
+    ``block`` as it may be inserted into ``link``: inside the complement of the conditions
+    under which the link makes an ``<inertial>`` of its own (so that no argument value expands
+    two); or why not.
+    """
+    from inertia_kit.fixes import conditionals
+
+    if link is None:
+        return block, "its <link> was not found where the load read it"
+    held = _conditional_inertials(link, files)
+    if not held:
+        return block, None
+    tags = conditionals.complementary(held)
+    if tags is None:
+        return block, conditionals.refusal(held, files)
+    from inertia_kit.description.xmlspan import indent_unit
+
+    indent = re.match(r"[ \t]*", block).group(0)  # type: ignore[union-attr]
+    unit, newline = indent_unit(source.text), source.newline
+    inner = newline.join(unit + line for line in block.split(newline))
+    return f"{indent}{tags[0]}{newline}{inner}{newline}{indent}{tags[1]}", None
 
 
 def _block(target: Target, source: SourceText, base: str, *, inner: bool) -> str:

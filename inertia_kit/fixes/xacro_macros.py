@@ -26,7 +26,7 @@ def child(element: etree._Element, name: str) -> etree._Element | None:
     return next((c for c in element if isinstance(c.tag, str) and c.tag == name), None)
 
 
-def _is_xacro(element: etree._Element, name: str) -> bool:
+def is_xacro(element: etree._Element, name: str) -> bool:
     from lxml import etree
 
     if not isinstance(element.tag, str):
@@ -38,8 +38,8 @@ def _is_xacro(element: etree._Element, name: str) -> bool:
 def macro_of(element: etree._Element) -> etree._Element | None:
     """The ``<xacro:macro>`` whose body holds ``element`` directly (not inside another element)."""
     parent = element.getparent()
-    while parent is not None and not _is_xacro(parent, "macro"):
-        if not (_is_xacro(parent, "if") or _is_xacro(parent, "unless")):
+    while parent is not None and not is_xacro(parent, "macro"):
+        if not (is_xacro(parent, "if") or is_xacro(parent, "unless")):
             return None
         parent = parent.getparent()
     return parent
@@ -48,7 +48,7 @@ def macro_of(element: etree._Element) -> etree._Element | None:
 def enclosing_macro(element: etree._Element) -> etree._Element | None:
     """The innermost ``<xacro:macro>`` holding ``element``."""
     parent = element.getparent()
-    while parent is not None and not _is_xacro(parent, "macro"):
+    while parent is not None and not is_xacro(parent, "macro"):
         parent = parent.getparent()
     return parent
 
@@ -83,26 +83,6 @@ def parameter_names(macro: etree._Element) -> dict[str, bool]:
         if not name.startswith("*"):
             names[name.strip("^|")] = has_default
     return names
-
-
-def property_definition(element: etree._Element, name: str) -> etree._Element | None:
-    """
-    The ``<xacro:property name=NAME value=...>`` that ``${NAME}`` in ``element`` reads, when it
-    is defined in the innermost macro holding ``element`` (so only that macro's expansions
-    read it); ``None`` for a property defined elsewhere (a file-wide one may be read anywhere).
-    """
-    macro = enclosing_macro(element)
-    if macro is None:
-        return None
-    for candidate in macro.iter():
-        if (
-            _is_xacro(candidate, "property")
-            and candidate.get("name") == name
-            and candidate.get("value") is not None
-            and enclosing_macro(candidate) is macro
-        ):
-            return candidate
-    return None
 
 
 def uses(macro: etree._Element, name: str) -> int:

@@ -12,8 +12,9 @@ configuration's per-file ignores, and the suppression comments in the files (see
 from __future__ import annotations
 
 import dataclasses
+import functools
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -264,7 +265,15 @@ def lint_file(
     kept += unused.report(uses, selection, path)
     if fixes != "none" and any(f.wants is not None for f in kept):
         try:
-            kept = _with_fixes(path, analysis, kept, mass_choice or MassChoice(), fixes == "safe")
+            reload = functools.partial(
+                load,
+                path,
+                xacro_args=xacro_args,
+                package_paths=package_paths,
+                xacro_limits=xacro_limits,
+            )
+            choice = mass_choice or MassChoice()
+            kept = _with_fixes(path, analysis, kept, choice, fixes == "safe", reload)
         except ChangedWhileEditing as error:  # the robot's lines point into another text now
             return FileResult(str(path), error=error, reads=reads)
     empty = not robot.links and not robot.joints
@@ -286,6 +295,7 @@ def _with_fixes(
     findings: list[Finding],
     choice: MassChoice,
     safe_only: bool,
+    reload: Callable[[], model.Robot] | None = None,
 ) -> list[Finding]:
     """
     The findings with their fixes, planned on the text of ``path`` as the load read it
@@ -298,6 +308,7 @@ def _with_fixes(
     files = Files.for_input(
         path, dict(analysis.robot.reads), only_itself=is_stand_in(os.path.basename(path))
     )
+    files.reload = reload
     try:
         files.source(str(path))
     except ChangedWhileEditing:
