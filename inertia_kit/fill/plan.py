@@ -262,6 +262,11 @@ def _settled(once: Callable[[], FillPlan]) -> FillPlan:
     with overlaid({name: source.encode(text) for name, (source, text) in by_file.items()}):
         second = once()
     filled = {fill.link for fill in first.changed_links}
+    missed = filled & {fill.link for fill in second.changed_links}
+    if missed:
+        # its edits went where the robot, as these arguments expand it, does not read (a
+        # branch of a condition): written, every run would write them again
+        return _without(first, missed)
     added: list[LinkFill] = []
     for fill in second.changed_links:
         if fill.link in filled:
@@ -280,6 +285,30 @@ def _settled(once: Callable[[], FillPlan]) -> FillPlan:
     if not added:
         return first
     return dataclasses.replace(first, fills=(*first.fills, *added))
+
+
+def _without(plan: FillPlan, missed: set[str]) -> FillPlan:
+    """``plan`` without the fills of ``missed`` (and of links sharing an edit with them),
+    which are listed as refused instead."""
+    dropped = set(missed)
+    while True:  # links made from one macro body share its edits: all of them or none
+        edits = {edit for fill in plan.fills if fill.link in dropped for edit in fill.edits}
+        more = {fill.link for fill in plan.fills if set(fill.edits) & edits} - dropped
+        if not more:
+            break
+        dropped |= more
+    reason = (
+        "its values would be written where the robot, as these arguments expand it, does not "
+        "read them (a branch of a xacro condition they do not expand): write them by hand"
+    )
+    return dataclasses.replace(
+        plan,
+        fills=tuple(fill for fill in plan.fills if fill.link not in dropped),
+        refused=(
+            *plan.refused,
+            *(Refusal(fill.link, reason) for fill in plan.fills if fill.link in dropped),
+        ),
+    )
 
 
 def _moved_back(edit: Edit, before: Sequence[Edit]) -> Edit | None:

@@ -238,3 +238,29 @@ def test_a_value_read_from_an_argument_never_becomes_a_number(tmp_path: Path):
     assert code == 1
     assert 'its mass is "$(arg payload)", read from an argument' in stderr
     assert path.read_text() == ARGUMENT
+
+
+def test_a_fill_whose_edit_the_robot_does_not_read_is_refused(tmp_path: Path):
+    """The guard behind the cases above: a plan made again on the files as the first leaves
+    them still fills the link (its edit landed where the expansion does not read), so writing
+    it would repeat on every run: it and every link sharing its edit are refused instead."""
+    from inertia_kit.description.edits import Edit, read_source
+    from inertia_kit.fill.plan import FillPlan, LinkFill, _settled
+    from inertia_kit.physics.mass import MassProperties
+
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"/><link name="c"/></robot>\n')
+    shared, own = Edit(str(path), 0, 0, "<!-- a, b -->"), Edit(str(path), 1, 1, " ")
+    fills = (
+        LinkFill("a", MassProperties(1.0), "", False, (shared,)),
+        LinkFill("b", MassProperties(1.0), "", False, (shared,)),
+        LinkFill("c", MassProperties(1.0), "", False, (own,)),
+    )
+    plans = iter(
+        [FillPlan(str(path), read_source(path), fills=fills)] * 1
+        + [FillPlan(str(path), read_source(path), fills=fills[:1])]
+    )
+    settled = _settled(lambda: next(plans))
+    assert [fill.link for fill in settled.fills] == ["c"]
+    assert [refusal.link for refusal in settled.refused] == ["a", "b"]
+    assert "does not read them" in settled.refused[0].reason
