@@ -409,6 +409,11 @@ def simulated_bodies(
             static, properties = True, None
             if has_inertial:
                 note = "KDL's root segment carries no inertia: the declared values are ignored"
+        elif engine == "pybullet" and not has_inertial and len(members) == 1:
+            from inertia_kit.engines.pybullet import stand_in  # it reads this module's tensors
+
+            properties = stand_in(link)
+            note = "no <inertial>: PyBullet gives it 1 kg, its tensor from the collision shapes"
         bodies.append(
             Body(
                 name,

@@ -21,6 +21,7 @@ from inertia_kit.engines.lumping import written_tensor
 from inertia_kit.engines.vocabulary import Event, Verdict, event
 from inertia_kit.physics.formatting import fmt, vector_text
 from inertia_kit.physics.frames import inverse, rpy_matrix, transform
+from inertia_kit.physics.mass import MassProperties
 
 ENGINE = "pybullet"
 MARGIN = 0.001  # m: URDF2Bullet gUrdfDefaultCollisionMargin
@@ -162,6 +163,13 @@ def events(robot: RobotAnalysis, *, factor: float, inertia_from_file: bool) -> I
             continue
         if mass > 0:
             yield from _recomputed(link, inertial, mass, tensor, factor, zeroed if bad else None)
+
+
+def stand_in(link: LinkAnalysis) -> MassProperties:
+    """What PyBullet simulates for a link without ``<inertial>``: 1 kg at the link origin, the
+    inertia diagonal of its collision shapes (a unit one when they are not understood)."""
+    diagonal = predicted_inertia(link, 1.0)
+    return MassProperties(1.0, np.zeros(3), np.diag(np.ones(3) if diagonal is None else diagonal))
 
 
 def _no_inertial(link: LinkAnalysis, inertia_from_file: bool) -> Event:

@@ -139,3 +139,36 @@ def test_report_lumped_tables_for_all_engines(tmp_path, output_format):
     for title in ("MuJoCo", "Gazebo", "Drake", "PyBullet", "KDL"):
         assert title in result.output
     assert "arm, tool" in result.output and "dropped: ghost (joint j2)" in result.output
+
+
+def test_report_lumped_shows_what_pybullet_gives_a_link_without_inertial(tmp_path):
+    """As IN073 says: 1 kg at the link origin and the box inertia of its collision shape (a
+    0.3 × 0.05 × 0.05 m box: m (b² + c²) / 12 about each axis), not a `-`."""
+    path = tmp_path / "r.urdf"
+    path.write_text(
+        LUMPED_URDF.replace(
+            '<link name="ghost"/>',
+            '<link name="ghost"><collision><geometry><box size="0.3 0.05 0.05"/></geometry>'
+            "</collision></link>",
+        )
+    )
+    result = CliRunner().invoke(
+        main, ["report", "--lumped", "--engine", "pybullet", "--format", "json", str(path)]
+    )
+    assert result.exit_code == 0, result.output
+    (pybullet,) = json.loads(result.output)["engines"]
+    ghost = next(b for b in pybullet["bodies"] if b["body"] == "ghost")
+    assert ghost["mass"] == 1.0 and ghost["com"] == [0.0, 0.0, 0.0]
+    # one box at the inertial frame: its own calculateLocalInertia, no margin
+    x, y, z = 0.3, 0.05, 0.05
+    expected = [(y * y + z * z) / 12, (x * x + z * z) / 12, (x * x + y * y) / 12]
+    assert [ghost["inertia"][i][i] for i in range(3)] == pytest.approx(expected, rel=1e-6)
+    assert "PyBullet gives it 1 kg" in ghost["note"]
+    lint = CliRunner().invoke(
+        main,
+        ["lint", "--engine", "pybullet", "--select", "IN073", "--output-format", "json", str(path)],
+    )
+    (finding,) = [f for f in json.loads(lint.output) if f["link"] == "ghost"]
+    assert finding["expected"]["inertia_diagonal"] == pytest.approx(
+        [ghost["inertia"][i][i] for i in range(3)]
+    )
