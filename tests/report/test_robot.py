@@ -168,7 +168,7 @@ def test_report_lumped_shows_what_pybullet_gives_a_link_without_inertial(tmp_pat
         main,
         ["lint", "--engine", "pybullet", "--select", "IN073", "--output-format", "json", str(path)],
     )
-    (finding,) = [f for f in json.loads(lint.output) if f["link"] == "ghost"]
+    (finding,) = [f for f in json.loads(lint.stdout) if f["link"] == "ghost"]
     assert finding["expected"]["inertia_diagonal"] == pytest.approx(
         [ghost["inertia"][i][i] for i in range(3)]
     )
