@@ -16,12 +16,11 @@ def rule_row(rule: ModuleType) -> dict[str, str | None]:
     """What the listing says of ``rule``: code, name, default severity, fix safety, engine."""
     from inertia_kit.lint import catalog
 
-    safety = catalog.fix_safety(rule)
     return {
         "code": rule.CODE,
         "name": rule.NAME,
         "severity": str(rule.SEVERITY),
-        "fix": str(safety) if safety is not None else "none",
+        "fix": catalog.fix_safety_text(rule),
         "engine": catalog.engine(rule),
     }
 
@@ -44,8 +43,9 @@ def _text(rows: list[dict[str, str | None]]) -> str:
     show_default=True,
 )
 def rules_command(output_format: str) -> None:
-    """Every rule: code, name, default severity, its fix (safe, unsafe or none) and the engine
-    it needs (an engine rule runs only with --engine NAME; - for the others)."""
+    """Every rule: code, name, default severity, its fix (safe, unsafe or none; safe/unsafe:
+    safe for an exact fit, unsafe for a real part's likely slip) and the engine it needs (an
+    engine rule runs only with --engine NAME; - for the others)."""
     from inertia_kit.lint import catalog
 
     rows = [rule_row(rule) for rule in catalog.RULES]

@@ -126,6 +126,18 @@ def fix_safety(rule: ModuleType) -> Safety | None:
     return fix.safety if fix is not None else getattr(rule, "TEXT_FIX", None)
 
 
+def fix_safety_text(rule: ModuleType) -> str:
+    """The rule's fix as the listing and the documents say it: ``safe``, ``unsafe``, ``none``,
+    or ``safe/unsafe`` for a slip undone (IN06x), which is safe only for an exact fit: a real
+    part's likely slip, or one whose centre of mass is corrected too, gets an unsafe fix
+    (:mod:`inertia_kit.lint.fixing`)."""
+    safety = fix_safety(rule)
+    fix = getattr(rule, "FIX", None)
+    if safety is Safety.SAFE and fix is not None and fix.how == "slip":
+        return "safe/unsafe"
+    return "none" if safety is None else str(safety)
+
+
 def supersedes(rule: ModuleType) -> tuple[str, ...]:
     """The codes whose findings on the same link a finding of ``rule`` replaces."""
     return tuple(getattr(rule, "SUPERSEDES", ()))

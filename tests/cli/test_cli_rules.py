@@ -19,9 +19,11 @@ WORKTREE = str(Path(__file__).resolve().parents[2])
 
 
 def expected_fix(rule) -> str:
-    """The fix column from the module itself: FIX's safety, else TEXT_FIX, else none."""
+    """The fix column from the module itself: FIX's safety (a slip undone, safe only for an
+    exact fit: safe/unsafe), else TEXT_FIX, else none."""
     if hasattr(rule, "FIX"):
-        return rule.FIX.safety.value
+        slip = rule.FIX.how == "slip" and rule.FIX.safety is Safety.SAFE
+        return "safe/unsafe" if slip else rule.FIX.safety.value
     if hasattr(rule, "TEXT_FIX"):
         return rule.TEXT_FIX.value
     return "none"
@@ -109,3 +111,21 @@ def test_python_dash_m_imports_no_command_and_nothing_heavy():
     )
     env = {**os.environ, "PYTHONPATH": WORKTREE}
     subprocess.run([sys.executable, "-c", code], check=True, env=env)
+
+
+def test_a_slip_fix_is_listed_as_unsafe_too_where_the_seed_arm_gets_an_unsafe_one():
+    """The seed simple arm's IN062 fix joins IN021's centre of mass: unsafe with
+    --unsafe-fixes; the listing no longer calls IN062's fix simply safe."""
+    import json as json_module
+
+    from inertia_kit.cli import main
+
+    listing = CliRunner().invoke(main, ["rules", "--output-format", "json"])
+    (row,) = [r for r in json_module.loads(listing.output) if r["code"] == "IN062"]
+    assert row["fix"] == "safe/unsafe"
+    arm = str(Path(WORKTREE) / "examples/simple_arm/urdf/simple_arm.urdf.xacro")
+    found = CliRunner().invoke(
+        main, ["lint", "--unsafe-fixes", "--select", "IN062,IN021", "--output-format", "json", arm]
+    )
+    safeties = {f["fix"]["safety"] for f in json_module.loads(found.stdout) if f["code"] == "IN062"}
+    assert safeties == {"unsafe"}

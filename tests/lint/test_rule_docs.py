@@ -130,3 +130,15 @@ def test_every_rule_has_a_document_and_an_index_entry():
         doc = RULES_DIR / f"{rule.CODE}-{rule.NAME}.md"
         assert doc.is_file(), f"{rule.CODE} has no document {doc.name}"
         assert f"[{rule.CODE}]({doc.name})" in index, f"{rule.CODE} missing from rules/README.md"
+
+
+def test_the_index_says_what_the_listing_says():
+    """rules/README.md's table: each rule's name, severity and fix as `inertia-kit rules`
+    lists them (its fix column once said "no" for 15 rules whose fix is unsafe)."""
+    from inertia_kit.cli.rules import rule_row
+
+    index = (RULES_DIR / "README.md").read_text()
+    for rule in catalog.RULES:
+        row = rule_row(rule)
+        cells = f"| {row['name']} | {row['severity']} | {row['fix']} |"
+        assert f"[{rule.CODE}]({rule.CODE}-{rule.NAME}.md) {cells}" in index, rule.CODE
