@@ -91,13 +91,15 @@ def plan_fixes(
     asked: Collection[str] = (),
     recompute: bool = False,
     safe_only: bool = False,
+    vouched: Collection[str] = (),
 ) -> RobotFixes:
     """
     The fixes the ``findings`` of ``analysis`` ask for, placed in ``files``.
 
     ``repairs``: only fixes repairing these (``None``: all); ``asked``: links fixed from the
     geometry although no finding asks (``inertia-fill --link``/``--mass``); ``recompute``:
-    also every link that has an ``<inertial>`` and geometry (``inertia-fill --fix all``);
+    also every link that has an ``<inertial>`` and geometry (``inertia-fill --fix all``), but
+    those in ``vouched`` (a finding on them is suppressed: their author keeps their values);
     ``safe_only``: only safe fixes (``inertia-lint --fix`` without ``--unsafe-fixes``).
     """
     wants: dict[str, list[FixRule]] = {}
@@ -124,7 +126,12 @@ def plan_fixes(
         offered = wants.get(link.name, [])
         selected = [w for w in offered if repairs is None or w.repairs in repairs]
         by_name = link.name in asked
-        again = recompute and link.link.inertial is not None and bool(link.geometry.solids)
+        again = (
+            recompute
+            and link.name not in vouched
+            and link.link.inertial is not None
+            and bool(link.geometry.solids)
+        )
         if not (selected or by_name or again):
             continue
         slip = _slip(link, selected, offered, choice, safe_only)
@@ -324,18 +331,27 @@ def robot_fixes(
 ) -> RobotFixes:
     """
     Run :func:`fixing_rules` (default options) on ``analysis`` and plan their fixes; findings
-    a suppression comment covers are not fixed (as ruff's fixers honour ``noqa``), ``path``
-    being the file of the findings that name none.
+    a suppression comment covers are not fixed (as ruff's fixers honour ``noqa``), nor are
+    their links recomputed by ``recompute``; ``path`` being the file of the findings that name
+    none.
     """
     from inertia_kit.lint.runner import Selection, run_rules
     from inertia_kit.lint.suppress import suppressed
 
     found = run_rules(analysis, Selection(), fixing_rules())
-    findings = [
-        f
+    covered = [
+        suppressed(f if f.path or path is None else dataclasses.replace(f, path=path))
         for f in found
-        if not suppressed(f if f.path or path is None else dataclasses.replace(f, path=path))
     ]
+    findings = [f for f, hidden in zip(found, covered, strict=True) if not hidden]
+    vouched = {f.link for f, hidden in zip(found, covered, strict=True) if hidden and f.link}
     return plan_fixes(
-        analysis, findings, choice, files, repairs=repairs, asked=asked, recompute=recompute
+        analysis,
+        findings,
+        choice,
+        files,
+        repairs=repairs,
+        asked=asked,
+        recompute=recompute,
+        vouched=vouched,
     )

@@ -69,6 +69,19 @@ def test_fill_invalid_leaves_what_a_comment_covers_and_fixes_the_rest(tmp_path):
     assert 'ixx="0.5"' in path.read_text()  # the tip's suppressed values kept
 
 
+def test_fill_all_keeps_the_values_of_a_link_whose_findings_are_suppressed(tmp_path):
+    """--fix all recomputes every link, but not one whose author vouched for its values."""
+    path = tmp_path / "r.urdf"
+    text = _robot(tip_comment="<!-- inertia-lint: ignore[IN013, IN020, IN023] -->")
+    path.write_text(text)
+    done = _fill(path, "--fix", "all")
+    assert done.exit_code == 1, done.output
+    assert "Filled 1 link" in done.output and "tip" not in done.output
+    assert 'ixx="0.5"' in path.read_text()
+    assert _fill(path, "--fix", "all", "--link", "tip").exit_code == 1  # named: recomputed
+    assert 'ixx="0.5"' not in path.read_text()
+
+
 def test_an_adopted_repository_passes_both_hooks_in_one_go(tmp_path, monkeypatch):
     # the README's adoption: --add-noqa on the examples, then the fill hook changes nothing
     # and the lint hook passes (no IN090: every comment still suppresses its finding)
