@@ -391,17 +391,17 @@ def _chosen_by_arguments(slot: Slot, name: str, files: Files) -> str | None:
             "hold for every argument value; write it where the argument is given"
         )
     names = re.findall(r"[A-Za-z_]\w*", " ".join(_EXPRESSION.findall(text)))
-    chosen = conditionals.file_conditional(slot.element, names)
+    chosen = conditionals.chosen_by_arguments(slot.element, names)
     if chosen:
         where = "; ".join(
-            f"{files_location(d, files)} under "
-            + ", ".join(conditionals.written(c) for c in conditionals.conditions(d))
+            f"{files_location(d, files)}"
+            + "".join(f" under {conditionals.written(c)}" for c in conditionals.conditions(d))
             for d in chosen[:3]
         )
         return ArgumentsChoose(
             f'its {name} is "{text}", which reads properties the arguments choose ({where}): '
-            "a number written there would hold for every argument value; write it in the "
-            "branch these arguments expand"
+            "a number written there would hold for every argument value; write it where the "
+            "argument is given, or in the branch these arguments expand"
         )
     return None
 

@@ -171,9 +171,9 @@ def conditional(found: Sequence[etree._Element]) -> bool:
     return len(found) > 1 or any(conditions(d, enclosing_macro(d)) for d in found)
 
 
-def file_conditional(element: etree._Element, names: Sequence[str]) -> list[etree._Element]:
-    """The definitions of ``names`` in ``element``'s file that stand under a condition outside
-    any macro (which the arguments choose)."""
+def chosen_by_arguments(element: etree._Element, names: Sequence[str]) -> list[etree._Element]:
+    """The definitions of ``names`` in ``element``'s file, outside any macro, whose value the
+    arguments choose: under a condition, or reading an argument (``$(arg payload)``)."""
     root = element.getroottree().getroot()
     return [
         candidate
@@ -181,5 +181,5 @@ def file_conditional(element: etree._Element, names: Sequence[str]) -> list[etre
         if is_xacro(candidate, "property")
         and candidate.get("name") in names
         and enclosing_macro(candidate) is None
-        and conditions(candidate)
+        and (conditions(candidate) or "$(arg" in (candidate.get("value") or ""))
     ]

@@ -238,6 +238,20 @@ def test_a_value_read_from_an_argument_never_becomes_a_number(tmp_path: Path):
     assert code == 1
     assert 'its mass is "$(arg payload)", read from an argument' in stderr
     assert path.read_text() == ARGUMENT
+    # nor through a property that reads it, or one the arguments choose
+    for definition in (
+        '<xacro:property name="m" value="$(arg payload)"/>',
+        '<xacro:if value="$(arg heavy)"><xacro:property name="m" value="5"/></xacro:if>'
+        '<xacro:unless value="$(arg heavy)"><xacro:property name="m" value="2"/></xacro:unless>',
+    ):
+        text = ARGUMENT.replace("$(arg payload)", "${m}").replace(
+            '<link name="body">',
+            f'<xacro:arg name="heavy" default="false"/>{definition}\n  <link name="body">',
+        )
+        path.write_text(text)
+        code, stderr = fill("--fix", "all", "--mass", "body=3", str(path))
+        assert code == 1 and 'its mass is "${m}", which reads properties the arguments' in stderr
+        assert path.read_text() == text
 
 
 def test_a_fill_whose_edit_the_robot_does_not_read_is_refused(tmp_path: Path):
