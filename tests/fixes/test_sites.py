@@ -467,8 +467,8 @@ def test_every_example_after_fix_invalid(robot: str, tmp_path: Path):
 
 
 def test_readme_shows_the_real_mrm_run(monkeypatch):
-    """The README's mrm run is what the command prints (its '...' stands for two hunks)."""
-    readme = (EXAMPLES.parent / "README.md").read_text()
+    """docs/fill.md's mrm run is what the command prints (its '...' stands for two hunks)."""
+    readme = (EXAMPLES.parent / "docs" / "fill.md").read_text()
     command = "$ inertia-fill --fix all --density 1024 --diff mrm_description/urdf/mrm.xacro\n"
     shown = readme[readme.index(command) + len(command) :]
     shown = shown[: shown.index("```")]
