@@ -29,6 +29,8 @@ class Option:
     #: a number option's smallest value (no rule's number means anything below zero; a factor
     #: below 1 inverts its test, and 0 would divide by zero)
     minimum: float = 0.0
+    #: and whether it must be above it (a bound compared on a log scale: 0 has no logarithm)
+    above: bool = False
 
 
 _TYPE_NAMES = {
@@ -58,8 +60,9 @@ def out_of_range(value: Any, option: Option) -> str | None:
         return None
     if value != value:  # TOML's nan
         return "expected a number, got nan"
-    if value < option.minimum:
-        return f"expected a number from {option.minimum:g} up, got {value!r}"
+    if value < option.minimum or (option.above and value == option.minimum):
+        bound = f"above {option.minimum:g}" if option.above else f"from {option.minimum:g} up"
+        return f"expected a number {bound}, got {value!r}"
     return None
 
 

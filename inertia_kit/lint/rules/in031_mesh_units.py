@@ -35,10 +35,10 @@ SCOPE = "link"
 SPOILS_GEOMETRY = True
 SUMMARY = "a mesh's size says it was authored in mm, cm or inches: suggests the exact `scale`"
 OPTIONS = (
-    Option("min_size", float, 0.001, "the smallest size a robot part can have, m"),
-    Option("max_size", float, 5.0, "the largest size a robot part can have, m"),
-    Option("min_density", float, 1.0, "the lowest density a part can have, kg/m³"),
-    Option("max_density", float, 1e7, "the highest density a part can have, kg/m³"),
+    Option("min_size", float, 0.001, "the smallest size a robot part can have, m", above=True),
+    Option("max_size", float, 5.0, "the largest size a robot part can have, m", above=True),
+    Option("min_density", float, 1.0, "the lowest density a part can have, kg/m³", above=True),
+    Option("max_density", float, 1e7, "the highest density a part can have, kg/m³", above=True),
     Option("min_evidence", int, 2, "how many observations must be out of line"),
 )
 
