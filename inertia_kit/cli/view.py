@@ -91,8 +91,10 @@ def view_command(ctx: click.Context, robot: str, **options: Any) -> None:
     Write a review page of ROBOT (a URDF or xacro file): every link's visual geometry, the
     equivalent box of its declared inertia (orange, with the COM) and of the inertia its geometry
     implies (cyan, dashed, with the centroid), links with errors in red, and a side panel with
-    each link's mass, principal moments, implied density and findings. One HTML file that works
-    offline: three.js, the meshes and the findings are inside it.
+    each link's declared and geometry values side by side in the link's axes (mass, COM, ixx to
+    iyz, principal moments along their axes; the cells that differ highlighted), its implied
+    density and findings. Hover or click a box for its link's name; isolate a link, show all.
+    One HTML file that works offline: three.js, the meshes and the findings are inside it.
 
     \b
     It is a viewer: findings do not fail it (inertia-lint is the check).

@@ -5,7 +5,8 @@ At the level of ``fill``: it may use lint, report and every layer below; ``cli``
 - ``scene``: ``build_scene(path, ...)``, the page's data (the scene contract): the robot linted
   as ``inertia-lint`` lints it, each link with its drawing, its declared and geometry-derived
   mass properties as equivalent boxes, and its findings.
-- ``boxes``: the equivalent uniform box of mass properties (principal axes and sides).
+- ``boxes``: the equivalent uniform box of mass properties (principal axes and sides), and the
+  link axis each principal axis lies along (the panel's "0.0002 along x").
 - ``pose``: each link's world frame in the zero pose.
 - ``display_meshes``: each shape as a triangle mesh in its own frame, distinct meshes carried
   once, decimated for display over a triangle budget.

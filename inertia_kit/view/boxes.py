@@ -5,6 +5,8 @@ inertia about its centre equals the body's, as Gazebo's and RViz's inertia displ
 For principal moments I1 ≤ I2 ≤ I3 (about the COM) and mass m, a uniform box with sides a_i
 along principal axis i has I_i = m (a_j² + a_k²) / 12, so a_i² = 6 (I_j + I_k − I_i) / m. A
 term below zero (the triangle inequality broken) or a mass that is not positive gives no box.
+
+:func:`principal_directions` names the link axis each principal axis lies along, for the panel.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from inertia_kit.analysis.tensors import axis_name
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import TRIANGLE_RTOL, MassProperties
 
@@ -68,3 +71,50 @@ def equivalent_box(body: MassProperties) -> EquivalentBox:
             "has them",
         )
     return EquivalentBox(moments, axes, np.sqrt(np.maximum(squares, 0.0)), None)
+
+
+#: principal moments closer than this fraction of the largest are one repeated moment: any axis
+#: of their plane is principal (a cylinder's two moments across it, rounded differently)
+REPEATED_RTOL = 1e-6
+
+
+def principal_directions(box: EquivalentBox) -> list[str | None]:
+    """
+    What each principal axis of ``box`` lies along, in moment order: ``"x"``, ``"y"`` or
+    ``"z"`` for a link axis (either sense), else the unit direction as ``"(0.866, 0.5, 0)"``
+    (its largest component positive); ``None`` for moments that are not finite.
+
+    A repeated moment has no one axis: any axis of its plane is principal. When the plane is
+    that of two link axes (the third moment along the third), those two name it, so that a
+    cylinder along x reads ``x``, ``y``, ``z`` whatever directions its rounding gave the
+    eigenvectors; three equal moments read ``x``, ``y``, ``z``.
+    """
+    moments, axes = box.moments, box.axes
+    if not np.isfinite(moments).all():
+        return [None, None, None]
+    names: list[str | None] = [axis_name(axes[:, i]) for i in range(3)]
+    scale = float(np.abs(moments).max())
+    low, mid, high = moments
+    repeated = [mid - low <= REPEATED_RTOL * scale, high - mid <= REPEATED_RTOL * scale]
+    if all(repeated):
+        return ["x", "y", "z"]
+    if any(repeated):
+        single = 2 if repeated[0] else 0
+        pair = [i for i in range(3) if i != single]
+        if names[single] is not None:
+            rest = [name for name in "xyz" if name != names[single]]
+            for i, name in zip(pair, rest, strict=True):
+                names[i] = name
+    return [name if name is not None else _direction(axes[:, i]) for i, name in enumerate(names)]
+
+
+def _direction(axis: NDArray[np.float64]) -> str:
+    """
+    A unit direction, its largest component positive (the first of equal ones, whatever the
+    rounding): ``(0.866, 0.5, 0)``, ``(0.707, -0.707, 0)``.
+    """
+    size = np.abs(axis)
+    first = int(np.argmax(size >= size.max() - 1e-9))
+    if axis[first] < 0:
+        axis = -axis
+    return "(" + ", ".join(fmt(v, 3) for v in axis) + ")"

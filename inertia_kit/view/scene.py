@@ -25,7 +25,7 @@ from inertia_kit.fixes.masses import DEFAULT_DENSITY
 from inertia_kit.lint.findings import Finding
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.view.boxes import equivalent_box
+from inertia_kit.view.boxes import equivalent_box, principal_directions
 from inertia_kit.view.display_meshes import DEFAULT_TRIANGLE_BUDGET, MeshTable, TriangleReader
 from inertia_kit.view.pose import zero_pose
 
@@ -168,7 +168,7 @@ def _link_record(
         "world": _floats(world),
         "shown": shown,
         "visuals": visuals,
-        "declared": None if declared is None else _mass_record(declared),
+        "declared": None if declared is None else _declared_record(link.link, declared),
         "geometry": geometry,
         "implied_density": _finite(implied),
         "findings": [_finding_record(f) for f in findings],
@@ -177,16 +177,40 @@ def _link_record(
 
 
 def _mass_record(body: MassProperties) -> dict[str, Any]:
-    """Mass, COM, principal moments and axes, and the equivalent box (or why there is none)."""
+    """
+    Mass, COM, the tensor about the COM in the link's axes (``tensor``: URDF's six values,
+    ``ixy = -∫ x y dm``), principal moments and axes (``along``: the link axis each lies along,
+    :func:`~inertia_kit.view.boxes.principal_directions`), and the equivalent box (sides along
+    the principal axes, in moment order) or why there is none.
+    """
     box = equivalent_box(body)
+    tensor = body.inertia
     return {
         "mass": _finite(body.mass),
         "com": _floats(body.com),
+        "tensor": {name: _finite(float(tensor[i, j])) for name, (i, j) in _TENSOR_ENTRIES.items()},
         "moments": _floats(box.moments),
         "axes": _floats(box.axes),
+        "along": principal_directions(box),
         "box": None if box.sizes is None else _floats(box.sizes),
         "problem": box.problem,
     }
+
+
+#: the six values of a tensor, as the page shows them: the moments, then the products
+_TENSOR_ENTRIES = {
+    "ixx": (0, 0), "iyy": (1, 1), "izz": (2, 2), "ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2)
+}  # fmt: skip
+
+
+def _declared_record(link: model.Link, body: MassProperties) -> dict[str, Any]:
+    """
+    The declared mass properties in the link's axes, and ``rpy``: the ``<inertial>``'s
+    ``<origin rpy>`` the six values are written in (turned into the link's axes here), so the
+    panel can say when its numbers are not the file's.
+    """
+    rpy = link.inertial.origin.rpy if link.inertial is not None else (0.0, 0.0, 0.0)
+    return _mass_record(body) | {"rpy": _floats(rpy)}
 
 
 def _geometry_record(link: LinkAnalysis) -> dict[str, Any] | None:

@@ -41,9 +41,10 @@ def unit_cube_mesh(name: str = "cube") -> dict:
 
 def solid_box(mass: float, size, com) -> dict:
     """
-    A solid box's mass properties as the contract's ``declared``: principal moments
-    m (b² + c²) / 12 ..., axes the link's, and its equivalent box from the principal moments
-    (sides √(6 (I_j + I_k − I_i) / m)): the box itself.
+    A solid box's mass properties as the contract's ``declared``: its tensor in the link's axes
+    (the box's), principal moments m (b² + c²) / 12 ... along the link's axes, and its
+    equivalent box from the principal moments (sides √(6 (I_j + I_k − I_i) / m)): the box
+    itself.
     """
     a, b, c = size
     moments = [
@@ -63,8 +64,11 @@ def solid_box(mass: float, size, com) -> dict:
     return {
         "mass": mass,
         "com": list(com),
+        # in the link's axes: the box's own
+        "tensor": dict(zip(("ixx", "iyy", "izz"), moments, strict=True), ixy=0.0, ixz=0.0, iyz=0.0),
         "moments": principal,
         "axes": axes.reshape(-1).tolist(),
+        "along": ["xyz"[i] for i in order],
         "box": box,
         "problem": None,
     }

@@ -2,7 +2,10 @@
  * inertia_kit/view/scene.py) with three.js. Z is up, as in URDF: the camera's up is +z, so the
  * robot's frames are used as they are. Everything the tests read is in the DOM:
  * #page-errors (errors, empty when none), body[data-ready="1"] after the first frame, and
- * #projected: each box's centre and screen rectangle in CSS pixels, as JSON. */
+ * #projected: each box's centre and screen rectangle in CSS pixels, and whether its link is
+ * shown, as JSON. Which box is whose: the link's name on hover (#hover-label) and on selection
+ * (#selection-label); the selected link's boxes stand out, the others dim; #tools isolates it
+ * (only its link shown), shows all again, or fits the view to what is shown. */
 (function () {
   "use strict";
 
@@ -75,7 +78,9 @@
 
   // --- links -----------------------------------------------------------------------------------
 
-  var links = new Map(); // name -> {record, group, visuals: [mesh], boxes: [mesh], card}
+  // name -> {record, group, visuals: [mesh], boxes: [{kind, object, edges}], markers, anchor,
+  // card, toggle}
+  var links = new Map();
   var pickable = []; // what a click in 3D can hit
 
   function visualMaterial(record, visual) {
@@ -120,16 +125,17 @@
         : new THREE.LineBasicMaterial({ color: colour });
       var edges = new THREE.LineSegments(unitEdges, line);
       if (kind === "geometry") edges.computeLineDistances();
+      line.transparent = true; // dimmed while another link is selected
       [faces, edges].forEach(function (object) {
         object.matrixAutoUpdate = false;
         object.matrix.copy(boxMatrix(inertia));
         object.userData = { link: entry.record.name, kind: kind };
         entry.group.add(object);
       });
-      entry.boxes.push({ kind: kind, object: faces });
+      entry.boxes.push({ kind: kind, object: faces, edges: edges });
       pickable.push(faces);
     }
-    var dot = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: colour }));
+    var dot = new THREE.Mesh(marker, new THREE.MeshBasicMaterial({ color: colour, transparent: true }));
     dot.scale.setScalar(size);
     dot.position.set(inertia.com[0], inertia.com[1], inertia.com[2]);
     dot.userData = { link: entry.record.name, kind: kind };
@@ -142,7 +148,11 @@
     group.matrixAutoUpdate = false;
     group.matrix.copy(rowMajor(record.world));
     world.add(group);
-    var entry = { record: record, group: group, visuals: [], boxes: [], markers: [] };
+    // anchor: where its name is pinned, in its frame: the declared COM, else the centroid
+    var inertia = record.declared || record.geometry;
+    var anchor = inertia && inertia.com.every(function (v) { return v !== null; })
+      ? new THREE.Vector3(inertia.com[0], inertia.com[1], inertia.com[2]) : new THREE.Vector3();
+    var entry = { record: record, group: group, visuals: [], boxes: [], markers: [], anchor: anchor };
     links.set(record.name, entry);
     (record.visuals || []).forEach(function (visual) {
       var geometry = geometries[visual.mesh];
@@ -253,49 +263,215 @@
 
   // --- side panel (panel.js) ------------------------------------------------------------------
 
-  var cards = InertiaKitPanel.fill(panel, scene, function (name) { select(name, true); });
-  scene.links.forEach(function (record) { links.get(record.name).card = cards.get(record.name); });
+  var cards = InertiaKitPanel.fill(panel, scene, {
+    select: function (name) { select(name, true); },
+    show: function (name, on) { show(name, on); },
+    hover: function (name) { hover(name, null); },
+  });
+  scene.links.forEach(function (record) {
+    var entry = links.get(record.name);
+    entry.card = cards.get(record.name);
+    entry.toggle = entry.card.querySelector("input.shown");
+  });
 
-  // --- selection -------------------------------------------------------------------------------
+  // --- which box is whose: labels, selection, isolate -----------------------------------------
 
-  var selected = null;
+  var selected = null; // a link's name
+  var hovered = null; // {name, at: [x, y] in the view, or null: at the link's anchor}
+  var hoverLabel = element("div", { id: "hover-label", class: "label" });
+  var selectionLabel = element("div", { id: "selection-label", class: "label selection" });
+  hoverLabel.hidden = selectionLabel.hidden = true;
+  view.appendChild(hoverLabel);
+  view.appendChild(selectionLabel);
 
-  function highlight(name, on) {
-    var entry = links.get(name);
-    if (!entry) return;
-    entry.card.classList.toggle("selected", on);
-    entry.visuals.forEach(function (mesh) {
-      mesh.material.opacity = on ? 0.6 : (entry.record.worst === "error" ? 0.4 : 0.28);
-      mesh.material.emissive.setHex(on ? 0x335577 : (entry.record.worst === "error" ? 0x551010 : 0));
+  var KINDS = { declared: "declared inertia", geometry: "geometry's inertia", visual: "visual geometry" };
+
+  // every material as the selection and the hover want it: the selected link's boxes and
+  // skin stand out, every other link's dim; the hovered link's boxes a little stronger
+  function look() {
+    links.forEach(function (entry, name) {
+      var error = entry.record.worst === "error";
+      var chosen = name === selected, dim = selected !== null && !chosen;
+      var over = hovered !== null && hovered.name === name;
+      entry.card.classList.toggle("selected", chosen);
+      entry.card.classList.toggle("hovered", over);
+      entry.visuals.forEach(function (mesh) {
+        mesh.material.opacity = chosen ? 0.6 : dim ? 0.1 : error ? 0.4 : 0.28;
+        mesh.material.emissive.setHex(chosen ? 0x335577 : error ? 0x551010 : 0);
+      });
+      entry.boxes.forEach(function (box) {
+        box.object.material.opacity = chosen || over ? 0.5 : dim ? 0.08 : 0.35;
+        box.edges.material.opacity = dim && !over ? 0.25 : 1;
+        // the hovered link's boxes outlined in white: which boxes the label names
+        box.edges.material.color.setHex(over ? 0xffffff : COLOURS[box.kind]);
+      });
+      entry.markers.forEach(function (dot) { dot.material.opacity = dim && !over ? 0.3 : 1; });
     });
   }
 
-  function select(name, focus) {
-    if (selected) highlight(selected, false);
-    selected = name;
-    highlight(name, true);
-    var entry = links.get(name);
-    if (focus) {
-      var bounds = new THREE.Box3();
-      entry.visuals.concat(entry.boxes.map(function (b) { return b.object; })).concat(entry.markers).forEach(function (o) { bounds.expandByObject(o); });
-      if (bounds.isEmpty()) bounds.setFromCenterAndSize(new THREE.Vector3().setFromMatrixPosition(entry.group.matrixWorld), new THREE.Vector3(0.1, 0.1, 0.1));
-      frame(bounds, 1.3);
+  // a link's anchor on the screen, in the view's pixels (null: behind the camera)
+  function onScreen(entry) {
+    var point = entry.anchor.clone().applyMatrix4(entry.group.matrixWorld).project(camera);
+    if (point.z > 1 || point.z < -1) return null;
+    return [((point.x + 1) / 2) * view.clientWidth, ((1 - point.y) / 2) * view.clientHeight];
+  }
+
+  function place(label, entry, at, text) {
+    var where = at || (entry.group.visible ? onScreen(entry) : null);
+    label.hidden = where === null;
+    if (where === null) return;
+    label.textContent = InertiaKitPanel.shown(text);
+    label.style.left = where[0] + "px";
+    label.style.top = where[1] + "px";
+    label.classList.toggle("at-cursor", !!at);
+  }
+
+  // the labels where the links are now (after every frame: the camera or a joint moved)
+  function labels() {
+    var entry = selected === null ? null : links.get(selected);
+    if (entry) place(selectionLabel, entry, null, selected);
+    else selectionLabel.hidden = true;
+    var over = hovered === null ? null : links.get(hovered.name);
+    // the selected link already has its name on the screen, at its anchor
+    if (over && !(hovered.at === null && hovered.name === selected)) {
+      place(hoverLabel, over, hovered.at, hovered.name + (hovered.kind ? ": " + KINDS[hovered.kind] : ""));
     } else {
-      entry.card.scrollIntoView({ block: "nearest" });
+      hoverLabel.hidden = true;
     }
+  }
+
+  function hover(name, at, kind) {
+    var same = hovered === null ? name === null
+      : name === hovered.name && kind === hovered.kind && (at === null) === (hovered.at === null);
+    hovered = name === null ? null : { name: name, at: at, kind: kind || null };
+    if (!same) look();
+    labels();
     requestRender();
+  }
+
+  function select(name, focus) {
+    selected = name;
+    look();
+    var entry = name === null ? null : links.get(name);
+    if (entry && focus) frame(boundsOf([entry]), 1.3);
+    else if (entry) entry.card.scrollIntoView({ block: "nearest" });
+    tools();
+    labels();
+    requestRender();
+  }
+
+  function show(name, on) {
+    var entry = links.get(name);
+    entry.group.visible = on;
+    entry.toggle.checked = on;
+    entry.card.classList.toggle("hidden-link", !on);
+    tools();
+    labels();
+    requestRender();
+  }
+
+  function isolate() {
+    if (selected === null) return;
+    links.forEach(function (entry, name) { show(name, name === selected); });
+    frame(boundsOf([links.get(selected)]), 1.3);
+  }
+
+  function showAll() {
+    links.forEach(function (entry, name) { show(name, true); });
+  }
+
+  function shownEntries() {
+    var out = [];
+    links.forEach(function (entry) { if (entry.group.visible) out.push(entry); });
+    return out;
+  }
+
+  // what entries draw, in the pose of the moment (empty ones: a small box at their frame)
+  function boundsOf(entries) {
+    var bounds = new THREE.Box3();
+    entries.forEach(function (entry) {
+      var parts = entry.visuals.concat(entry.boxes.map(function (b) { return b.object; })).concat(entry.markers);
+      var own = new THREE.Box3();
+      parts.forEach(function (o) { own.expandByObject(o); });
+      if (own.isEmpty()) own.setFromCenterAndSize(new THREE.Vector3().setFromMatrixPosition(entry.group.matrixWorld), new THREE.Vector3(0.1, 0.1, 0.1));
+      bounds.union(own);
+    });
+    return bounds;
+  }
+
+  function fit() {
+    var entries = shownEntries();
+    if (entries.length) frame(boundsOf(entries), 1.15);
+    requestRender();
+  }
+
+  var isolateButton = element("button", { type: "button", id: "isolate", text: "isolate", title: "show only the selected link (key I)" });
+  var showAllButton = element("button", { type: "button", id: "show-all", text: "show all", title: "show every link again (key A)" });
+  var fitButton = element("button", { type: "button", id: "fit", text: "fit", title: "fit the view to the links shown (key F)" });
+  var status = element("span", { class: "status" });
+  isolateButton.addEventListener("click", isolate);
+  showAllButton.addEventListener("click", showAll);
+  fitButton.addEventListener("click", fit);
+  view.appendChild(element("div", { id: "tools" }, [isolateButton, showAllButton, fitButton, status]));
+
+  // the toolbar as the selection and the hidden links are
+  function tools() {
+    var count = shownEntries().length;
+    isolateButton.disabled = selected === null;
+    showAllButton.disabled = count === links.size;
+    status.textContent = selected === null
+      ? "hover a box for its link; click to select"
+      : InertiaKitPanel.shown(selected) + " selected";
+    if (count !== links.size) status.textContent += " · " + count + " of " + links.size + " links shown";
+  }
+
+  window.addEventListener("keydown", function (event) {
+    if (event.ctrlKey || event.metaKey || event.altKey || /^(INPUT|TEXTAREA|SELECT|BUTTON)$/.test(event.target.tagName)) return;
+    var key = event.key.toLowerCase();
+    if (key === "i") isolate();
+    else if (key === "a") showAll();
+    else if (key === "f") fit();
+    else if (key === "escape") select(null, false);
+  });
+
+  // the link under the pointer: its name and what was hit, or null
+  function pick(event) {
+    var rect = renderer.domElement.getBoundingClientRect();
+    var ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
+    var ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, camera);
+    var hits = ray.intersectObjects(pickable, false).filter(function (hit) {
+      return links.get(hit.object.userData.link).group.visible; // a hidden link is not there
+    });
+    return hits.length ? hits[0].object.userData : null;
   }
 
   var pointer = null;
   renderer.domElement.addEventListener("pointerdown", function (event) { pointer = [event.clientX, event.clientY]; });
   renderer.domElement.addEventListener("pointerup", function (event) {
     if (!pointer || Math.abs(event.clientX - pointer[0]) + Math.abs(event.clientY - pointer[1]) > 4) return; // a drag
-    var rect = renderer.domElement.getBoundingClientRect();
-    var ndc = new THREE.Vector2(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
-    var ray = new THREE.Raycaster();
-    ray.setFromCamera(ndc, camera);
-    var hits = ray.intersectObjects(pickable, false);
-    if (hits.length) select(hits[0].object.userData.link, false);
+    var hit = pick(event);
+    select(hit ? hit.link : null, false); // a click on nothing clears the selection
+  });
+  // a ray through every triangle costs: one pick per frame, at the pointer's last place
+  var moved = null;
+  function pickHover() {
+    var event = moved;
+    moved = null;
+    if (event === null) return; // the pointer left first
+    var hit = pick(event);
+    var rect = view.getBoundingClientRect();
+    if (hit) hover(hit.link, [event.clientX - rect.left, event.clientY - rect.top], hit.kind);
+    else if (hovered !== null && hovered.at !== null) hover(null, null);
+  }
+  renderer.domElement.addEventListener("pointermove", function (event) {
+    if (event.buttons) return; // turning the view
+    if (moved === null) requestAnimationFrame(pickHover);
+    moved = event;
+  });
+  renderer.domElement.addEventListener("pointerleave", function () {
+    moved = null;
+    if (hovered !== null && hovered.at !== null) hover(null, null);
   });
 
   // --- camera, rendering, what the tests read -------------------------------------------------
@@ -341,6 +517,7 @@
           x: toX(centre.x), y: toY(centre.y),
           rect: [screen.min.x, screen.min.y, screen.max.x, screen.max.y],
           visible: Math.abs(centre.x) <= 1 && Math.abs(centre.y) <= 1 && centre.z < 1,
+          shown: links.get(record.name).group.visible,
         });
       });
     });
@@ -358,6 +535,7 @@
     pending = false;
     renderer.render(world, camera);
     publishProjections();
+    labels();
     if (document.body.dataset.ready !== "1") {
       document.body.dataset.firstFrameMs = String(Math.round(performance.now())); // since navigation
       document.body.dataset.ready = "1"; document.body.dataset.viewport = window.innerWidth + "x" + window.innerHeight;
@@ -367,6 +545,7 @@
   controls.addEventListener("change", requestRender);
   window.addEventListener("resize", resize);
   jointSliders();
+  tools();
   resize(); // the aspect first: framing fits the narrower field of view
   frame(robotBounds, 1.15);
 })();
