@@ -117,3 +117,25 @@ def test_help_says_findings_do_not_fail_it():
     result = view("--help")
     assert result.exit_code == 0
     assert "findings do not fail it" in " ".join(result.output.split())
+
+
+@pytest.mark.parametrize(
+    ("links", "said"),
+    [(1, "1 link, 1 finding,"), (2, "2 links, 2 findings,")],
+)
+def test_the_summary_counts_in_words_that_agree(tmp_path, links, said):
+    """Once "1 links, 1 findings": each link here has one finding (a zero mass)."""
+    body = (
+        '<inertial><mass value="0"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+        '</inertial><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+    )
+    parts = [f'<link name="l{i}">{body}</link>' for i in range(links)]
+    if links == 2:
+        parts.append('<joint name="j" type="fixed"><parent link="l0"/><child link="l1"/></joint>')
+    path = tmp_path / "r.urdf"
+    path.write_text(f'<robot name="r">{"".join(parts)}</robot>')
+    result = CliRunner().invoke(
+        main, ["view", "--select", "IN002", str(path), "-o", str(tmp_path / "r.html")]
+    )
+    assert result.exit_code == 0, result.output
+    assert f"wrote {tmp_path / 'r.html'}: {said}" in result.output
