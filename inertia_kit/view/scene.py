@@ -255,7 +255,17 @@ def _joint_record(joint: model.Joint) -> dict[str, Any]:
 
 
 #: what the panel shows of a finding: the keys of its JSON (inertia-lint --output-format json)
-_FINDING_KEYS = ("code", "name", "severity", "message", "help", "file", "line", "column")
+_FINDING_KEYS = (
+    "code",
+    "name",
+    "severity",
+    "message",
+    "detail",
+    "help",
+    "file",
+    "line",
+    "column",
+)
 
 
 def _finding_record(finding: Finding) -> dict[str, Any]:

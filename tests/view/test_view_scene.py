@@ -76,7 +76,8 @@ def test_a_wrong_tensor_gives_its_own_box_and_its_findings(tmp_path):
     assert {f["code"][:4] for f in arm["findings"]} & {"IN02", "IN06"}
     assert arm["worst"] in ("warning", "error")
     finding = arm["findings"][0]
-    assert set(finding) >= {"code", "name", "severity", "message", "file", "line", "column"}
+    keys = {"code", "name", "severity", "message", "detail", "file", "line", "column"}
+    assert set(finding) >= keys
 
 
 def test_a_link_without_visuals_shows_its_collision_geometry(tmp_path):

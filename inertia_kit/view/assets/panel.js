@@ -218,6 +218,8 @@ var InertiaKitPanel = (function () {
     return element("li", {}, [
       element("span", { class: "code " + finding.severity, text: finding.code + " " }),
       element("span", { text: finding.message }),
+      // the basis and arithmetic behind the one-line message, as inertia-lint's `detail:` line
+      finding.detail ? element("div", { class: "detail", text: finding.detail }) : null,
       // what to do, as inertia-lint's `help:` line says it
       finding.help ? element("div", { class: "help", text: "help: " + finding.help }) : null,
       where ? element("div", { class: "where", text: where }) : null,
