@@ -77,9 +77,11 @@ def _robot_events(robot: RobotAnalysis) -> Iterator[Event]:
             ENGINE,
             Verdict.REFUSES,
             "robot",
-            "refuses the model: the <robot> has no name",
+            "refuses the model",
             "Your robot must have a name attribute or a model name must be specified.",
             robot.robot.source,
+            claim="the <robot> has no name",
+            why="Drake names the model after the <robot>",
         )
 
 
@@ -91,12 +93,14 @@ def _link_events(robot: RobotAnalysis) -> Iterator[Event]:
                 ENGINE,
                 Verdict.CHANGES,
                 "world",
-                "ignores the <inertial> of link `world`: the world body has no mass",
+                "ignores its <inertial>",
                 'A URDF file declared the "world" link and then attempted to assign mass '
                 "properties (via the <inertial> tag). Only geometries, <collision> and <visual>, "
                 "can be assigned to the world link. The <inertial> tag is being ignored.",
                 link.link.source,
                 link=link.name,
+                claim="the world has no mass",
+                why="Drake takes the link `world` for its world body, which has no mass",
             )
         elif inertial is not None:
             yield from _inertial_events(link.name, inertial)
@@ -107,27 +111,48 @@ def _link_events(robot: RobotAnalysis) -> Iterator[Event]:
 def _inertial_events(link: str, inertial: model.Inertial) -> Iterator[Event]:
     read = parser.read_inertial(inertial)
     if read.kind == "refused":
+        tiny = read.message == reading.ZERO_RADIUS
+        mass = inertial.mass
+        if tiny:
+            shown = f"mass {fmt(mass)} kg" if isinstance(mass, float) else "its mass"
+            claim = f"{shown}, too small for its stand-in sphere"
+            why = (
+                "Drake makes a water-density sphere of the link's mass for every <inertial> (its "
+                f"stand-in for an invalid one); the sphere of link `{link}` has radius 0"
+            )
+        else:
+            claim = "a value in its <inertial> is not one number"
+            why = f"Drake cannot read a value in the <inertial> of link `{link}`"
         yield event(
             ENGINE,
             Verdict.REFUSES,
-            "number" if read.message != reading.ZERO_RADIUS else "tiny",
-            f"refuses the model at the <inertial> of link `{link}`",
+            "tiny" if tiny else "number",
+            "refuses the model",
             read.message,
             read.source or inertial.source,
             link=link,
+            claim=claim,
+            why=why,
         )
     elif read.kind == "sphere":
         m, radius, moment = plausible_sphere(read.mass)
+        invalid = (
+            "its mass is not > 0"
+            if read.message == reading.NON_POSITIVE_MASS
+            else "its tensor is not physically valid"
+        )
         yield event(
             ENGINE,
             Verdict.CHANGES,
             "sphere",
-            f"replaces the inertia of link `{link}` by a solid sphere of {fmt(WATER)} kg/m³: "
-            f"{fmt(m)} kg, radius {fmt(radius, 4)} m, moment {fmt(moment, 4)} kg·m² about "
-            "each axis",
+            "replaces its inertia",
             reading.flatten(read.message or ""),
             inertial.source,
             link=link,
+            claim=f"{fmt(m)} kg water sphere, {fmt(moment, 4)} kg·m² per axis",
+            why=f"The <inertial> of link `{link}` is invalid ({invalid}): Drake replaces it by "
+            f"a solid sphere of {fmt(WATER)} kg/m³: {fmt(m)} kg, radius {fmt(radius, 4)} m, "
+            f"moment {fmt(moment, 4)} kg·m² about each axis",
             mass=m,
             radius=radius,
             ixx=moment,
@@ -146,14 +171,26 @@ def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
         refusal = ("geometry", refused.message, refused.source)
     if refusal is not None:
         kind, message, source = refusal
-        what = f"refuses the model at {where}"
-        if kind == "mesh-missing" and message is None:
-            what = (
-                f"refuses the model: {where} is not found (Drake's words depend on the "
-                "packages its package map holds)"
+        what, claim, why = "refuses the model", None, f"Drake cannot build {where}"
+        if kind == "mesh-missing":
+            claim = f"{shape.kind} mesh {_short(geometry)} not found"
+            why = f"Drake finds no file for {where}" + (
+                " (its words depend on the packages its package map holds)"
+                if message is None
+                else ""
             )
+        else:
+            what = f"refuses the model at its {shape.kind} {_short(geometry)}"
         yield event(
-            ENGINE, Verdict.REFUSES, kind, what, message, source or geometry.source, link=link
+            ENGINE,
+            Verdict.REFUSES,
+            kind,
+            what,
+            message,
+            source or geometry.source,
+            link=link,
+            claim=claim,
+            why=why,
         )
         return
     if shape.kind != "collision" or not isinstance(geometry, model.Mesh):
@@ -169,14 +206,25 @@ def _shape_events(link: str, shape: model.Shape) -> Iterator[Event]:
         ENGINE,
         Verdict.REFUSES,
         "mesh",
-        f"refuses the {suffix or 'extension-less'} collision mesh of link `{link}` (it "
-        "computes a collision mesh's convex hull from .obj, .vtk or .gltf only)",
+        "refuses the model",
         f"MakeConvexHull only applies to .obj, .vtk, and .gltf meshes; unsupported extension "
         f"'{suffix}' for geometry data: {path}.",
         geometry.source,
         link=link,
+        claim=f"{suffix or 'extension-less'} collision mesh, not .obj/.vtk/.gltf",
+        why="With a SceneGraph Drake makes each collision mesh its convex hull, which it "
+        f"computes from .obj, .vtk or .gltf files only: it refuses the collision mesh `{path}` "
+        f"of link `{link}`",
         mesh=path,
     )
+
+
+def _short(geometry: model.Geometry) -> str:
+    """A shape as the one-line message names it: ``<box>``, a mesh by its file's name."""
+    if isinstance(geometry, model.Mesh):
+        name = PurePosixPath(geometry.filename.replace("\\", "/")).name
+        return f"`{name or geometry.filename}`"
+    return parser.describe(geometry)
 
 
 def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
@@ -190,11 +238,14 @@ def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
                 ENGINE,
                 Verdict.CHANGES,
                 "friction",
-                f"ignores the friction of joint `{joint.name}` ({fmt(read.friction)})",
+                f"ignores its friction ({fmt(read.friction)})",
                 reading.FRICTION,
                 read.dynamics,
                 link=joint.child,
                 joint=joint.name,
+                subject=f"joint `{joint.name}`",
+                why=f"MultibodyPlant has no joint friction: Drake drops the friction "
+                f"{fmt(read.friction)} of joint `{joint.name}` (it keeps the damping)",
             )
         if read.refusal is not None:
             message, source = read.refusal
@@ -202,25 +253,49 @@ def _joint_events(robot: RobotAnalysis) -> Iterator[Event]:
                 ENGINE,
                 Verdict.REFUSES,
                 "joint",
-                f"refuses the model at joint `{joint.name}`",
+                "refuses the model",
                 message,
                 source or joint.source,
                 link=joint.child,
                 joint=joint.name,
+                subject=f"joint `{joint.name}`",
+                claim=_joint_claim(joint, message),
+                why=f"Drake cannot build the {joint.type or 'untyped'} joint `{joint.name}` "
+                f"from `{joint.parent}` to `{joint.child}`",
             )
         elif joint.type == "floating":
             yield event(
                 ENGINE,
                 Verdict.CHANGES,
                 "floating",
-                f"leaves out the floating joint `{joint.name}`: link `{joint.child}` becomes a "
-                "free body, moved by nothing but gravity and contact",
+                "makes it a free body",
                 f"Joint '{joint.name}' specified as type floating which is not supported by "
                 f"MultibodyPlant.  Leaving '{joint.child}' as a free body.",
                 joint.source,
                 link=joint.child,
                 joint=joint.name,
+                claim="its floating joint is left out",
+                why=f"MultibodyPlant has no floating joint: Drake leaves out the joint "
+                f"`{joint.name}`, and link `{joint.child}` becomes a free body, moved by nothing "
+                "but gravity and contact",
             )
+
+
+def _joint_claim(joint: model.Joint, message: str) -> str:
+    """What Drake's refusal of a joint says, in a few words."""
+    if message == reading.JOINT_LIMITS:
+        return "lower limit above upper"
+    if message == reading.VELOCITY_LIMITS:
+        return "negative velocity limit"
+    if message.endswith("damping must be nonnegative."):
+        return "negative damping"
+    if message.endswith("axis is zero.  Don't do that."):
+        return "zero axis"
+    if "custom joint type" in message:
+        return f"a {joint.type} joint must be a <drake:joint>"
+    if "has unrecognized type" in message:
+        return f"unknown type `{joint.type}`"
+    return "an unreadable value"
 
 
 # --- forward dynamics ------------------------------------------------------------------------
@@ -348,15 +423,21 @@ def _singular_events(robot: RobotAnalysis) -> Iterator[Event]:
             (True, False): "inertia about its axis",
             (False, True): "mass along its axis",
         }.get((rotates, translates), "inertia in every direction it moves")
+        claim = {
+            (True, False): "no inertia about its joint axis",
+            (False, True): "no mass along its joint axis",
+        }.get((rotates, translates), "no mass or inertia along its joint's motion")
         inertial = link.link.inertial
         yield event(
             ENGINE,
             Verdict.REFUSES,
             "singular",
-            f"fails at simulation time on joint `{joint.name}`: neither link `{link.name}` nor "
-            f"anything outboard of it has {motion}",
+            "fails at the first step",
             reading.singular_hinge(inboard, link.name, rotates, translates),
             inertial.source if inertial is not None else link.link.source,
             link=link.name,
             joint=joint.name,
+            claim=claim,
+            why=f"Forward dynamics stops at joint `{joint.name}`: neither link `{link.name}` "
+            f"nor anything outboard of it has {motion}",
         )

@@ -13,8 +13,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.links import RobotAnalysis
-from inertia_kit.engines.lumping import Body, Dropped, preserved_joints, simulated_bodies
-from inertia_kit.engines.vocabulary import Event, Verdict, event
+from inertia_kit.engines.lumping import Body, preserved_joints, simulated_bodies
+from inertia_kit.engines.vocabulary import Event, Verdict, event, verdict_detail
 from inertia_kit.physics.formatting import fmt, vector_text
 
 ENGINE = "gazebo"
@@ -61,26 +61,38 @@ def events(robot: RobotAnalysis) -> Iterator[Event]:
     found = simulated_bodies(robot, ENGINE)
     preserved = preserved_joints(robot.robot)
     for dropped in found.dropped:
+        joint = " with its joint" if dropped.joint else ""
+        joint_named = f" with its joint `{dropped.joint}`" if dropped.joint else ""
+        claim = None
         if dropped.link == dropped.cause:
             below = found.dropped_below(dropped.cause)
             below = tuple(b for b in below if found.dropped_link(b).reason == "ancestor")
-            tail = ""
+            tail = tail_named = ""
             if below:
                 names = ", ".join(f"`{b}`" for b in below)
-                tail = f" and the {len(below)} link{'s' * (len(below) > 1)} below it ({names})"
+                links = f"{len(below)} link{'s' * (len(below) > 1)}"
+                tail = f" and the {links} below it"
+                tail_named = f" and the {links} below it ({names})"
             message = _not_modeled(robot, dropped.link, dropped.reason, preserved)
-            what = f"drops link `{dropped.link}`{_with_joint(dropped)}{tail}"
+            what = f"drops it{joint}{tail}"
+            claim = _massless(robot, dropped.link, dropped.reason)
+            why = (
+                f"sdformat's URDF converter does not model link `{dropped.link}` ({claim}): it "
+                f"drops it{joint_named}{tail_named}"
+            )
         elif dropped.reason == "ancestor":
             message = None
-            what = (
-                f"drops link `{dropped.link}`{_with_joint(dropped)}: its ancestor "
-                f"`{dropped.cause}` is not modeled (no mass)"
+            what, claim = f"drops it{joint}", "an ancestor has no mass"
+            why = (
+                f"Its ancestor `{dropped.cause}` is not modeled (no mass), so sdformat's URDF "
+                f"converter drops link `{dropped.link}`{joint_named}"
             )
         else:
             message = None
-            what = (
-                f"drops link `{dropped.link}`: it is lumped into `{dropped.cause}`, which has "
-                "no mass and is not modeled"
+            what, claim = "drops it", "lumped into a body with no mass"
+            why = (
+                f"Link `{dropped.link}` is lumped into `{dropped.cause}`, which has no mass and "
+                "is not modeled"
             )
         yield event(
             ENGINE,
@@ -91,6 +103,8 @@ def events(robot: RobotAnalysis) -> Iterator[Event]:
             robot.by_name[dropped.link].link.source,
             link=dropped.link,
             joint=dropped.joint,
+            claim=claim,
+            why=why,
             dropped_links=[dropped.link],
             cause=dropped.cause,
         )
@@ -98,8 +112,13 @@ def events(robot: RobotAnalysis) -> Iterator[Event]:
         yield from _body_events(robot, body)
 
 
-def _with_joint(dropped: Dropped) -> str:
-    return f" with its joint `{dropped.joint}`" if dropped.joint else ""
+def _massless(robot: RobotAnalysis, name: str, reason: str) -> str:
+    """Why the converter drops a link: ``no <inertial>`` or its mass (≤ 0)."""
+    inertial = robot.by_name[name].link.inertial
+    if reason == "no-inertial" or inertial is None:
+        return "no <inertial>"
+    mass = inertial.mass
+    return f"mass {fmt(mass)} kg" if isinstance(mass, float) else "mass ≤ 0"
 
 
 def _body_events(robot: RobotAnalysis, body: Body) -> Iterator[Event]:
@@ -112,17 +131,24 @@ def _body_events(robot: RobotAnalysis, body: Body) -> Iterator[Event]:
     source = link.link.source if inertial is None else inertial.source
     if 0 < body.declared_mass < OLD_SDFORMAT_MASS_TOLERANCE:
         message = f"urdf2sdf: link[{body.name}] has no inertia, not modeled in sdf"
+        mass = fmt(body.declared_mass)
         yield Event(
             ENGINE,
             Verdict.CHANGES,
             "old-sdformat",
-            f"Gazebo with libsdformat before 9.10.1 / 14.1.0 drops link `{body.name}`: its "
-            f"mass {fmt(body.declared_mass)} kg is below the 1e-06 kg it took for zero "
-            f"({message})",
+            f"link `{body.name}`: older Gazebo drops it: mass {mass} kg, below "
+            f"{fmt(OLD_SDFORMAT_MASS_TOLERANCE)} kg",
             message,
             source,
             link=body.name,
             facts={"mass": body.declared_mass},
+            detail=verdict_detail(
+                ENGINE,
+                "Gazebo with libsdformat before 9.10.1 / 14.1.0 (gazebosim/sdformat#1238) "
+                f"compared the mass with 0 within {fmt(OLD_SDFORMAT_MASS_TOLERANCE)} kg: it "
+                f"takes the {mass} kg of link `{body.name}` for no mass and drops the link",
+                message,
+            ),
         )
     properties = body.mass_properties
     if properties is None or gz_mass_matrix_valid(properties.mass, properties.inertia):
@@ -133,19 +159,34 @@ def _body_events(robot: RobotAnalysis, body: Body) -> Iterator[Event]:
         if lumped
         else f"link `{body.name}`"
     )
+    moments = f"{vector_text(properties.principal_moments)} kg·m²"
     yield event(
         ENGINE,
         Verdict.REFUSES,
         "invalid-inertia",
-        f"rejects the inertia of {where}, principal moments "
-        f"{vector_text(properties.principal_moments)} kg·m²",
+        "rejects its lumped inertia" if lumped else "rejects its inertia",
         f"A link named {body.name} has invalid inertia.",
         source,
         link=body.name,
+        claim=_invalid(properties.mass, properties.principal_moments),
+        why=f"gz-math's MassMatrix3::IsValid fails on {where}: mass "
+        f"{fmt(properties.mass)} kg, principal moments {moments}; each must be ≥ 0 and at "
+        "most the sum of the other two",
         links=list(body.links),
         mass=properties.mass,
         principal_moments=properties.principal_moments.tolist(),
     )
+
+
+def _invalid(mass: float, principal: NDArray[np.float64]) -> str:
+    """What fails gz-math's test, in a few words (the numbers are in the detail)."""
+    if not (math.isfinite(mass) and np.isfinite(principal).all()):
+        return "a value is not finite"
+    if mass < 0:
+        return f"mass {fmt(mass)} kg"
+    if principal[0] < 0:
+        return f"principal moment {fmt(principal[0])} kg·m²"
+    return "principal moments break A + B ≥ C"
 
 
 def _not_modeled(robot: RobotAnalysis, name: str, reason: str, preserved: frozenset[str]) -> str:

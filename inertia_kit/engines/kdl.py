@@ -9,6 +9,7 @@ from collections.abc import Iterator
 
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines.vocabulary import Event, Verdict, event
+from inertia_kit.physics.formatting import fmt
 
 ENGINE = "kdl"
 KDL_JOINTS = ("fixed", "revolute", "continuous", "prismatic")
@@ -27,14 +28,18 @@ def events(robot: RobotAnalysis) -> Iterator[Event]:
             "support a root link with an inertia.  As a workaround, you can add an extra dummy "
             "link to your URDF."
         )
+        mass = root.link.inertial.mass
+        weight = f" ({fmt(mass)} kg)" if isinstance(mass, float) else ""
         yield event(
             ENGINE,
             Verdict.CHANGES,
             "root-inertia",
-            f"ignores the inertia of root link `{root.name}`",
+            f"ignores the root link's inertia{weight}",
             message,
             root.link.inertial.source,
             link=root.name,
+            why=f"kdl_parser leaves out the <inertial> of the root link `{root.name}`{weight}: "
+            "the root segment of a KDL tree has no inertia",
         )
     for joint in robot.robot.joints:
         if joint.type in KDL_JOINTS or not joint.type:
@@ -44,10 +49,12 @@ def events(robot: RobotAnalysis) -> Iterator[Event]:
             ENGINE,
             Verdict.CHANGES,
             "joint-type",
-            f"welds link `{joint.child}`: its {joint.type} joint `{joint.name}` becomes fixed",
+            f"makes its {joint.type} joint fixed",
             message,
             joint.source,
             link=joint.child,
             joint=joint.name,
+            why=f"KDL has no {joint.type} joint: the {joint.type} joint `{joint.name}` becomes "
+            f"fixed, welding link `{joint.child}` to `{joint.parent}`",
             joint_type=joint.type,
         )

@@ -15,7 +15,13 @@ from __future__ import annotations
 from inertia_kit.analysis.links import RobotAnalysis
 from inertia_kit.engines.mujoco_compiler import compile_robot
 from inertia_kit.engines.mujoco_files import Prediction, mesh_refusals, parse_refusals
-from inertia_kit.engines.vocabulary import Event, Verdict, verdict_message
+from inertia_kit.engines.vocabulary import (
+    Event,
+    Verdict,
+    subject_of,
+    verdict_detail,
+    verdict_message,
+)
 
 ENGINE = "mujoco"
 
@@ -23,10 +29,10 @@ ENGINE = "mujoco"
 def events(robot: RobotAnalysis) -> list[Event]:
     """
     What MuJoCo does with the robot, as events of kind ``stage`` (see
-    :class:`~.mujoco_files.Prediction`): the first refusal reads ``MuJoCo refuses the model``,
-    the later ones ``MuJoCo would also refuse the model`` (what it says once the first is
-    fixed); silent changes read ``MuJoCo silently changes the model``. Empty: the model loads
-    as written.
+    :class:`~.mujoco_files.Prediction`): the first refusal reads ``link `x`: MuJoCo refuses the
+    model: <claim>``, the later ones ``MuJoCo would also refuse the model`` (what it says once
+    the first is fixed); a silent change reads ``link `x`: MuJoCo <claim>``. The detail says why
+    and quotes MuJoCo. Empty: the model loads as written.
     """
     predictions = predict(robot)
     first = next((p for p in predictions if p.verdict is Verdict.REFUSES), None)
@@ -34,20 +40,21 @@ def events(robot: RobotAnalysis) -> list[Event]:
 
 
 def _event(prediction: Prediction, first: Prediction | None) -> Event:
+    subject = subject_of(prediction.link)
+    why = prediction.detail
     if prediction.verdict is Verdict.REFUSES:
         assert first is not None
-        what, detail = "refuses the model", prediction.detail
+        what = "refuses the model"
         if prediction is not first:
             what = "would also refuse the model"
             place = f"link `{first.link}`" if first.link else "the first"
-            detail = f"{detail}; it stops at the first error, {place}"
-        message = (
-            f"{verdict_message(ENGINE, prediction.verdict, prediction.message, what)} ({detail})"
+            why = f"{why}; MuJoCo stops at the first error, {place}, and says this once it is fixed"
+        message = verdict_message(
+            ENGINE, prediction.verdict, prediction.claim, what, subject=subject
         )
     else:
-        message = (
-            verdict_message(ENGINE, prediction.verdict, None, "silently changes the model")
-            + f": {prediction.detail}"
+        message = verdict_message(
+            ENGINE, prediction.verdict, None, prediction.claim, subject=subject
         )
     return Event(
         ENGINE,
@@ -63,6 +70,7 @@ def _event(prediction: Prediction, first: Prediction | None) -> Event:
             "first": prediction is first,
             **prediction.more,
         },
+        detail=verdict_detail(ENGINE, why, prediction.message),
     )
 
 

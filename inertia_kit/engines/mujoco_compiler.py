@@ -166,7 +166,9 @@ def _compile(body: _Body) -> list[Prediction]:
             return _refuse_body(
                 body,
                 "error 'inertia must have positive eigenvalues' in fullinertia",
-                f"principal moments {_moments(principal)}, the smallest below mjEPS = 1e-14 kg·m²",
+                f"principal moment {fmt(principal[0])} kg·m², below mjEPS",
+                f"its principal moments are {_moments(principal)}, the smallest below mjEPS = "
+                "1e-14 kg·m²",
                 inertial.inertia_source or inertial.source,
             )
     for shape in link.link.collisions:
@@ -176,7 +178,9 @@ def _compile(body: _Body) -> list[Prediction]:
             return _refuse_body(
                 body,
                 f"size {index} must be positive in geom",
-                f"a collision {kind} has a zero or negative size",
+                f"a collision {kind} with a size ≤ 0",
+                f"size {index} of its collision {kind} (as MuJoCo numbers them) is zero or "
+                "negative",
                 shape.geometry.source,
                 shape.name or "",
             )
@@ -190,8 +194,9 @@ def _compile(body: _Body) -> list[Prediction]:
         return _refuse_body(
             body,
             "inertia must satisfy A + B >= C; use 'balanceinertia' to fix",
-            f"principal moments {_moments(principal)}: "
-            f"{fmt(a, 4)} + {fmt(b, 4)} < {fmt(c, 4)} (MuJoCo allows no tolerance)",
+            "principal moments break A + B ≥ C",
+            f"its principal moments are {_moments(principal)}: {fmt(a, 4)} + {fmt(b, 4)} < "
+            f"{fmt(c, 4)} (MuJoCo allows no tolerance)",
             inertial.inertia_source or inertial.source,
         )
     if mass >= MJMINVAL:
@@ -202,12 +207,18 @@ def _compile(body: _Body) -> list[Prediction]:
 
 
 def _refuse_body(
-    body: _Body, message: str, detail: str, source: model.Source, name: str | None = None
+    body: _Body,
+    message: str,
+    claim: str,
+    detail: str,
+    source: model.Source,
+    name: str | None = None,
 ) -> list[Prediction]:
     """The compiler refuses ``body`` (naming the element ``name``, by default the body)."""
     body.known = False
     element = {"name": body.name if name is None else name}
-    return [refusal("body", body.name, message, f"link `{body.name}`: {detail}", source, element)]
+    why = f"MuJoCo's compiler refuses link `{body.name}`: {detail}"
+    return [refusal("body", body.name, message, claim, why, source, element)]
 
 
 def _from_geometry(link: LinkAnalysis) -> tuple[MassProperties | None, bool]:
@@ -291,8 +302,9 @@ def _drop_root(root: _Body, changes: list[Prediction]) -> None:
         change(
             "root",
             root.name,
-            f"root link `{root.name}` is fixed to the world (its URDF import adds no free joint) "
-            f"and the {fmt(mass)} kg of {whose} are dropped",
+            f"fixes the root to the world, dropping {fmt(mass)} kg",
+            f"MuJoCo's URDF import adds no free joint: root link `{root.name}` is fixed to the "
+            f"world and the {fmt(mass)} kg of {whose} are dropped",
             _where(root),
             dropped_mass=mass,
         )
@@ -340,7 +352,8 @@ def _fuse_into(
                         child.name,
                         "error 'inertia must have positive eigenvalues' in fusing static body "
                         "inertias",
-                        f"link `{child.name}` is welded to `{host.name}` and fused into it: their "
+                        f"fused: principal moment {fmt(principal[0])} kg·m², below mjEPS",
+                        f"Link `{child.name}` is welded to `{host.name}` and fused into it: their "
                         f"sum has principal moments {_moments(principal)}, the smallest below "
                         "mjEPS = 1e-14 kg·m² (point masses on a line, or a point mass alone)",
                         _where(child),
@@ -363,8 +376,9 @@ def _note_changes(body: _Body, host: _Body | None, changes: list[Prediction]) ->
             change(
                 "clamp",
                 body.name,
-                f"link `{body.name}`'s negative mass ({fmt(inertial.mass)} kg) is clamped to 0 "
-                f"(boundmass){into}",
+                f"clamps its mass {fmt(inertial.mass)} kg to 0",
+                f"MuJoCo clamps the negative mass ({fmt(inertial.mass)} kg) of link "
+                f"`{body.name}` to 0 (boundmass){into}",
                 inertial.mass_source or inertial.source,
                 declared_mass=inertial.mass,
                 mass=0.0,
@@ -379,7 +393,8 @@ def _note_changes(body: _Body, host: _Body | None, changes: list[Prediction]) ->
             change(
                 "inertiafromgeom",
                 body.name,
-                f"link `{body.name}` has no `<inertial>`: MuJoCo gives it the mass of its "
+                f"gives it {fmt(value.mass)} kg from collision geometry (no <inertial>)",
+                f"Link `{body.name}` has no <inertial>: MuJoCo gives it the mass of its "
                 f"collision geometry at {fmt(GEOM_DENSITY)} kg/m³, {fmt(value.mass)} kg"
                 f"{suffix} (inertiafromgeom{mode})",
                 body.link.link.source,
@@ -405,7 +420,7 @@ def _minval(body: _Body) -> list[Prediction]:
         )
         if not nonfinite:
             return []
-        what = "nan or inf in its `<inertial>`"
+        claim = what = "nan or inf in its <inertial>"
     else:
         value = body.value
         inertial = body.link.link.inertial
@@ -413,20 +428,27 @@ def _minval(body: _Body) -> list[Prediction]:
             principal = _eigenvalues(np.asarray(value.inertia))
             if value.mass >= MJMINVAL and principal[0] >= MJMINVAL:
                 return []
+            claim = f"principal moment {fmt(principal[0])} kg·m², below mjMINVAL"
             what = (
                 f"principal moments {_moments(principal)}, the smallest below mjMINVAL = 1e-15 "
                 "kg·m²"
             )
         elif inertial is None:
             what = (
-                "no `<inertial>` and no collision geometry to compute one from"
+                "no <inertial> and no collision geometry to compute one from"
                 if not body.link.link.collisions
-                else "no `<inertial>`, and its collision geometry at 1000 kg/m³ is too light"
+                else "no <inertial>, and its collision geometry at 1000 kg/m³ is too light"
+            )
+            claim = (
+                "no <inertial>, collision geometry too light"
+                if body.link.link.collisions
+                else "no <inertial> or collision geometry"
             )
         elif isinstance(inertial.mass, float) and inertial.mass < MJMINVAL:
+            claim = f"mass {fmt(inertial.mass)} kg, below mjMINVAL"
             what = f"mass {fmt(inertial.mass)} kg (below mjMINVAL = 1e-15 kg)"
         else:
-            what = "mass below mjMINVAL"
+            claim = what = "mass below mjMINVAL"
         welded = [c.name for c in body.children if not c.moving]
         if welded:
             what += f", even with the links welded to it ({', '.join(f'`{n}`' for n in welded)})"
@@ -436,9 +458,10 @@ def _minval(body: _Body) -> list[Prediction]:
             "minval",
             body.name,
             "mass and inertia of moving bodies must be larger than mjMINVAL",
-            f"link `{body.name}` moves (joint `{joint.name}`) with {what}"
+            claim,
+            f"Link `{body.name}` moves (joint `{joint.name}`) with {what}"
             if joint is not None
-            else f"link `{body.name}` moves with {what}",
+            else f"Link `{body.name}` moves with {what}",
             _where(body),
             {"name": body.name},
         )

@@ -31,7 +31,10 @@ class Prediction:
 
     ``stage`` is the check that finds it (``parse``, ``mesh``, ``body``, ``fuse``, ``minval``;
     ``root``, ``clamp``, ``inertiafromgeom`` for changes); ``message`` is MuJoCo's own text
-    without its ``Error:``/``XML Error:`` prefix; ``detail`` says why, in our words;
+    without its ``Error:``/``XML Error:`` prefix; ``claim`` is the key fact in a few words (a
+    refusal's: what MuJoCo refuses, ``mass 0 kg, below mjMINVAL``; a change's: what
+    MuJoCo does, ``fixes the root to the world, dropping 2 kg``); ``detail`` says why, in our
+    words, as a sentence with the numbers;
     ``element`` is what MuJoCo names after its message (``{"name": "arm"}`` for a compiled
     element, ``{"tag": "mass", "line": 7}`` for an XML element), ``None`` when it names none;
     ``more`` holds the numbers for the finding's ``expected``.
@@ -41,6 +44,7 @@ class Prediction:
     stage: str
     link: str | None
     message: str | None
+    claim: str
     detail: str
     source: model.Source | None
     element: dict[str, Any] | None = None
@@ -51,18 +55,21 @@ def refusal(
     stage: str,
     link: str,
     message: str,
+    claim: str,
     detail: str,
     source: model.Source | None,
     element: dict[str, Any] | None = None,
     **more: Any,
 ) -> Prediction:
     """MuJoCo refuses the model with ``message`` (at ``stage``, about ``link``)."""
-    return Prediction(Verdict.REFUSES, stage, link, message, detail, source, element, more)
+    return Prediction(Verdict.REFUSES, stage, link, message, claim, detail, source, element, more)
 
 
-def change(stage: str, link: str, detail: str, source: model.Source, **more: Any) -> Prediction:
+def change(
+    stage: str, link: str, claim: str, detail: str, source: model.Source, **more: Any
+) -> Prediction:
     """MuJoCo silently changes ``link`` (it says nothing)."""
-    return Prediction(Verdict.CHANGES, stage, link, None, detail, source, None, more)
+    return Prediction(Verdict.CHANGES, stage, link, None, claim, detail, source, None, more)
 
 
 def parseable(value: model.Number) -> bool:
@@ -84,24 +91,27 @@ def parse_refusals(robot: RobotAnalysis) -> list[Prediction]:
     found = []
     for link in robot.links:
         inertial = link.link.inertial
-        problem = _repeated(link.link, ("inertial",), "link") or (
-            None if inertial is None else _unreadable(inertial, link.link)
-        )
-        problem = problem or _repeated(link.link, ("origin", "geometry"), "collision")
+        problem, parent = _repeated(link.link, ("inertial",), "link"), "link"
+        if problem is None and inertial is not None:
+            problem, parent = _unreadable(inertial, link.link), "inertial"
+        if problem is None:
+            problem, parent = _repeated(link.link, ("origin", "geometry"), "collision"), "collision"
         if problem is None:
             continue
         message, tag, source = problem
+        if message.startswith("repeated"):
+            claim = f"a second <{tag}>" + ("" if parent == "link" else f" in its <{parent}>")
+            why = f"MuJoCo's URDF parser allows one <{tag}> in a <{parent}>"
+        else:
+            claim = f"its <{tag}> cannot be read"
+            why = f"MuJoCo's URDF parser cannot read the <{tag}> of link `{link.name}`"
         found.append(
             refusal(
                 "parse",
                 link.name,
                 message,
-                f"link `{link.name}`: "
-                + (
-                    f"a second `<{tag}>`"
-                    if message.startswith("repeated")
-                    else f"its `<{tag}>` cannot be read"
-                ),
+                claim,
+                why,
                 source,
                 {"tag": tag, "line": None if source is None else source.line},
             )
@@ -215,25 +225,32 @@ def mesh_refusals(robot: RobotAnalysis) -> list[Prediction]:
                 continue
             seen.add(key)
             path = mesh_path(robot.robot, geometry.filename)
-            where = f"link `{link.name}`: collision mesh `{geometry.filename}`"
+            where = f"the collision mesh `{geometry.filename}` of link `{link.name}`"
             if not os.path.isfile(path):
+                uri = "://" in geometry.filename
+                claim = "collision mesh URI unresolved" if uri else "collision mesh file not found"
                 why = (
-                    "MuJoCo resolves no package:// or file:// URI"
-                    if "://" in geometry.filename
-                    else "no such file beside the URDF"
+                    f"MuJoCo resolves no package:// or file:// URI: it cannot open {where}"
+                    if uri
+                    else f"MuJoCo finds no file beside the URDF for {where}"
                 )
                 # this message names the file as written (reduced), not joined to the folder
                 shown = posixpath.normpath(geometry.filename)
-                message, element, detail = f"Error opening file '{shown}'", None, why
+                message, element = f"Error opening file '{shown}'", None
             else:
                 ext = posixpath.splitext(path)[1].lower()
                 element = {"name": stem}
                 if ext not in DECODERS:
                     message = f"no decoder found for mesh file '{path}'"
-                    detail = "MuJoCo reads STL (binary), OBJ and MSH meshes only"
+                    claim = f"no decoder for its {ext or 'extension-less'} collision mesh"
+                    why = f"MuJoCo reads STL (binary), OBJ and MSH meshes only, not {where}"
                 elif ext == ".stl" and (stl := _stl_problem(path, path)) is not None:
                     message = stl
-                    detail = "MuJoCo reads binary STL only"
+                    claim = "collision mesh unreadable as binary STL"
+                    why = (
+                        f"MuJoCo reads binary STL with 1 to {STL_MAX_FACES} faces only: it cannot "
+                        f"read {where}"
+                    )
                 else:
                     continue
             found.append(
@@ -241,7 +258,8 @@ def mesh_refusals(robot: RobotAnalysis) -> list[Prediction]:
                     "mesh",
                     link.name,
                     message,
-                    f"{where}: {detail}",
+                    claim,
+                    why,
                     geometry.source,
                     element,
                     mesh=geometry.filename,

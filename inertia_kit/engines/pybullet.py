@@ -154,10 +154,14 @@ def events(robot: RobotAnalysis, *, factor: float, inertia_from_file: bool) -> I
                     ENGINE,
                     Verdict.CHANGES,
                     "zeroed",
-                    f"zeroes the inertia of link `{link.name}` (with URDF_USE_INERTIA_FROM_FILE)",
+                    "zeroes its inertia",
                     zeroed,
                     inertial.inertia_source or inertial.source,
                     link=link.name,
+                    claim="the tensor fails Bullet's test",
+                    why="Loaded with URDF_USE_INERTIA_FROM_FILE, PyBullet sets the inertia of "
+                    f"link `{link.name}` to (0, 0, 0): its principal moments are not all ≥ 0 "
+                    "and each at most the sum of the other two",
                     inertia_diagonal=[0.0, 0.0, 0.0],
                 )
             continue
@@ -179,11 +183,13 @@ def _no_inertial(link: LinkAnalysis, inertia_from_file: bool) -> Event:
         ENGINE,
         Verdict.CHANGES,
         "no-inertial",
-        f"gives link `{link.name}` (no <inertial>) a mass of 1 kg{basis}"
-        + ("" if inertia_from_file else " from its collision shapes"),
+        "gives it 1 kg",
         NO_INERTIAL,
         link.link.source,
         link=link.name,
+        claim="no <inertial>",
+        why=f"Link `{link.name}` has no <inertial>: PyBullet gives it a mass of 1 kg{basis}"
+        + ("" if inertia_from_file else " from its collision shapes"),
         mass=1.0,
         inertia_diagonal=None if diagonal is None else diagonal.tolist(),
     )
@@ -221,12 +227,16 @@ def _recomputed(
         ENGINE,
         Verdict.CHANGES,
         "recomputed",
-        f"replaces the inertia of link `{link.name}` by {vector_text(predicted)} kg·m² "
-        f"(in its <inertial> axes) from {basis}, {differs}, unless loaded with "
-        "URDF_USE_INERTIA_FROM_FILE" + ("; with that flag it zeroes the tensor" if zeroed else ""),
+        "recomputes its inertia",
         zeroed,
         inertial.inertia_source or inertial.source,
         link=link.name,
+        claim="the declared one not positive definite"
+        if comparison is None
+        else f"{fmt(comparison.factor, 3)}× the declared one",
+        why=f"Unless loaded with URDF_USE_INERTIA_FROM_FILE, PyBullet replaces the inertia of "
+        f"link `{link.name}` by {vector_text(predicted)} kg·m² (in its <inertial> axes) from "
+        f"{basis}, {differs}" + ("; with that flag it zeroes the tensor" if zeroed else ""),
         inertia_diagonal=predicted.tolist(),
         rotation=rpy_matrix(inertial.origin.rpy).tolist()
         if isinstance(inertial.origin.rpy, tuple)

@@ -16,10 +16,11 @@ engine does with each link as :class:`Event` values, each with a :class:`Verdict
 - ``REFUSES``: the engine does not load the model.
 
 The rule turns each event into a finding; the lint layer gives a verdict its severity
-(``lint.findings.severity_of``). Every finding's message reads ``<Engine> <does what>: <the
-engine's own message>`` (see :func:`verdict_message`) and its ``expected`` holds at least
-``engine``, ``verdict`` and ``engine_message`` (see :func:`verdict_expected`), so that the five
-engines speak alike.
+(``lint.findings.severity_of``). Every finding's message is one short line, ``link `x`: <Engine>
+<does what>[: <the key fact>]`` (see :func:`verdict_message`), e.g. ``link `arm`: MuJoCo refuses
+the model: mass 0 kg, below mjMINVAL``; its detail says why and quotes the engine's
+own message (see :func:`verdict_detail`), which its ``expected`` also holds with at least
+``engine`` and ``verdict`` (see :func:`verdict_expected`), so that the five engines speak alike.
 """
 
 from __future__ import annotations
@@ -86,15 +87,21 @@ def parse_engines(values: Iterable[str]) -> tuple[str, ...]:
 
 
 def verdict_message(
-    engine: str, verdict: Verdict, engine_message: str | None, what: str | None = None
+    engine: str,
+    verdict: Verdict,
+    claim: str | None = None,
+    what: str | None = None,
+    *,
+    subject: str | None = None,
 ) -> str:
     """
-    The finding's message: ``MuJoCo refuses the model: <engine's own message>``.
+    The finding's one-line message: ``link `arm`: MuJoCo refuses the model: <claim>``.
 
-    ``what`` is the verb phrase after the engine's name (default ``refuses the model``,
-    ``changes the model``, ``loads the model`` by verdict), e.g. ``lumps link `imu` into
-    `base```; ``engine_message`` is quoted as the engine prints it, or left out (with its
-    colon) when the engine says nothing.
+    ``subject`` is what the event is about (``link `arm```, ``joint `j```), left out with its
+    colon when ``None``; ``what`` is the verb phrase after the engine's name (default
+    ``refuses the model``, ``changes the model``, ``loads the model`` by verdict), e.g.
+    ``drops it with its joint``; ``claim`` is the key fact in our words (the key number, no
+    engine prose: that goes to the detail), left out with its colon when ``None``.
     """
     title = TITLES[engine]
     if what is None:
@@ -104,7 +111,31 @@ def verdict_message(
             Verdict.LOADS: "loads the model",
         }[verdict]
     text = f"{title} {what}"
-    return f"{text}: {engine_message}" if engine_message else text
+    if claim:
+        text = f"{text}: {claim}"
+    return f"{subject}: {text}" if subject else text
+
+
+def verdict_detail(engine: str, why: str | None, engine_message: str | None) -> str | None:
+    """
+    The finding's detail: ``why`` (our sentence: the basis, the numbers), then the engine's own
+    message quoted, ``MuJoCo says: "..."``; ``None`` when there is neither.
+    """
+    parts = []
+    if why:
+        parts.append(why if why.endswith((".", "!", "?")) else f"{why}.")
+    if engine_message:
+        parts.append(f'{TITLES[engine]} says: "{engine_message}"')
+    return " ".join(parts) or None
+
+
+def subject_of(link: str | None, joint: str | None = None) -> str | None:
+    """The message's subject: ``link `x``` (or ``joint `j``` for a joint alone), or ``None``."""
+    if link is not None:
+        return f"link `{link}`"
+    if joint is not None:
+        return f"joint `{joint}`"
+    return None
 
 
 def verdict_expected(
@@ -129,7 +160,7 @@ class Event:
       What happens, a short stable name within the engine (``dropped``, ``sphere``, MuJoCo's
       compiler stage): the rule chooses its advice by it.
     message : str
-      The finding's sentence, usually :func:`verdict_message` (see :func:`event`).
+      The finding's one-line message, usually :func:`verdict_message` (see :func:`event`).
     engine_message : str or None
       The engine's own words, as it prints them; ``None`` when it says nothing.
     source : Source or None
@@ -139,8 +170,8 @@ class Event:
     facts : dict
       What the finding's ``expected`` holds besides the engine, verdict and engine message.
     detail : str or None
-      The finding's detail: what the one-line message leaves out (the engine's own words, what
-      follows from the event).
+      The finding's detail: what the one-line message leaves out (why, the numbers, the
+      engine's own words), usually :func:`verdict_detail`.
     """
 
     engine: str
@@ -170,8 +201,18 @@ def event(
     *,
     link: str | None = None,
     joint: str | None = None,
+    claim: str | None = None,
+    why: str | None = None,
+    subject: str | None = None,
     **facts: Any,
 ) -> Event:
-    """An :class:`Event` whose message reads ``<Engine> <what>: <engine_message>``."""
-    message = verdict_message(engine, verdict, engine_message, what)
-    return Event(engine, verdict, kind, message, engine_message, source, link, joint, facts)
+    """
+    An :class:`Event` whose message reads ``<subject>: <Engine> <what>: <claim>`` (the subject
+    by default :func:`subject_of` ``link``) and whose detail is ``why`` then the engine's
+    message (:func:`verdict_detail`).
+    """
+    if subject is None:
+        subject = subject_of(link)
+    message = verdict_message(engine, verdict, claim, what, subject=subject)
+    detail = verdict_detail(engine, why, engine_message)
+    return Event(engine, verdict, kind, message, engine_message, source, link, joint, facts, detail)

@@ -646,6 +646,7 @@ def test_prediction_matches_drake(case, tmp_path):
     changes = [f for f in findings if f.expected["verdict"] == "changes"]
     for finding in findings:
         assert finding.expected["engine"] == "drake"
+        assert len(finding.message) <= 100 and "\n" not in finding.message, finding.message
         assert (
             str(finding.severity)
             == {"refuses": "error", "changes": "warning"}[finding.expected["verdict"]]
@@ -661,7 +662,9 @@ def test_prediction_matches_drake(case, tmp_path):
             first.expected["engine_message"],
             message,
         )
-        assert first.message.endswith(first.expected["engine_message"])
+        # the one-line message has our words, the detail quotes Drake
+        assert first.expected["engine_message"] not in first.message
+        assert first.detail.endswith(f'Drake says: "{first.expected["engine_message"]}"')
         if line is not None:
             assert first.line == line
         return

@@ -362,6 +362,8 @@ def test_prediction_matches_mujoco(case, tmp_path):
     verdict, message, element, _ = outcome(path)
     assert verdict == expected_verdict, (verdict, message)  # the case is what it says
     findings = predicted(path)
+    for finding in findings:
+        assert len(finding.message) <= 100 and "\n" not in finding.message, finding.message
     refusals = [f for f in findings if f.expected["verdict"] == "refuses"]
     if verdict == "loads":
         assert refusals == [], [f.message for f in refusals]
@@ -370,7 +372,8 @@ def test_prediction_matches_mujoco(case, tmp_path):
     (first,) = [f for f in refusals if f.expected["first"]]
     assert first.expected["engine_message"] == message
     assert first.expected["engine_element"] == element
-    assert first.message.startswith(f"MuJoCo refuses the model: {message}")
+    assert first.message.startswith(f"link `{first.link}`: MuJoCo refuses the model: ")
+    assert first.detail.endswith(f'MuJoCo says: "{message}"')
     assert str(first.severity) == "error"
     assert first.expected["engine"] == "mujoco"
 
@@ -413,7 +416,10 @@ def test_fused_links_give_the_body_mujoco_builds(tmp_path):
     findings = predicted(write_case(tmp_path, CASES["welded-link-negative-mass"][0]))
     (clamp,) = findings
     assert clamp.expected["stage"] == "clamp" and clamp.link == "tool"
-    assert clamp.message.startswith("MuJoCo silently changes the model: link `tool`'s negative")
+    assert clamp.message == "link `tool`: MuJoCo clamps its mass -0.5 kg to 0"
+    assert (
+        "negative mass (-0.5 kg) of link `tool` to 0 (boundmass) before it is fused" in clamp.detail
+    )
 
 
 def test_root_mass_is_dropped_and_said(tmp_path):
@@ -435,5 +441,9 @@ def test_later_refusals_are_listed_after_the_first(tmp_path):
     assert [f.link for f in first] == ["a2"] and element == {"name": "a2"}
     later = [f for f in refusals if not f.expected["first"]]
     assert [f.link for f in later] == ["a1"]
-    assert later[0].message.startswith("MuJoCo would also refuse the model: mass and inertia")
-    assert "it stops at the first error, link `a2`" in later[0].message
+    assert later[0].message.startswith("link `a1`: MuJoCo would also refuse the model: ")
+    assert "it stops at the first error, link `a2`" not in later[0].message
+    assert "MuJoCo stops at the first error, link `a2`" in later[0].detail
+    assert later[0].detail.endswith(
+        'MuJoCo says: "mass and inertia of moving bodies must be larger than mjMINVAL"'
+    )

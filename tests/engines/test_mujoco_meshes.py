@@ -102,7 +102,7 @@ def test_urdf_link_without_inertial_gets_the_legacy_body(tmp_path, extension):
     result = lint_file(path, Selection(select=(), engines=("mujoco",)))
     (finding,) = [f for f in result.findings if f.expected.get("stage") == "inertiafromgeom"]
     assert finding.expected["mesh_inertia"] == "legacy"
-    assert "default mesh inertia `legacy`" in finding.message
+    assert "default mesh inertia `legacy`" in finding.detail
     assert finding.expected["mass"] == pytest.approx(mass, rel=1e-9)
     assert finding.expected["principal_moments"] == pytest.approx(moments, rel=1e-9)
     assert mass > 1000 * 0.005 * 1.05  # not the exact 5 kg
@@ -122,4 +122,4 @@ def test_primitives_only_quote_no_mesh_mode(tmp_path):
     path.write_text(robot(link("base"), joint("base", "arm"), link("arm", collision(box(1, 1, 1)))))
     result = lint_file(path, Selection(select=(), engines=("mujoco",)))
     (finding,) = [f for f in result.findings if f.expected.get("stage") == "inertiafromgeom"]
-    assert finding.expected["mesh_inertia"] is None and "mesh inertia" not in finding.message
+    assert finding.expected["mesh_inertia"] is None and "mesh inertia" not in finding.detail

@@ -10,6 +10,7 @@ from inertia_kit.engines.vocabulary import (
     Verdict,
     event,
     parse_engines,
+    verdict_detail,
     verdict_expected,
     verdict_message,
 )
@@ -26,12 +27,17 @@ def test_parse_engines():
 
 def test_verdict_vocabulary():
     assert (
-        verdict_message("mujoco", Verdict.REFUSES, "inertia must satisfy A + B >= C")
-        == "MuJoCo refuses the model: inertia must satisfy A + B >= C"
+        verdict_message("mujoco", Verdict.REFUSES, "mass 0 kg, below mjMINVAL", subject="link `a`")
+        == "link `a`: MuJoCo refuses the model: mass 0 kg, below mjMINVAL"
     )
     assert verdict_message("kdl", Verdict.CHANGES, None, "ignores the root's inertia") == (
         "KDL ignores the root's inertia"
     )
+    assert verdict_detail("kdl", "The root link is a name", "Use a dummy link.") == (
+        'The root link is a name. KDL says: "Use a dummy link."'
+    )
+    assert verdict_detail("kdl", "Why.", None) == "Why."
+    assert verdict_detail("kdl", None, None) is None
     assert verdict_expected("gazebo", Verdict.CHANGES, None, link_mass=1.0) == {
         "engine": "gazebo",
         "verdict": "changes",
@@ -49,23 +55,25 @@ def test_event_reads_as_a_finding():
         "kdl",
         Verdict.CHANGES,
         "joint-type",
-        "welds link `a`",
+        "makes its floating joint fixed",
         "Converting unknown joint type",
         None,
         link="a",
         joint="free",
+        why="KDL has no floating joint",
         joint_type="floating",
     )
     assert made == Event(
         "kdl",
         Verdict.CHANGES,
         "joint-type",
-        "KDL welds link `a`: Converting unknown joint type",
+        "link `a`: KDL makes its floating joint fixed",
         "Converting unknown joint type",
         None,
         "a",
         "free",
         {"joint_type": "floating"},
+        'KDL has no floating joint. KDL says: "Converting unknown joint type"',
     )
     assert made.expected == {
         "engine": "kdl",

@@ -30,13 +30,25 @@ def test_tensor_far_from_the_bounding_box_is_reported(lint):
     assert finding.link == "a" and finding.expected["inertia_diagonal"] == pytest.approx(
         [0.1, 0.2, 0.26]
     )
-    assert "URDF_USE_INERTIA_FROM_FILE" in finding.message
+    assert finding.message == "link `a`: PyBullet recomputes its inertia: 10× the declared one"
+    assert len(finding.message) <= 100
+    # 0.29 > 0.1 + 0.02: with URDF_USE_INERTIA_FROM_FILE, PyBullet would zero it
+    assert finding.detail == (
+        "Unless loaded with URDF_USE_INERTIA_FROM_FILE, PyBullet replaces the inertia of link "
+        "`a` by (0.1, 0.2, 0.26) kg·m² (in its <inertial> axes) from the bounding box of its "
+        "collision shape, 10× the declared moment about some axis; with that flag it zeroes the "
+        'tensor. PyBullet says: "Bad inertia tensor properties, setting inertia to zero for '
+        'link: a"'
+    )
 
 
 def test_link_without_inertial_is_reported_with_pybullet_message(lint):
     (finding,) = run(lint, '<link name="tool0"/>')
     assert finding.expected["engine_message"].startswith("No inertial data for link, using mass=1")
     assert finding.expected["mass"] == 1.0
+    assert finding.message == "link `tool0`: PyBullet gives it 1 kg: no <inertial>"
+    assert "inertia diagonal (6.667e-07, 6.667e-07, 6.667e-07) kg·m²" in finding.detail
+    assert finding.detail.endswith(f'PyBullet says: "{finding.expected["engine_message"]}"')
 
 
 def test_world_link_is_not_reported(lint):
@@ -49,4 +61,8 @@ def test_with_inertia_from_file_a_bad_tensor_is_zeroed(lint):
     assert finding.expected["engine_message"] == (
         "Bad inertia tensor properties, setting inertia to zero for link: a"
     )
+    assert (
+        finding.message == "link `a`: PyBullet zeroes its inertia: the tensor fails Bullet's test"
+    )
+    assert "Bad inertia tensor properties" in finding.detail
     assert run(lint, BOX, use_inertia_from_file=True) == []

@@ -23,6 +23,10 @@ def test_root_inertia_ignored_with_kdl_message(lint):
     assert finding.expected["engine_message"].startswith(
         "The root link a has an inertia specified in the URDF, but KDL does not support"
     )
+    assert finding.message == "link `a`: KDL ignores the root link's inertia (1 kg)"
+    assert len(finding.message) <= 100
+    assert "the root link `a` (1 kg)" in finding.detail
+    assert finding.detail.endswith(f'KDL says: "{finding.expected["engine_message"]}"')
 
 
 def test_floating_joint_becomes_fixed(lint):
@@ -31,4 +35,6 @@ def test_floating_joint_becomes_fixed(lint):
       <link name="a">{BOX}</link>"""
     (finding,) = run(lint, body)
     assert finding.joint == "free"
-    assert "Converting unknown joint type of joint 'free' into a fixed joint" in finding.message
+    assert finding.message == "link `a`: KDL makes its floating joint fixed"
+    assert "the floating joint `free` becomes fixed, welding link `a` to `root`" in finding.detail
+    assert "Converting unknown joint type of joint 'free' into a fixed joint" in finding.detail
