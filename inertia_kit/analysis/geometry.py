@@ -111,6 +111,19 @@ class Geometry:
             return f"{self.kind} {parts[0]}"
         return f"{len(parts)} {self.kind} shapes ({'; '.join(parts)})"
 
+    def name(self, kind: bool = True, possessive: bool = False) -> str:
+        """
+        The geometry named in a few words, for a one-line message (:meth:`describe` gives its
+        dimensions): ``collision cylinder``, ``visual mesh``, ``2 collision shapes``; without
+        ``kind``: ``cylinder``, ``2 shapes``; ``possessive``: ``cylinder's``, ``2 shapes'``.
+        """
+        what = f"{self.kind} " if kind and self.kind else ""
+        if len(self.solids) == 1:
+            shape = type(self.solids[0].shape.geometry).__name__.lower()
+            shape = what + ("shape" if shape == "unknown" else shape)
+            return f"{shape}'s" if possessive else shape
+        return f"{len(self.solids)} {what}shapes" + ("'" if possessive else "")
+
 
 MeshLoader = Callable[[str, tuple[float, float, float]], "MeshSolid"]
 

@@ -11,28 +11,25 @@ from inertia_kit.cli.discovery import discovery_options
 from inertia_kit.cli.guard import GuardedCommand, internal
 from inertia_kit.cli.options import (
     HELP,
-    UsageError,
     follow_symlinks_option,
     jobs_option,
     package_path_option,
-    parse_codes,
-    parse_xacro_args,
-    parse_xacro_limits,
     xacro_arg_option,
     xacro_limit_option,
 )
 from inertia_kit.cli.printing import redact_env_option, say, show
+from inertia_kit.cli.runs import LintRun
 from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.version import __version__
 
 if TYPE_CHECKING:
     from pathlib import Path
 
+    from inertia_kit.lint.merge import Merged
+    from inertia_kit.lint.paths import Linted
+    from inertia_kit.lint.runner import FileResult
+
 OUTPUT_FORMATS = ("full", "concise", "json", "github", "sarif", "junit", "gitlab")
-#: formats a program reads: their findings are redacted before they are rendered, never after
-MACHINE = ("json", "github", "sarif", "junit", "gitlab")
-#: formats printed file by file as the files are linted (json and sarif are one document)
-STREAMED = ("full", "concise", "github")
 
 
 def _colour() -> bool | None:
@@ -60,8 +57,8 @@ def _colour() -> bool | None:
     "-q",
     "--quiet",
     is_flag=True,
-    help="Print only the findings: no notes (skipped fragments) and no summary; errors and "
-    "warnings still go to stderr.",
+    help="Print only the findings: no notes (the robots a fragment was linted through, a "
+    "fragment no robot includes) and no summary; errors and warnings still go to stderr.",
 )
 @click.option(
     "--output-file",
@@ -163,7 +160,11 @@ def _colour() -> bool | None:
 def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> None:
     """
     Lint the <inertial> blocks of URDF and xacro robot descriptions: files, or folders (their
-    *.urdf and *.xacro files; xacro fragments that only define macros are skipped).
+    *.urdf and *.xacro files). A xacro file (or a file without links) that robots of its
+    repository include is linted through them too: their findings located in it are reported,
+    each saying `via` which robot (a robot also given reports them as its own). A fragment
+    (macros and properties, no links) has no findings of its own: one no robot includes gets
+    a note, nothing to lint.
 
     \b
     Exit codes: 0 no findings at or above --fail-on (after --fix: none remaining); 1
@@ -177,198 +178,143 @@ def lint_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
       inertia-lint --explain IN002
       inertia-lint --stdin-filename urdf/robot.urdf - < robot.urdf
     """
-    ctx.exit(command_on_stdin(lint, paths, options, fills=False))
+    if options["explain"] is not None:
+        ctx.exit(_explain(options["explain"]))
+    run = LintRun.parse(paths, options)  # a bad option or configuration: exit 2, said
+    ctx.exit(command_on_stdin(run, lint))
 
 
-def lint(
-    paths: tuple[str, ...] | list[str],
-    *,
-    output_format: str = "full",
-    select: tuple[str, ...] = (),
-    ignore: tuple[str, ...] = (),
-    engines: tuple[str, ...] = (),
-    fail_on: str | None = None,
-    exit_zero: bool = False,
-    statistics: bool = False,
-    config_path: str | None = None,
-    package_paths: tuple[str, ...] = (),
-    xacro_args: tuple[str, ...] = (),
-    xacro_limits: tuple[str, ...] = (),
-    explain: str | None = None,
-    add_noqa: bool = False,
-    fix: bool | None = None,
-    unsafe_fixes: bool | None = None,
-    show_diff: bool = False,
-    quiet: bool = False,
-    output_file: str | None = None,
-    jobs: int | None = None,
-    redact_env: bool | None = None,
-    follow_symlinks: bool = False,
-    **discovery: Any,
-) -> int:
+def lint(run: LintRun) -> int:
     """
-    ``inertia-lint``: print what it finds; return the exit code. ``discovery``: the options
-    of :mod:`inertia_kit.cli.discovery` (``--exclude``, ``--show-files``, ...).
+    ``inertia-lint`` as ``run`` asks: the findings printed as the files are linted (the
+    streamed formats), the rest at the end, then the summary; the exit code.
     """
-    if explain is not None:
-        from inertia_kit.lint.documents import explain as document
-
-        try:
-            click.echo(document(explain), nl=False)
-        except LookupError as error:
-            say(f"error: --explain: {error}")
-            return 2
-        return 0
-    if not paths:
-        say("error: give files or folders to lint (or --explain CODE)")
-        return 2
-
-    from inertia_kit.cli import printing
-    from inertia_kit.cli.discovery import discovery as discovery_from
     from inertia_kit.cli.discovery import show_files
-    from inertia_kit.errors import ConfigError, InternalError
-    from inertia_kit.lint.applying import applicable
-    from inertia_kit.lint.config_files import ConfigFinder
-    from inertia_kit.lint.findings import Finding, Severity
-    from inertia_kit.lint.merge import merge
-    from inertia_kit.lint.output import render
-    from inertia_kit.lint.output.summary import statistics as rule_statistics
-    from inertia_kit.lint.paths import lint_paths
-    from inertia_kit.lint.runner import FileResult
-
-    if add_noqa and output_file is not None:
-        say(
-            "error: --output-file: --add-noqa writes comments into the files and prints no "
-            "report to write; drop one of them"
-        )
-        return 2
-    if output_file is not None and not _may_write_report(output_file, follow_symlinks):
-        return 2
-    try:
-        finder = ConfigFinder(config_path)
-        walk = discovery_from(discovery, finder)
-        if discovery.get("show_files"):
-            return show_files(paths, walk)
-    except (ConfigError, UsageError) as error:
-        message = error.format_message() if isinstance(error, UsageError) else str(error)
-        say(f"error: {message}")
-        return 2
-
-    def learn(result: FileResult) -> None:
-        """Keep what the environment gave ``result``'s robot out of the output, if asked."""
-        if printing.redacting(redact_env, finder.for_file(result.path).redact_environment):
-            printing.keep_out(result.environment_values)
-
-    def crashed(file: Path, error: Exception) -> FileResult:
-        # a bug in one file's linting: reported for it (exit 2), the other files are linted
-        return FileResult(str(file), error=internal(error, file))
-
     from inertia_kit.cli.progress import Progress
+    from inertia_kit.errors import ConfigError
+    from inertia_kit.lint.merge import merge
+    from inertia_kit.lint.paths import linting
 
-    progress = Progress.for_terminal(quiet)
-    streams = output_format in STREAMED and not (statistics or show_diff or output_file or add_noqa)
-    printed: dict[tuple, None] = {}  # the findings already printed, as merge keys
-
-    def told(result: FileResult, settled: list[Finding]) -> None:
-        learn(result)
-        fresh = [f for f in settled if _key(f) not in printed]
-        if fresh:
-            printed.update(dict.fromkeys(map(_key, fresh)))
-            progress.clear()
-            text = render(
-                printing.redacted(fresh),
-                output_format,
-                style=click.style,
-                unsafe_fixes=result.unsafe_fixes,
-            )
-            show(text, nl=False, color=_colour(), machine=output_format in MACHINE)
-
-    def lint_all(**streaming: Any) -> list[FileResult]:
-        return lint_paths(
-            paths,
-            config=config_path,
-            select=parse_codes(select),
-            ignore=parse_codes(ignore),
-            engines=engines or None,
-            fail_on=None if fail_on is None else Severity.parse(fail_on),
-            xacro_args=parse_xacro_args(xacro_args),
-            package_paths=package_paths,
-            xacro_limits=parse_xacro_limits(xacro_limits),
-            on_error=crashed,
-            fix=fix,
-            unsafe_fixes=unsafe_fixes,
-            diff=show_diff,
-            discovery=walk,
-            jobs=jobs,
-            follow_symlinks=follow_symlinks,
-            **streaming,
-        )
-
+    if run.output_file is not None and not _may_write_report(run.output_file, run.follow_symlinks):
+        return 2
+    progress = Progress.for_terminal(run.quiet)
+    printed: dict[tuple, None] = {}  # the findings printed as the files were linted
     try:
-        results = lint_all(told=told if streams else None, progress=progress.update)
-    except (ConfigError, UsageError) as error:
-        message = error.format_message() if isinstance(error, UsageError) else str(error)
-        say(f"error: {message}")
+        if run.show_files:
+            return show_files(run.paths, run.walk)
+        with linting(run.paths, on_error=_crashed, **run.linting()) as files:
+            for step in files:
+                for linted in step.ready:
+                    _as_linted(run, linted, printed, progress)
+                progress.update(step.done, step.total, step.current)
+    except ConfigError as error:
+        say(f"error: {error}")
         return 2
     finally:
         progress.clear()  # also on Ctrl-C, before `interrupted`
-    for result in results:
-        learn(result)
+    if run.add_noqa:
+        from inertia_kit.cli.add_noqa import add_noqa
+        from inertia_kit.lint.paths import lint_paths
 
-    if add_noqa:
-        from inertia_kit.cli.add_noqa import add_noqa as write_suppressions
+        def again() -> list[FileResult]:
+            return lint_paths(run.paths, on_error=_crashed, **run.linting())
 
-        return write_suppressions(
-            paths,
-            results,
-            lint_all,
-            quiet=quiet,
-            follow_symlinks=follow_symlinks,
-            diff=show_diff,
+        return add_noqa(run.paths, files.results, again, run.quiet, run.follow_symlinks, run.diff)
+    merged = merge(files.results)
+    for level, text in merged.messages:
+        if not (run.quiet and level == "note"):
+            say(f"{level}: {text}")
+    if not files.results:
+        say(f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(run.paths)}")
+    if not _print_report(run, merged, files.results, printed):
+        return 2
+    if not run.quiet:
+        _echo_summary(run, merged, files.results)
+    if merged.errors:
+        return 2
+    if run.diff:
+        return 1 if merged.diff else 0
+    return 1 if merged.failing and not run.exit_zero else 0
+
+
+def _explain(code: str) -> int:
+    """``--explain CODE``: print the rule's document."""
+    from inertia_kit.lint.documents import explain
+
+    try:
+        click.echo(explain(code), nl=False)
+    except LookupError as error:
+        say(f"error: --explain: {error}")
+        return 2
+    return 0
+
+
+def _crashed(file: Path, error: Exception) -> FileResult:
+    """A bug in one file's linting: reported for it (exit 2), the other files are linted."""
+    from inertia_kit.lint.runner import FileResult
+
+    return FileResult(str(file), error=internal(error, file))
+
+
+def _as_linted(run: LintRun, linted: Linted, printed: dict[tuple, None], progress: Any) -> None:
+    """
+    One file linted, with every file before it: what the environment gave its robot kept out
+    of the output (if asked), and, in the streamed formats, its settled findings printed.
+    """
+    from inertia_kit.cli import printing
+    from inertia_kit.lint.output import render
+
+    result = linted.result
+    if run.redacts(result.path):
+        printing.keep_out(result.environment_values)
+    fresh = [f for f in linted.settled if _key(f) not in printed] if run.streams else []
+    if fresh:
+        printed.update(dict.fromkeys(map(_key, fresh)))
+        progress.clear()
+        text = render(
+            printing.redacted(fresh),
+            run.output_format,
+            style=click.style,
+            unsafe_fixes=result.unsafe_fixes,
         )
-    run = merge(results)
-    for level, text in run.messages:
-        if quiet and level == "note":
-            continue
-        say(f"{level}: {text}")
-    if not results:
-        say(f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(paths)}")
-    unsafe = any(result.unsafe_fixes for result in results)
-    if show_diff:
+        show(text, nl=False, color=_colour(), machine=run.machine)
+
+
+def _print_report(
+    run: LintRun, merged: Merged, results: list[FileResult], printed: dict[tuple, None]
+) -> bool:
+    """
+    The report at the end, on stdout or to ``--output-file``: the diff, the statistics, or the
+    findings not printed yet; ``False`` when it could not be written (said: exit 2).
+    """
+    from inertia_kit.cli import printing
+    from inertia_kit.lint.output import render
+    from inertia_kit.lint.output.summary import statistics
+
+    if run.diff:
         # as ruff: the diff on stdout, instead of the findings
-        output = run.diff
-    elif statistics:
-        output = rule_statistics(run.findings, as_json=output_format == "json")
+        output = merged.diff
+    elif run.statistics:
+        output = statistics(merged.findings, as_json=run.output_format == "json")
     else:
-        # a file gets no colour codes: only a terminal reads them
-        style = None if output_file else click.style
-        rest = [finding for finding in run.findings if _key(finding) not in printed]
+        rest = [finding for finding in merged.findings if _key(finding) not in printed]
         output = render(
             printing.redacted(rest),
-            output_format,
-            errors=printing.redacted(run.errors),
-            style=style,
-            unsafe_fixes=unsafe,
-            linted=printing.redacted(run.linted),
+            run.output_format,
+            errors=printing.redacted(merged.errors),
+            # a file gets no colour codes: only a terminal reads them
+            style=None if run.output_file else click.style,
+            unsafe_fixes=any(result.unsafe_fixes for result in results),
+            linted=printing.redacted(merged.linted),
         )
     # the machine-read formats were given redacted findings: a pass over their text could cut
     # their syntax (a value that is also a key); statistics hold no value from a file
-    machine = output_format in MACHINE and not show_diff
-    if output_file is None:
+    machine = run.machine and not run.diff
+    if run.output_file is None:
         show(output, nl=False, color=_colour(), machine=machine)
-    elif not _write_report(
-        output_file, output if machine else printing.report_text(output), follow_symlinks
-    ):
-        return 2
-    crashes = sum(isinstance(error, InternalError) for error in run.errors)
-    fixable = 0 if show_diff else sum(applicable(f, unsafe) for f in run.findings)
-    if not quiet:
-        _echo_summary(run, crashes, fixable, show_diff)
-    if run.errors:
-        return 2
-    if show_diff:
-        return 1 if run.diff else 0
-    return 1 if run.failing and not exit_zero else 0
+        return True
+    text = output if machine else printing.report_text(output)
+    return _write_report(run.output_file, text, run.follow_symlinks)
 
 
 def _key(finding: Any) -> tuple:
@@ -407,20 +353,25 @@ def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool
     return True
 
 
-def _echo_summary(run: Any, crashes: int, fixable: int, show_diff: bool) -> None:
+def _echo_summary(run: LintRun, merged: Merged, results: list[FileResult]) -> None:
     """The summary line on stderr (``Found ...``, ``No findings ...``)."""
+    from inertia_kit.errors import InternalError
+    from inertia_kit.lint.applying import applicable
     from inertia_kit.lint.output.summary import summary
 
+    crashes = sum(isinstance(error, InternalError) for error in merged.errors)
+    unsafe = any(result.unsafe_fixes for result in results)
+    fixable = 0 if run.diff else sum(applicable(f, unsafe) for f in merged.findings)
     click.echo(
         summary(
-            run.findings,
-            run.checked,
-            len(run.errors) - crashes,
+            merged.findings,
+            merged.checked,
+            len(merged.errors) - crashes,
             crashes,
-            flagged=run.flagged,
-            fixed=run.fixed,
+            flagged=merged.flagged,
+            fixed=merged.fixed,
             fixable=fixable,
-            hidden=0 if show_diff else run.hidden,
+            hidden=0 if run.diff else merged.hidden,
         ),
         err=True,
     )

@@ -11,9 +11,9 @@ import contextlib
 import io
 import os
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
 import click
 
@@ -29,17 +29,6 @@ stdin_filename_option = click.option(
 )
 
 
-def reads_stdin(paths: Sequence[str]) -> bool:
-    """Whether the paths ask for stdin (``-``); ``UsageError`` when mixed with others."""
-    from inertia_kit.cli.options import UsageError
-
-    if "-" not in paths:
-        return False
-    if len(paths) != 1:
-        raise UsageError("`-` (stdin) is the only path of a run: give no other files or folders")
-    return True
-
-
 def on_stdin(
     run: Callable[[str], int],
     filename: str | None,
@@ -50,9 +39,9 @@ def on_stdin(
 ) -> int:
     """
     Read stdin, stand it in at ``filename`` and ``run`` the command on the stand-in's path; its
-    stdout and stderr told with that path replaced by ``filename`` (or ``-``). ``prints_text``:
-    the stand-in's final text goes to stdout, the command's own stdout to stderr (or to
-    ``output_file``).
+    stdout and stderr told, in the order it wrote them, with that path replaced by ``filename``
+    (or ``-``). ``prints_text``: the stand-in's final text goes to stdout, the command's own
+    stdout to stderr (or to ``output_file``).
     """
     from inertia_kit.lint.stand_in import stand_in
 
@@ -60,9 +49,10 @@ def on_stdin(
     if data is None:
         return 2
     shown = filename if filename is not None else "-"
+    written: list[tuple[bool, str]] = []  # (to stdout, text) in the order the command wrote
     try:
         with stand_in(data, filename) as path:
-            out, err = io.StringIO(), io.StringIO()
+            out, err = _Captured(True, written), _Captured(False, written)
             with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 code = run(path)
             text = _read(path) if prints_text else None
@@ -73,18 +63,45 @@ def on_stdin(
             f"--stdin-filename says it stands): {error.strerror or error}"
         )
         return 2
-    report, messages = (_told(s.getvalue(), path, shown) for s in (out, err))
-    click.echo(messages, nl=False, err=True)
+    report = []
+    for to_stdout, chunk in _runs(written):
+        told = _told(chunk, path, shown)
+        if to_stdout and output_file is not None:
+            report.append(told)  # written once the command's messages are told
+        else:
+            click.echo(told, nl=False, err=prints_text or not to_stdout)
     if output_file is not None:
         from inertia_kit.cli.lint import _write_report
 
-        if not _write_report(output_file, report, follow_symlinks):
+        if not _write_report(output_file, "".join(report), follow_symlinks):
             return 2
-    else:
-        click.echo(report, nl=False, err=prints_text)
     if text is not None:
         _write_bytes(text)
     return code
+
+
+class _Captured(io.StringIO):
+    """The command's stdout or stderr, each write kept in order with the other's."""
+
+    def __init__(self, stdout: bool, written: list[tuple[bool, str]]):
+        super().__init__()
+        self.stdout, self.written = stdout, written
+
+    def write(self, text: str) -> int:
+        count = super().write(text)  # first: click probes with bytes, which it refuses
+        self.written.append((self.stdout, text))
+        return count
+
+
+def _runs(written: list[tuple[bool, str]]) -> list[tuple[bool, str]]:
+    """The writes with consecutive ones to the same stream joined (a name is never cut)."""
+    joined: list[tuple[bool, str]] = []
+    for to_stdout, text in written:
+        if joined and joined[-1][0] == to_stdout:
+            joined[-1] = (to_stdout, joined[-1][1] + text)
+        else:
+            joined.append((to_stdout, text))
+    return joined
 
 
 def _stdin() -> bytes | None:
@@ -141,59 +158,65 @@ def _told(text: str, path: str, shown: str) -> str:
     return text.replace(name, "-")
 
 
-def command_on_stdin(
-    command: Callable[..., int], paths: tuple[str, ...], options: dict[str, Any], fills: bool
-) -> int:
-    """
-    Run ``command`` (``lint`` or ``fill`` of the command line, ``fills``: the latter) on
-    ``paths`` with ``options``, or, for ``-`` (or ``--stdin-filename`` alone), on stdin.
-    """
-    from inertia_kit.cli.discovery import discovery
-    from inertia_kit.cli.options import UsageError
-    from inertia_kit.errors import ConfigError
-    from inertia_kit.lint.config_files import ConfigFinder
+class StdinRun(Protocol):
+    """What :func:`command_on_stdin` reads of a run value (:mod:`inertia_kit.cli.runs`)."""
 
-    filename = options.pop("stdin_filename", None)
-    if not paths and filename is not None:
-        paths = ("-",)
-    if not reads_stdin(paths):
-        return command(paths, **options)
-    if options.get("add_noqa"):
-        raise UsageError("--add-noqa writes comments into files: not with `-` (stdin)")
+    paths: tuple[str, ...]
+    stdin_filename: str | None
+    finder: Any  # ConfigFinder
+    walk: Any  # Discovery
+    show_files: bool
+    follow_symlinks: bool
+
+    @property
+    def reads_stdin(self) -> bool: ...
+    @property
+    def output_file(self) -> str | None: ...
+    @property
+    def echoes_excluded(self) -> bool: ...
+    def prints_text(self, configured: Any) -> bool: ...
+    def on(self, path: str) -> Any: ...
+
+
+Run = TypeVar("Run", bound=StdinRun)
+
+
+def command_on_stdin(run: Run, command: Callable[[Run], int]) -> int:
+    """
+    ``command(run)``, or, for ``-`` (or ``--stdin-filename`` alone), ``command`` on the robot
+    read from stdin (``run.on(path)``: the run on its stand-in).
+    """
+    from inertia_kit.errors import ConfigError
+
+    if not run.reads_stdin:
+        return command(run)
+    filename = run.stdin_filename
     try:
-        finder = ConfigFinder(options.get("config_path"))
-        walk = discovery(options, finder)
-        configured = finder.for_file(filename or "-")
+        configured = run.finder.for_file(filename or "-")
     except ConfigError as error:
         say(f"error: {error}")
         return 2
-    if filename is not None and walk.for_path(Path(filename)).excludes_given(filename):
+    if filename is not None and run.walk.for_path(Path(filename)).excludes_given(filename):
         # --force-exclude: nothing linted; fill prints the robot back unchanged (formatters do)
         data = _stdin()
         if data is None:
             return 2
-        if fills and not options.get("check") and not options.get("show_diff"):
+        if run.echoes_excluded:
             _write_bytes(data)
         return 0
-    if options.get("show_files"):
+    if run.show_files:
         say(filename or "-", err=False)
         return 0
-    if fills:
-        prints_text = not (options.get("show_diff") or options.get("check") or options["output"])
-    else:
-        fix = options.get("fix")
-        prints_text = not options.get("show_diff") and bool(configured.fix if fix is None else fix)
-    output_file = options.get("output_file")
+    output_file = run.output_file
     if output_file is not None:
         from inertia_kit.cli.lint import _may_write_report
 
-        if not _may_write_report(output_file, bool(options.get("follow_symlinks"))):
+        if not _may_write_report(output_file, run.follow_symlinks):
             return 2  # before stdin is read: nothing is done
-        options["output_file"] = None
     return on_stdin(
-        lambda path: command((path,), **options),
+        lambda path: command(run.on(path)),
         filename,
-        prints_text=prints_text,
+        prints_text=run.prints_text(configured),
         output_file=output_file,
-        follow_symlinks=bool(options.get("follow_symlinks")),
+        follow_symlinks=run.follow_symlinks,
     )

@@ -1,5 +1,6 @@
 """
-Work on many files in worker processes (``inertia-lint -j N``), results told in input order.
+Work on many files in worker processes (``inertia-lint -j N``), results given back in input
+order as they are ready (:func:`in_order`): the caller, in the main process, prints them.
 
 Workers come from a ``forkserver`` context (``spawn`` where there is none): the server imports
 the linter once and forks each worker from it, so a worker starts without re-importing, and
@@ -23,8 +24,9 @@ import os
 import pickle
 import signal
 import sys
-from collections.abc import Callable, Sequence
-from typing import Any, TypeVar
+from collections.abc import Callable, Generator, Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any, Generic, TypeVar
 
 Item = TypeVar("Item")
 Result = TypeVar("Result")
@@ -51,6 +53,46 @@ class WorkerDied(Exception):
     """A worker process ended while working on a file (a crash in C, killed, out of memory)."""
 
 
+@dataclass(frozen=True)
+class Step(Generic[Result]):
+    """
+    One more item done (in any order). ``ready``: ``(index, result)`` of the items now done
+    together with every item before them, in input order (none, one, or several at once);
+    ``done``: how many items are done; ``first``: the first item in input order not done
+    (``len(items)`` once all are).
+    """
+
+    ready: tuple[tuple[int, Result], ...]
+    done: int
+    first: int
+
+
+def in_order(
+    work: Callable[[Item], Result],
+    items: Sequence[Item],
+    jobs: int,
+    *,
+    failed: Callable[[Item, BaseException], Result],
+) -> Generator[Step[Result], None, None]:
+    """
+    ``work(item)`` for every item in ``jobs`` processes (``work`` a module-level function, items
+    and results picklable), a :class:`Step` each time one is done, so that the caller can tell
+    the results in input order as soon as they are ready (and its progress meanwhile). An
+    exception ``work`` raises, or its worker's death (:class:`WorkerDied`), gives
+    ``failed(item, exception)`` as that item's result. Closing the iteration before its end (an
+    exception in the caller's loop; a ``with contextlib.closing(...)``) ends the workers.
+    """
+    waiting: dict[int, Result] = {}
+    first = 0
+    for done, (index, result) in enumerate(_done(work, items, jobs, failed), start=1):
+        waiting[index] = result
+        ready = []
+        while first in waiting:
+            ready.append((first, waiting.pop(first)))
+            first += 1
+        yield Step(tuple(ready), done, first)
+
+
 def run_ordered(
     work: Callable[[Item], Result],
     items: Sequence[Item],
@@ -61,39 +103,42 @@ def run_ordered(
     done: Callable[[int, int], None] | None = None,
 ) -> list[Result]:
     """
-    ``[work(item) for item in items]`` in ``jobs`` processes (``work`` a module-level function,
-    items and results picklable). ``told(index, result)`` is called in the parent, in input
-    order, as soon as an item and every item before it are done; ``done(count, first)``
-    whenever one more item is done, in any order (``first``: the first item in input order not
-    done). An exception ``work`` raises, or its worker's death (:class:`WorkerDied`), gives
-    ``failed(item, exception)`` as that item's result.
+    ``[work(item) for item in items]`` as :func:`in_order` works them. ``told(index, result)``
+    is called in input order, as soon as an item and every item before it are done;
+    ``done(count, first)`` whenever one more item is done (``first``: the first item in input
+    order not done).
     """
-    results: dict[int, Result] = {}
-    pending = list(range(len(items)))
-    next_told = 0
+    results = []
+    with contextlib.closing(in_order(work, items, jobs, failed=failed)) as steps:
+        for step in steps:
+            for index, result in step.ready:
+                results.append(result)
+                if told is not None:
+                    told(index, result)
+            if done is not None:
+                done(step.done, step.first)
+    return results
 
-    def finish(index: int, result: Result) -> None:
-        nonlocal next_told
-        results[index] = result
-        while next_told in results:
-            if told is not None:
-                told(next_told, results[next_told])
-            next_told += 1
-        if done is not None:
-            done(len(results), next_told)
 
+def _done(
+    work: Callable[[Item], Result],
+    items: Sequence[Item],
+    jobs: int,
+    failed: Callable[[Item, BaseException], Result],
+) -> Iterator[tuple[int, Result]]:
+    """``(index, result)`` of every item, as each is done (in any order)."""
     if jobs <= 1 or not _main_importable():
-        for index in pending:
-            finish(index, _guarded(work, items[index], failed))
-        return [results[i] for i in range(len(items))]
+        for index, item in enumerate(items):
+            yield index, _guarded(work, item, failed)
+        return
     try:
-        broken = _pooled(work, items, pending, jobs, failed, finish)
-    except _NoWorkers:
-        return run_ordered(work, items, 1, failed=failed, told=told, done=done)
+        broken = yield from _pooled(work, items, list(range(len(items))), jobs, failed)
+    except _NoWorkers:  # raised before any item was worked on
+        yield from _done(work, items, 1, failed)
+        return
     for index in broken:  # one at a time: the file that kills its worker is the one told
-        if _pooled(work, items, [index], 1, failed, finish):
-            finish(index, failed(items[index], WorkerDied("its worker process died")))
-    return [results[i] for i in range(len(items))]
+        if (yield from _pooled(work, items, [index], 1, failed)):
+            yield index, failed(items[index], WorkerDied("its worker process died"))
 
 
 def _guarded(
@@ -111,9 +156,12 @@ def _pooled(
     indices: list[int],
     jobs: int,
     failed: Callable[[Item, BaseException], Result],
-    finish: Callable[[int, Result], None],
-) -> list[int]:
-    """Run ``indices`` in a pool of ``jobs``; the indices left undone when the pool broke."""
+) -> Generator[tuple[int, Result], None, list[int]]:
+    """
+    Run ``indices`` in a pool of ``jobs``, ``(index, result)`` as each is done; return the
+    indices left undone when the pool broke. The workers are ended when the iteration is
+    closed or interrupted before its end.
+    """
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
@@ -140,11 +188,11 @@ def _pooled(
                 pool.shutdown()
                 return sorted(futures[f] for f in futures if f not in finished)
             finished.add(future)
-            finish(index, value if kind == "ok" else failed(items[index], value))
+            yield index, value if kind == "ok" else failed(items[index], value)
         pool.shutdown()
         return []
-    except BaseException:  # Ctrl-C: end the workers (and their xacro children), then exit
-        _terminate(pool)
+    except BaseException:  # Ctrl-C, or the caller stopped: end the workers (and their xacro
+        _terminate(pool)  # children), then go on with the exception (GeneratorExit included)
         raise
 
 

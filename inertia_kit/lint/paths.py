@@ -7,10 +7,11 @@ them (:mod:`.unused`).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping, Sequence
+import contextlib
+from collections.abc import Callable, Generator, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.description.xacro_limits import XacroLimits
@@ -25,11 +26,25 @@ from inertia_kit.lint.runner import (
     selection_for,
 )
 
+if TYPE_CHECKING:
+    from inertia_kit.lint.config_files import ConfigFinder
 
-def lint_paths(
+
+def lint_paths(paths: Iterable[str | Path], **options: Any) -> list[FileResult]:
+    """
+    Lint files and folders as the command line does: the results of :func:`linting` (the same
+    ``options``), once every file is linted.
+    """
+    with linting(paths, **options) as run:
+        for _ in run:
+            pass
+    return run.results
+
+
+def linting(
     paths: Iterable[str | Path],
     *,
-    config: str | Path | None = None,
+    config: str | Path | ConfigFinder | None = None,
     select: Sequence[str] = (),
     ignore: Sequence[str] = (),
     fail_on: Severity | None = None,
@@ -44,24 +59,24 @@ def lint_paths(
     diff: bool = False,
     discovery: Any = None,
     jobs: int | None = 1,
-    told: Callable[[FileResult, list[Finding]], None] | None = None,
-    progress: Callable[[int, int, str | None], None] | None = None,
     follow_symlinks: bool = False,
-) -> list[FileResult]:
+) -> Linting:
     """
     Lint files and folders as the command line does: each file with its configuration (the
-    nearest, or ``config``), ``select``/``ignore`` on top, ``fail_on`` over the configured one,
-    ``engines`` (names, comma-separated or ``all``; ``None``: the configured ones) instead of
-    the configured ones, ``xacro_limits`` (``--xacro-limit``) over the configured ones and the
-    environment's.
+    nearest, or ``config``: a file, or a ``ConfigFinder`` already made), ``select``/``ignore``
+    on top, ``fail_on`` over the configured one, ``engines`` (names, comma-separated or
+    ``all``; ``None``: the configured ones) instead of the configured ones, ``xacro_limits``
+    (``--xacro-limit``) over the configured ones and the environment's. The files are linted
+    as the returned :class:`Linting` is iterated, each told as soon as it and every file before
+    it are (:class:`Step`); its ``results`` are final once it is over.
 
     A given xacro file that robots of its repository include is also linted through them (each
     robot with its own configuration), keeping their findings located in the given files
     (:mod:`~inertia_kit.lint.fragments`); such a file that is a fragment, unreadable on its
     own, or without links and joints, gives no result of its own but a note.
 
-    Every configuration is read before any file is linted. Raises ``ConfigError`` for a bad
-    configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
+    Every configuration is read before any file is linted, here: raises ``ConfigError`` for a
+    bad configuration, a ``select``/``ignore`` entry that names no rule or an unknown engine.
     ``on_error(file, exception)`` gives the result of a file whose linting raised an exception
     (a bug: the command line reports it for that file and lints the others); without it, the
     exception propagates.
@@ -75,15 +90,9 @@ def lint_paths(
     (:mod:`~inertia_kit.lint.repository_links`).
 
     ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
-    are several files); ``--fix`` always lints in this process (:func:`_run` says why).
-    ``told(result, settled)`` is called, in input order, as soon as a file and every file
-    before it are linted: ``settled`` its findings that no other file's result can still change
-    (:func:`settled`), the others are only final in the returned results.
-    ``progress(done, total, current)`` is called as files are done (``current``: the first
-    file in input order not done yet).
+    are several files); ``--fix`` always lints in this process (:func:`_workers` says why).
     """
     from inertia_kit.errors import ConfigError
-    from inertia_kit.lint import unused
     from inertia_kit.lint.config_files import ConfigFinder
 
     known = catalog.names()
@@ -103,7 +112,7 @@ def lint_paths(
             engines = parse_engines(engines)
         except ValueError as error:
             raise ConfigError(f"--engine: {error}") from None
-    finder = ConfigFinder(config)
+    finder = config if isinstance(config, ConfigFinder) else ConfigFinder(config)
     if discovery is not None and discovery.config is None:
         discovery.config = finder  # one configuration read for the walk and the linting
 
@@ -141,9 +150,93 @@ def lint_paths(
                 follow_symlinks,
             )
         )
-    results = _run(tasks, chosen, jobs, on_error, told, progress)
-    unused.judge_shared(results)
-    return _through_robots(results, chosen)
+    return Linting(tasks, chosen, _workers(tasks, jobs), on_error)
+
+
+@dataclass(frozen=True)
+class Linted:
+    """
+    One file linted, told in input order as soon as it and every file before it are:
+    ``settled`` its findings that no other file's result can still change (:func:`settled`),
+    which may be printed at once; the others are only final in :attr:`Linting.results`.
+    """
+
+    result: FileResult
+    settled: list[Finding]
+
+
+@dataclass(frozen=True)
+class Step:
+    """
+    One more file linted (in any order): ``ready`` the files now linted together with every
+    file before them, in input order (none, one or several); ``done`` of ``total`` files
+    linted, ``current`` the first in input order not linted yet (``None`` once all are).
+    """
+
+    ready: tuple[Linted, ...]
+    done: int
+    total: int
+    current: str | None
+
+
+class Linting:
+    """
+    A run of :func:`linting`: iterating it lints the files, a :class:`Step` each time one more
+    is linted; :attr:`results` holds the final results once it is over (suppression comments
+    in shared files judged over all their robots, given fragments told through their robots).
+    Use it in a ``with`` block: leaving the block early ends the worker processes.
+    """
+
+    def __init__(
+        self,
+        tasks: list[_Task],
+        chosen: Any,
+        workers: int,
+        on_error: Callable[[Path, Exception], FileResult] | None,
+    ):
+        self.tasks, self.chosen, self.workers, self.on_error = tasks, chosen, workers, on_error
+        self._results: list[FileResult] | None = None
+        self._steps = self._run()
+
+    @property
+    def results(self) -> list[FileResult]:
+        """Every file's final result, in input order (``RuntimeError`` before the end)."""
+        if self._results is None:
+            raise RuntimeError("the files are not all linted yet: iterate the run to its end")
+        return self._results
+
+    def __iter__(self) -> Iterator[Step]:
+        return self._steps
+
+    def __enter__(self) -> Linting:
+        return self
+
+    def __exit__(self, *exception: object) -> None:
+        self._steps.close()
+
+    def _failed(self, task: _Task, error: BaseException) -> FileResult:
+        if self.on_error is None or not isinstance(error, Exception):
+            raise error
+        result = self.on_error(Path(task.target.robot), error)
+        result.fail_on = task.fail_on
+        return result
+
+    def _run(self) -> Generator[Step, None, None]:
+        from inertia_kit.lint import parallel, unused
+
+        tasks, chosen = self.tasks, self.chosen
+        results: list[FileResult] = []
+        steps = parallel.in_order(_lint_task, tasks, self.workers, failed=self._failed)
+        with contextlib.closing(steps):
+            for step in steps:
+                ready = []
+                for index, result in step.ready:
+                    results.append(result)
+                    ready.append(Linted(result, settled(result, tasks[index].target, chosen)))
+                current = tasks[step.first].target.robot if step.first < len(tasks) else None
+                yield Step(tuple(ready), step.done, len(tasks), current)
+        unused.judge_shared(results)
+        self._results = _through_robots(results, chosen)
 
 
 @dataclass(frozen=True)
@@ -202,49 +295,25 @@ def _lint_task(task: _Task) -> FileResult:
     return result
 
 
-def _run(
-    tasks: list[_Task],
-    chosen: Any,
-    jobs: int | None,
-    on_error: Callable[[Path, Exception], FileResult] | None,
-    told: Callable[[FileResult, list[Finding]], None] | None,
-    progress: Callable[[int, int, str | None], None] | None,
-) -> list[FileResult]:
+def _workers(tasks: list[_Task], jobs: int | None) -> int:
     """
-    Every task's result, in ``jobs`` processes. ``--fix`` runs here, one file after the
-    other: robots that include the same fragment write it, and each fix pass lints the file
-    as the previous pass left it, so two processes would fix a shared fragment from stale
-    text. ``--diff`` writes nothing and runs in parallel. A loader of meshes that cannot be
-    sent to a worker (the API's ``load_mesh``) also keeps the work here.
+    How many processes lint ``tasks``. ``--fix`` runs here, one file after the other: robots
+    that include the same fragment write it, and each fix pass lints the file as the previous
+    pass left it, so two processes would fix a shared fragment from stale text. ``--diff``
+    writes nothing and runs in parallel. A loader of meshes that cannot be sent to a worker
+    (the API's ``load_mesh``) also keeps the work here.
     """
     from inertia_kit.lint import parallel
 
-    def failed(task: _Task, error: BaseException) -> FileResult:
-        if on_error is None or not isinstance(error, Exception):
-            raise error
-        result = on_error(Path(task.target.robot), error)
-        result.fail_on = task.fail_on
-        return result
-
-    def tell(index: int, result: FileResult) -> None:
-        if told is not None:
-            told(result, settled(result, tasks[index].target, chosen))
-
-    def done(count: int, first: int) -> None:
-        if progress is not None:
-            current = tasks[first].target.robot if first < len(tasks) else None
-            progress(count, len(tasks), current)
-
     serial = any(task.fixing and not task.diff for task in tasks) or not _picklable(tasks)
-    workers = 1 if serial else parallel.worker_count(jobs, len(tasks))
-    return parallel.run_ordered(_lint_task, tasks, workers, failed=failed, told=tell, done=done)
+    return 1 if serial else parallel.worker_count(jobs, len(tasks))
 
 
 def _parallel_likely(
     files: int, jobs: int | None, fix: bool | None, diff: bool, load_mesh: Any
 ) -> bool:
     """Whether a run over ``files`` files will most likely lint in worker processes
-    (:func:`_run` decides): several files, more than one core asked for, no ``--fix`` asked, no
+    (:func:`_workers` decides): several files, more than one core asked for, no ``--fix`` asked, no
     loader of meshes given (the API's, which may not reach a worker)."""
     from inertia_kit.lint import parallel
 

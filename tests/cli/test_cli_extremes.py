@@ -66,7 +66,7 @@ def test_extreme_numbers_are_invalid_numbers(tmp_path, body, element, text):
     assert f"`{element}` = {text!r} (" in finding["message"]
     assert "density" not in finding["message"]
     why = "subnormal" if "e-3" in text else "beyond ±1e50"
-    assert why in finding["message"] and "no robot has such a value" in finding["message"]
+    assert why in finding["message"] and "no robot has such a value" in finding["detail"]
 
 
 def test_report_of_an_extreme_tensor(tmp_path):

@@ -219,8 +219,8 @@ def stall(descriptor):
     print("writing", flush=True)
     time.sleep(300)
 os.fsync = stall
-from inertia_kit.cli.fill import fill
-sys.exit(fill([sys.argv[1]]))
+from inertia_kit.cli import fill_main
+fill_main([sys.argv[1]])
 """
 
 

@@ -191,7 +191,8 @@ def test_a_mesh_over_its_bound_is_unreadable_naming_it(repo, monkeypatch, suffix
     else:
         write_binary_stl(mesh, box_triangles((0.1, 0.1, 0.1)))
     robot = write(repo / "pkg" / "urdf" / "big.urdf", ROBOT.replace("part.stl", mesh.name))
-    result = CliRunner().invoke(lint_main, ["--output-format", "concise", str(robot)])
+    # IN034's message names the file, its detail (shown by `full`) the bound
+    result = CliRunner().invoke(lint_main, ["--output-format", "full", str(robot)])
     assert result.exit_code == 1, result.output
     assert f"big{suffix}" in result.output and "larger than 100 bytes" in result.output
 

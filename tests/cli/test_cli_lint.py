@@ -369,8 +369,8 @@ def test_explain_reads_the_package_data_folder():
 def test_start_up_imports_no_numpy():
     """--explain, --help and usage errors stay fast: numpy and the rules load only to lint."""
     code = (
-        "import sys; from inertia_kit.cli.lint import lint;"
-        "lint([], explain='IN002');"
+        "import sys; from inertia_kit.cli import lint_main;"
+        "lint_main(['--explain', 'IN002'], standalone_mode=False);"
         "heavy = ('numpy', 'lxml', 'inertia_kit.analysis.links');"
         "print(sorted(m for m in heavy if m in sys.modules),"
         " file=sys.stderr)"

@@ -283,8 +283,8 @@ def test_the_wheel_ships_the_rule_documents(hook_repo, tmp_path):
     shipped = sorted(p.name for p in (snapshot / "rules").glob("*.md"))
     assert [n.rsplit("/", 1)[1] for n in documents] == shipped
     explain = (
-        "import sys, inertia_kit.lint.documents as r; from inertia_kit.cli.lint import lint;"
-        "print(r.documents_folder(), file=sys.stderr); sys.exit(lint([], explain='IN002'))"
+        "import sys, inertia_kit.lint.documents as r; from inertia_kit.cli import lint_main;"
+        "print(r.documents_folder(), file=sys.stderr); lint_main(['--explain', 'IN002'])"
     )
     done = subprocess.run(
         [sys.executable, "-c", explain],

@@ -39,6 +39,49 @@ class Case:
         return self.axes.T @ self.declared.inertia @ self.axes
 
 
+#: a finding's one-line message keeps its fuller wording up to this many characters, the link's
+#: name included (issue 21, item 5: about 100, at most 120); beyond it, its brief wording
+MESSAGE_BUDGET = 100
+
+
+def one_line(head: str, claim: str, brief: str = "") -> str:
+    """``head + claim``, or ``head + brief`` when that is beyond :data:`MESSAGE_BUDGET` (a long
+    link or joint name) and a brief wording is given."""
+    message = head + claim
+    return head + brief if brief and len(message) > MESSAGE_BUDGET else message
+
+
+class Label(str):
+    """
+    The name of a point or a frame as a finding's detail says it (``the origin of joint `j2```),
+    with :attr:`short`, as its one-line message says it (``joint `j2`'s origin``), and
+    :attr:`brief`, without the name a long one would not fit (``a child joint's origin``; ""
+    when there is none). Plain text everywhere else (JSON, comparisons); a plain ``str`` label
+    is its own short form.
+    """
+
+    short: str
+    brief: str
+
+    def __new__(cls, text: str, short: str, brief: str = "") -> Label:
+        label = super().__new__(cls, text)
+        label.short, label.brief = short, brief
+        return label
+
+    def __getnewargs__(self) -> tuple[str, str, str]:  # type: ignore[override]
+        return str(self), self.short, self.brief
+
+
+def short_label(label: str) -> str:
+    """How a one-line message names ``label`` (:class:`Label`)."""
+    return getattr(label, "short", label)
+
+
+def brief_label(label: str) -> str:
+    """How a one-line message names ``label`` when its name does not fit; "" if it cannot."""
+    return getattr(label, "brief", "")
+
+
 @dataclass(frozen=True)
 class Wording:
     """What a finding says about a diagnosis (pieces of a message, without the link name)."""
@@ -47,6 +90,11 @@ class Wording:
     detail: str  # the numbers that show it
     help: str  # what to write instead
     data: dict[str, Any] = field(default_factory=dict)  # the hypothesis's parameters, JSON-ready
+    #: the one-line message's claim and its key numbers (``inertia written in the collision
+    #: cylinder's axes, not the link's``); ``summary: detail`` is the finding's detail
+    claim: str = ""
+    #: a shorter claim for when the link's name makes :attr:`claim` too long (:func:`one_line`)
+    brief: str = ""
 
 
 @dataclass(frozen=True, eq=False)

@@ -51,7 +51,8 @@ class Diagnosis:
     """
     A known slip that explains a declared tensor: the chosen candidate (its type says which
     hypothesis: :class:`~inertia_kit.analysis.forensics.other_point.AboutPoint`, …) and its
-    wording. A message is ``f"link `{name}`: {wording.summary}: {wording.detail}"``.
+    wording. A finding's message is ``f"link `{name}`: {wording.claim}"`` (or its brief), its
+    detail ``f"{wording.summary}: {wording.detail}"`` (:func:`.links.explain`).
     """
 
     slip: Candidate

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
-from inertia_kit.physics.formatting import NEGLIGIBLE_PRODUCT
+from inertia_kit.physics.formatting import NEGLIGIBLE_PRODUCT, fmt
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.tensor_names import INDEX, PRODUCTS
 
@@ -44,7 +44,11 @@ class FlippedSigns(Candidate):
             f"written {entries(written, names)}; the {case.geometry} gives "
             f"{entries(right, names)} (negated, they match {self.within})"
         )
-        return Wording(summary, detail, "negate ixy, ixz and iyz")
+        # the message: the largest written product against the geometry's
+        name = max(names or PRODUCTS, key=lambda n: abs(written[INDEX[n]]))
+        value, geometry = written[INDEX[name]], right[INDEX[name]]
+        claim = f"product signs flipped: {name} {fmt(value, 3)}, geometry {fmt(geometry, 3)}"
+        return Wording(summary, detail, "negate ixy, ixz and iyz", claim=claim)
 
 
 def _flip_products(written: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.describe import TABLE, describe_geometry
-from inertia_kit.analysis.forensics.candidate import Candidate
+from inertia_kit.analysis.forensics.candidate import Candidate, Label, one_line
 from inertia_kit.analysis.forensics.diagnosis import (
     Diagnosis,
     diagnose,
@@ -69,11 +69,14 @@ def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
 
 
 def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
+    # each named as a finding's detail says it, with how its one-line message does (Label)
     points: list[tuple[str, ArrayLike]] = [("the link origin", (0.0, 0.0, 0.0))]
     for joint in link.children:
         xyz = joint.origin.xyz
         if isinstance(xyz, tuple) and all(isinstance(v, float) for v in xyz):
-            points.append((f"the origin of joint `{joint.name}`", xyz))
+            name = f"joint `{joint.name}`"
+            label = Label(f"the origin of {name}", f"{name}'s origin", "a joint's origin")
+            points.append((label, xyz))
     rotations: list[tuple[str, ArrayLike]] = []
     for shape in (*link.link.collisions, *link.link.visuals):
         # the shape's kind as the report table names it: box, cylinder, mesh, …
@@ -82,11 +85,16 @@ def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
         xyz = shape.origin.xyz
         mesh = isinstance(shape.geometry, model.Mesh) and isinstance(xyz, tuple)
         if mesh and all(isinstance(v, float) for v in xyz) and any(xyz):  # type: ignore[union-attr]
-            points.append((f"the origin of {what} `{shape.geometry.filename}`", xyz))
+            filename = shape.geometry.filename  # type: ignore[union-attr]
+            label = Label(
+                f"the origin of {what} `{filename}`", f"{what}'s origin", "a mesh's origin"
+            )
+            points.append((label, xyz))
         rotation = _origin_rotation(shape.origin)
         if rotation is not None and not np.allclose(rotation, np.eye(3)):
             rpy = rpy_text(shape.origin.rpy)  # type: ignore[arg-type]
-            rotations.append((f'{what}\'s own axes (<origin rpy="{rpy}">)', _snapped(rotation)))
+            label = Label(f'{what}\'s own axes (<origin rpy="{rpy}">)', f"{what}'s axes")
+            rotations.append((label, _snapped(rotation)))
     return points, rotations
 
 
@@ -244,7 +252,7 @@ class Explanation:
     """What a forensic rule's finding says about a link whose diagnosis is its hypothesis."""
 
     link: str  # the link's name
-    message: str  # link `name`: summary: detail (and why it is an error, when it is one)
+    message: str  # link `name`: the claim and its key numbers, one short line
     source: model.Source | None  # the <inertia> element, else the <inertial>
     expected: dict[str, Any]  # :meth:`Diagnosis.expected`
     help: str
@@ -252,7 +260,9 @@ class Explanation:
     impossible: bool
     # a real part's likely slip (diagnosis.diagnose_part), not an exact fit: its fix is unsafe
     likely: bool = False
-    detail: str | None = None  # the basis and arithmetic the one-line message leaves out
+    # what went wrong, the numbers that show it, and why it is an error when it is one: what
+    # the one-line message leaves out
+    detail: str | None = None
 
 
 def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:
@@ -282,12 +292,14 @@ def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | No
             f"{fmt(math.exp(fitted), 3)}, as close as real parts come: check against the CAD "
             "report before applying the fix, which is therefore unsafe)"
         )
+    head = f"link `{link.name}`: " + ("likely " if diagnosis.likely is not None else "")
     return Explanation(
         link.name,
-        f"link `{link.name}`: {wording.summary}: {wording.detail}{beyond}",
+        one_line(head, wording.claim or wording.summary, wording.brief),
         inertial.inertia_source or inertial.source,
         diagnosis.expected(),
         help,
         impossible,
         likely=diagnosis.likely is not None,
+        detail=f"{wording.summary}: {wording.detail}{beyond}",
     )

@@ -19,7 +19,13 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
+from inertia_kit.analysis.forensics.candidate import (
+    Candidate,
+    Case,
+    Wording,
+    entries,
+    short_label,
+)
 from inertia_kit.analysis.forensics.measure import symmetric
 from inertia_kit.analysis.tensors import axis_name
 from inertia_kit.physics.formatting import fmt, vector_text
@@ -79,6 +85,9 @@ class OtherAxes(Candidate):
         rpy = matrix_rpy(rotation @ case.axes)
         distinct = _distinct_axis(case.expected.inertia)
         where = ""
+        # the message: whose axes they are, else where they put the distinct axis
+        brief = "inertia written in other axes than the link's"
+        claim = brief
         if distinct is not None:
             kind, axis = distinct
             # the axis the declared values put there: the geometry's, turned back
@@ -87,6 +96,12 @@ class OtherAxes(Candidate):
                 f"; it puts the axis of {kind} inertia along {_axis_text(assumed)}, the "
                 f"{case.geometry} has it along {_axis_text(axis)}"
             )
+            claim = (
+                f"inertia written in other axes: {kind} inertia along {_axis_text(assumed)}, "
+                f"not {_axis_text(axis)}"
+            )
+        if self.label:  # a shape's axes: a few words, always said
+            claim, brief = f"inertia written in {short_label(self.label)}, not the link's", ""
         frame = f": {self.label}" if self.label else ""
         summary = f"the declared inertia is written for other axes{frame}{where}"
         detail = (
@@ -100,9 +115,9 @@ class OtherAxes(Candidate):
         data = {
             "rotation": [[float(v) for v in row] for row in rotation],
             "rpy": [float(v) for v in rpy],
-            "frame": self.label or None,
+            "frame": str(self.label) or None,
         }
-        return Wording(summary, detail, help, data)
+        return Wording(summary, detail, help, data, claim, brief)
 
 
 def _principal_axes(case: Case) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

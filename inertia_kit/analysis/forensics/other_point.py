@@ -17,7 +17,14 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
+from inertia_kit.analysis.forensics.candidate import (
+    Candidate,
+    Case,
+    Wording,
+    brief_label,
+    entries,
+    short_label,
+)
 from inertia_kit.analysis.forensics.measure import TOLERANCE
 from inertia_kit.physics.formatting import fmt, vector_text
 from inertia_kit.physics.mass import MassProperties, shift_tensor
@@ -58,8 +65,15 @@ class AboutPoint(Candidate):
             "write the tensor about the centre of mass: subtract the parallel-axis term "
             f"m (|d|² E - d dᵀ) with d = {vector_text(offset)} m ({entries(corrected)})"
         )
-        data = {"point": [float(v) for v in self.point], "point_name": self.label or None}
-        return Wording(summary, detail, help, data)
+        data = {"point": [float(v) for v in self.point], "point_name": str(self.label) or None}
+        # the message: the point in a few words and how far it is from the COM; with a long
+        # link name, the joint's name or the mesh's kind is left to the detail
+        away = f", {fmt(float(np.linalg.norm(offset)), 3)} m from the COM"
+        named = short_label(self.label) if self.label else "another point"
+        brief = brief_label(self.label)
+        claim = f"inertia written about {named}{away}"
+        brief = f"inertia written about {brief}{away}" if brief else ""
+        return Wording(summary, detail, help, data, claim, brief)
 
 
 def _at_com(declared: MassProperties, point: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, entries
 from inertia_kit.analysis.forensics.measure import BOUND_MARGIN
-from inertia_kit.physics.formatting import tensor_text
+from inertia_kit.physics.formatting import fmt, tensor_text
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.tensor_names import INDEX, TENSOR
 
@@ -49,8 +49,14 @@ class Transposed(Candidate):
         if len(changed) == 2 and len(pairs) == 1:
             a, b = (TENSOR[k] for k in changed)
             how = f"{a} and {b} are swapped"
+            # the message: the pair and what is written in each
+            written_pair = ", ".join(f"{TENSOR[k]} {fmt(values[k], 3)}" for k in changed)
+            claim = f"{how} (written {written_pair})"
         else:
             how = ", ".join(f"{TENSOR[order[k]]}'s value is in {TENSOR[k]}" for k in changed)
+            claim = "inertia values in the wrong attributes: " + ", ".join(
+                TENSOR[k] for k in changed
+            )
         summary = f"the six inertia values are in the wrong attributes: {how}"
         corrected = self.corrected.inertia
         right = corrected if not np.any(axes != np.eye(3)) else axes.T @ corrected @ axes
@@ -59,7 +65,8 @@ class Transposed(Candidate):
             f"written {tensor_text(written, names, digits=4, separator=' ')}; reassigned, "
             f"{entries(right, names)} match the {case.geometry} {self.within}"
         )
-        return Wording(summary, detail, f"write {entries(right)}", {"assignment": assignment})
+        help = f"write {entries(right)}"
+        return Wording(summary, detail, help, {"assignment": assignment}, claim)
 
 
 #: every order of the six values, in itertools' order (the first of equal reassignments wins)

@@ -71,6 +71,15 @@ class UnitSlip(Candidate):
                 f"the tensor was divided by {fmt(1 / factor, 5)} as if it were in {self.unit}"
             )
         summary = "a unit slip: " + " and ".join(parts)
+        # the message: the same in fewer words
+        short = []
+        if mass_factor != 1.0:
+            short.append(f"mass {fmt(declared.mass, 5)} in grams")
+        if factor > 1.0:
+            short.append(f"inertia in {self.unit}, not kg·m²")
+        elif factor < 1.0:
+            short.append(f"inertia divided by {fmt(1 / factor, 3)} as if in {self.unit}")
+        claim = "unit slip: " + " and ".join(short)
         detail = (
             f"{DIAGONAL[i]} {fmt(declared.inertia[i, i], 5)} is {fmt(factor * mass_factor, 5)} "
             f"times the {fmt(case.expected.inertia[i, i], 4)} the {case.geometry} gives; "
@@ -82,7 +91,7 @@ class UnitSlip(Candidate):
         if factor != 1.0:
             todo.append(f"divide the tensor by {fmt(factor, 5)} ({entries(corrected)})")
         data = {"factor": factor, "unit": self.unit, "mass_factor": mass_factor}
-        return Wording(summary, detail, " and ".join(todo), data)
+        return Wording(summary, detail, " and ".join(todo), data, claim)
 
 
 def one_digit(value: float) -> bool:

@@ -121,7 +121,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         others = (
             ""
             if not welded
-            else f", nor do the links welded to it ({', '.join(f'`{n}`' for n in welded)})"
+            else f"; the links welded to it ({', '.join(f'`{n}`' for n in welded)}) have none "
+            "either"
         )
         mujoco = (
             "MuJoCo fills in mass from the collision shapes at 1000 kg/m³"
@@ -131,16 +132,20 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         )
         if top.parent is not None:
             joint = top.parent
+            # the message names the joint; its type, the welded links and the engines are in
+            # the detail
+            claim = f"moves {'on' if site is top else 'with'} joint `{joint.name}`"
             what = (
-                f"moves (on {joint.type} joint `{joint.name}`)"
+                f"it moves on {joint.type} joint `{joint.name}`"
                 if site is top
-                else f"is part of the body that {joint.type} joint `{joint.name}` moves"
+                else f"it is part of the body that {joint.type} joint `{joint.name}` moves"
             )
             engines = (
                 f"Gazebo drops it with its joint and every link below it, {mujoco}, PyBullet "
                 "gives it 1 kg, Drake makes it massless (singular unless links further out "
                 "give it inertia)"
             )
+            message = f"link `{site.name}` {claim} but has no `<inertial>`"
         else:
             below = _below(robot, group)
             if not (collision or (floating_base and below)):
@@ -148,28 +153,30 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 # simulator is taken to fix the base (MuJoCo, useFixedBase, WeldFrames)
                 continue
             where = "is the root" if site is top else f"is welded to the root `{top.name}`"
-            reasons = [
-                r
-                for r, on in (
-                    ("has collision geometry", collision),
-                    ("carries moving links", below),
-                )
-                if on
-            ]
-            what = f"{where} and {' and '.join(reasons)}"
+            what = f"it {where} and {' and '.join(_root_reasons(collision, below))}"
             others += (
-                ", and no fixed joint attaches it to a `world` link, so the robot's base has no "
-                "mass"
+                "; no fixed joint attaches it to a `world` link, so the robot's base has no mass"
             )
             engines = _base_engines(robot, top.name, below, len(group))
+            message = f"link `{site.name}` {where} but has no `<inertial>`: a massless base"
         text, payload = _geometry_values(site.geometry)
         yield ctx.finding(
-            f"link `{site.name}` {what} but has no `<inertial>`{others}: {engines}{text}",
+            message,
             site.link.source,
             link=site.name,
             expected=payload,
             help=_help(top, site, collision),
+            detail=f"{what}{others}: {engines}{text}",
         )
+
+
+def _root_reasons(collision: bool, below: tuple[str, ...]) -> list[str]:
+    """Why a root group is a body simulators move: its collision shapes, the links it carries."""
+    return [
+        r
+        for r, on in (("has collision geometry", collision), ("carries moving links", below))
+        if on
+    ]
 
 
 def _volume(link: LinkAnalysis) -> tuple[float, Geometry] | None:
@@ -224,11 +231,6 @@ def _light_base(
     heavy = [m.name for m in group if (declared_mass(m.link) or 0.0) > 0]
     carried = sum((declared_mass(robot.by_name[n].link) or 0.0 for n in below), 0.0)
     where = "is the root" if site is top else f"is welded to the root `{top.name}`"
-    reasons = [
-        r
-        for r, on in (("has collision geometry", collision), ("carries moving links", below))
-        if on
-    ]
     weight = (
         f"Gazebo, Drake and PyBullet simulate a {fmt(mass)} kg base under the "
         f"{fmt(carried)} kg of the links below it"
@@ -237,15 +239,17 @@ def _light_base(
     )
     text, payload = _geometry_values(site.geometry)
     yield ctx.finding(
-        f"link `{site.name}` {where} and {' and '.join(reasons)} but its fixed-joint group "
-        f"declares only {fmt(mass)} kg (in {_names(tuple(heavy))}), {fmt(mass / volume, 2)} "
-        f"kg/m³ over its {geometry.describe()} of {fmt(volume, 4)} m³, below the plausible "
-        f"{fmt(floor)} kg/m³, so the robot's base has almost no mass: {weight}; MuJoCo welds "
-        f"the root to the world, so the base cannot move there{text}",
+        f"link `{site.name}`: the base declares only {fmt(mass)} kg, "
+        f"{fmt(mass / volume, 2)} kg/m³ over its {geometry.name()}",
         site.link.source,
         link=site.name,
         expected=payload,
         help=_help(top, site, collision),
+        detail=f"it {where} and {' and '.join(_root_reasons(collision, below))}; its "
+        f"fixed-joint group declares only {fmt(mass)} kg (in {_names(tuple(heavy))}), "
+        f"{fmt(mass / volume, 2)} kg/m³ over its {geometry.describe()} of {fmt(volume, 4)} m³, "
+        f"below the plausible {fmt(floor)} kg/m³, so the robot's base has almost no mass: "
+        f"{weight}; MuJoCo welds the root to the world, so the base cannot move there{text}",
     )
 
 

@@ -30,14 +30,15 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if geometry.unit is not None:
         expected = {"mass_at_1000_kg_m3": 1000.0 * geometry.volume, "volume": geometry.volume}
         basis = (
-            f"; its {geometry.describe()} holds {fmt(geometry.volume)} m³, "
+            f"its {geometry.describe()} holds {fmt(geometry.volume)} m³, "
             f"{fmt(1000.0 * geometry.volume)} kg at 1000 kg/m³"
         )
     yield ctx.finding(
-        f"link `{link.name}`: mass = {fmt(inertial.mass)} kg is not positive{basis}",
+        f"link `{link.name}`: mass = {fmt(inertial.mass)} kg is not positive",
         inertial.mass_source or inertial.source,
         link=link.name,
         expected=expected,
+        detail=basis or None,
         help="give the link's real mass in kg (weigh it, or run `inertia-fill --fix invalid`); "
         "a massless frame belongs on a link with no <inertial> at all",
         # a moving link without a usable mass needs one (`inertia-fill` fills it by default)

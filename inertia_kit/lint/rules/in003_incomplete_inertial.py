@@ -21,6 +21,7 @@ FIX = FixRule(
 SUMMARY = "`<inertial>` without `<mass>` or `<inertia>`, or an `<inertia>` attribute missing"
 
 DENSITY = 1000.0  # kg/m³ for the expected values when the mass is missing too
+SHOWN = 2  # missing attributes the message names; more are counted (the detail names them)
 
 
 def _engines(missing_mass: bool, missing_inertia: bool, absent: list[str]) -> str:
@@ -54,7 +55,8 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     absent = [] if missing_inertia else [name for name, v in values.items() if v is None]
     if not (missing_mass or missing_inertia or absent):
         return
-    parts = []
+    parts = []  # the message's words: what is missing
+    listed = ""  # the detail's: every attribute missing, when the message only counts them
     if missing_mass_element:
         parts.append("no `<mass>`")
     elif missing_mass:
@@ -63,7 +65,11 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         parts.append("no `<inertia>`")
     elif absent:
         names = ", ".join(f"`{a}`" for a in absent)
-        parts.append(f"an `<inertia>` without {names}")
+        if len(absent) > SHOWN:
+            parts.append(f"an `<inertia>` without {len(absent)} of its 6 values")
+            listed = f"the `<inertia>` has no {names}; "
+        else:
+            parts.append(f"an `<inertia>` without {names}")
     # the most specific element that holds every problem
     if missing_mass_element or missing_inertia or (missing_mass and absent):
         source = inertial.source
@@ -89,11 +95,11 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             wanted = [] if missing_inertia or missing_mass else [a for a in TENSOR if a in absent]
             basis = f"; its {geometry.describe()} {how} {written.text(wanted or None)}"
     yield ctx.finding(
-        f"link `{link.name}`: `<inertial>` has {' and '.join(parts)} "
-        f"({_engines(missing_mass, missing_inertia, absent)}){basis}",
+        f"link `{link.name}`: `<inertial>` has {' and '.join(parts)}",
         source,
         link=link.name,
         expected=payload,
+        detail=f"{listed}{_engines(missing_mass, missing_inertia, absent)}{basis}",
         help="write all of `<mass value>` and `<inertia ixx ixy ixz iyy iyz izz>` (products "
         "of inertia too, 0 when they are), or remove the `<inertial>` of a massless frame; "
         "`inertia-fill --fix invalid` computes the values from the geometry",

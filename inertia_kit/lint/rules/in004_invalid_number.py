@@ -165,6 +165,29 @@ def _special(text: str) -> bool:
     return text.strip().lower().lstrip("+-") in ("nan", "inf", "infinity")
 
 
+#: a value's text longer than this is cut short in the message (the detail has it whole)
+LONG_TEXT = 32
+#: the message names values while it stays this short; the rest are counted
+MESSAGE_BUDGET = 100
+
+
+def _shown(text: str) -> str:
+    """The value's text as the message quotes it: cut short past :data:`LONG_TEXT`."""
+    return repr(text if len(text) <= LONG_TEXT else text[: LONG_TEXT - 1] + "…")
+
+
+def _listed(head: str, items: list[str]) -> str:
+    """``head: item; item (+2 more)``: the items that keep the line short, the rest counted."""
+    text = f"{head}: {items[0]}"
+    for i, item in enumerate(items[1:], start=1):
+        rest = len(items) - i - 1
+        more = f" (+{rest} more)" if rest else ""
+        if len(f"{text}; {item}{more}") > MESSAGE_BUDGET:
+            return f"{text} (+{len(items) - i} more)"
+        text += f"; {item}"
+    return text
+
+
 def _location(invalid: model.Invalid) -> tuple:
     source = invalid.source
     site = source.calls[-1] if source.calls else source
@@ -180,7 +203,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     for invalid in robot.robot.invalid:
         groups.setdefault(_location(invalid), []).append(invalid)
     for invalids in groups.values():
-        items = []
+        items = []  # the detail's, with every text whole
+        short = []  # the message's
         pybullet = []
         owners = []
         for invalid in invalids:
@@ -190,6 +214,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             scale = place.element in _SCALES
             described = _describe(invalid.text, place.vector, scale)
             items.append(f"`{place.element}` = {invalid.text!r} ({described})")
+            short.append(f"`{place.element}` = {_shown(invalid.text)} ({described})")
             if _extreme(invalid.text, scale) is None:
                 pybullet.append(f"{invalid.text!r} as {pybullet_reading(invalid, place.vector)}")
         first = places.get(id(invalids[0]), Place(""))
@@ -198,15 +223,17 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         # a moving link whose mass is not a number has none: it needs one (`--fix missing`)
         needs_mass = first.link is not None and first.link in moving
         repairs = Repairs.MISSING if needs_mass and first.element == "<mass value>" else None
+        message = _listed(" and ".join(owners), short)
         if not pybullet:
             # every value reads as a number, one no robot has and no arithmetic keeps
             yield ctx.finding(
-                f"{' and '.join(owners)}: {'; '.join(items)}: no robot has such a value, and "
-                "mass properties multiply and divide up to six numbers, which overflow or vanish "
-                "in double precision beyond ±1e50 (and for a mass or moment, below 1e-50); the "
-                "simulators read it and compute with it (MuJoCo, Drake), inertia-kit skips the "
-                "checks that need it",
+                message,
                 invalids[0].source,
+                detail=f"{'; '.join(items)}: no robot has such a value, and mass properties "
+                "multiply and divide up to six numbers, which overflow or vanish in double "
+                "precision beyond ±1e50 (and for a mass or moment, below 1e-50); the simulators "
+                "read it and compute with it (MuJoCo, Drake), inertia-kit skips the checks that "
+                "need it",
                 link=first.link,
                 joint=first.joint,
                 fixable=fixable,
@@ -221,9 +248,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             else "MuJoCo refuses the file (bad format)"
         )
         yield ctx.finding(
-            f"{' and '.join(owners)}: {'; '.join(items)}: ROS (urdfdom) and Gazebo refuse the "
-            f"file, {mujoco}, PyBullet silently reads {', '.join(pybullet)}",
+            message,
             invalids[0].source,
+            detail=f"{'; '.join(items)}: ROS (urdfdom) and Gazebo refuse the file, {mujoco}, "
+            f"PyBullet silently reads {', '.join(pybullet)}",
             link=first.link,
             joint=first.joint,
             fixable=fixable,

@@ -100,10 +100,11 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             else ""
         )
         yield ctx.finding(
-            f'link `{link.name}`: {what}: {readers}ROS (urdfdom: "{words}"), '
-            f"{_refusers(shape.kind, reader)} refuse the file{dropped}{unchecked}",
+            f"link `{link.name}`: {what}",
             geometry.source or shape.source,
             link=link.name,
+            detail=f'{readers}ROS (urdfdom: "{words}"), {_refusers(shape.kind, reader)} refuse '
+            f"the file{dropped}{unchecked}",
             help=help_text,
             severity=Severity.INFO if reader else None,
         )

@@ -26,8 +26,8 @@ SUMMARY = (
 TEXT_FIX = Safety.SAFE
 
 # differences named in the message, the weightiest first (the mass, then the tensor, then the
-# centre of mass); the rest are counted there and listed in the help
-SHOWN = 2
+# centre of mass); the rest are counted there and listed in the detail and the help
+SHOWN = 1
 WEIGHT = ("shape", "mass", "inertia", "ixx", "iyy", "izz", "ixy", "ixz", "iyz", "origin", "xyz")
 
 
@@ -52,6 +52,13 @@ def _where(source: Source, other: Source) -> str:
     if source.line == other.line and source.column is not None:
         return f"line {source.line}:{source.column}"
     return f"line {source.line}"
+
+
+def _near(source: Source, other: Source) -> str:
+    """:func:`_where` for the message: a file other than ``other``'s by its name alone."""
+    if source.path != other.path:
+        return f"{source.path.replace(chr(92), '/').rsplit('/', 1)[-1]}:{source.line}"
+    return _where(source, other)
 
 
 def _engines(duplicate: Duplicate) -> str:
@@ -96,8 +103,9 @@ def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
         shown = ", ".join(differences[:SHOWN])
         more = len(differences) - SHOWN
         says = f"they differ: {shown}" + (f" (+{more} more)" if more > 0 else "")
+        every = f": they differ: {', '.join(differences)}" if more > 0 else ""
     else:
-        says = "the same values"
+        says, every = "the same values", ""
     # a visual's duplicate changes no physics: what a person sees, and geometry-derived values
     # only where the link has no collision
     severity = Severity.ERROR if differences and duplicate.kind != "visual" else Severity.WARNING
@@ -111,12 +119,13 @@ def _finding(name: str, duplicate: Duplicate, ctx: RuleContext) -> Finding:
     else:
         todo = "remove the duplicate: it changes nothing for the engines that load the file"
     return ctx.finding(
-        f"link `{name}`: {_what(duplicate)} ({_where(ignored, read)}) ignored, {readers} read "
-        f"{_where(read, ignored)}{', MuJoCo refuses the file' if _refused(duplicate) else ''}: "
-        f"{says}",
+        f"link `{name}`: {_what(duplicate)} ({_near(ignored, read)}) ignored, {says}",
         duplicate.ignored,
         link=name,
         severity=severity,
+        detail=f"the {_what(duplicate)} ({_where(ignored, read)}) is ignored, {readers} read "
+        f"{_where(read, ignored)}{', MuJoCo refuses the file' if _refused(duplicate) else ''}"
+        f"{every}",
         help=f"{_engines(duplicate)}. Read: {read}; ignored: {ignored}. Differences (read vs "
         f"ignored): {listed}. {todo[0].upper()}{todo[1:]}.",
         fixable=False,

@@ -74,24 +74,21 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if all(v == 0 for v in values.values()):
             what = "all six `<inertia>` values are 0"
         elif float(np.abs(principal).max()) <= tol:
-            what = f"the tensor is zero: principal moments {moments_text(principal)}"
+            what = "the tensor is zero"
         elif negative:
-            what = (
-                f"principal moments {moments_text(principal)}: "
-                f"{fmt(principal[0], 4)} kg·m² is negative"
-            )
+            what = f"principal moment {fmt(principal[0], 4)} kg·m² is negative"
         else:
-            what = f"principal moments {moments_text(principal)}: the smallest is 0"
+            what = "the smallest principal moment is 0"
         # the geometry's values, in the axes the file writes them in: needs the mass and rpy
         written = None if link.declared is None else geometry_tensor(link, link.declared.mass)
         basis = "" if written is None else f"; {basis_text(link, mass)} {written.text()}"
         yield ctx.finding(
-            f"link `{link.name}`: {what}, so the tensor is not positive definite "
-            f"({_engines(negative)}){basis}",
+            f"link `{link.name}`: {what}: not positive definite",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected=None if written is None else written.fields,
             help=HELP,
+            detail=f"principal moments {moments_text(principal)}: {_engines(negative)}{basis}",
         )
 
 
@@ -119,10 +116,10 @@ def _negative_diagonal(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding
         return
     name, value = min(negative, key=lambda item: item[1])
     yield ctx.finding(
-        f"link `{link.name}`: {name} = {fmt(value, 4)} kg·m² is negative, so a principal moment "
-        f"is at most {fmt(value, 4)} kg·m², whatever the other values are, and the tensor is "
-        f"not positive definite ({_engines(True)})",
+        f"link `{link.name}`: {name} = {fmt(value, 4)} kg·m² is negative: not positive definite",
         inertial.inertia_source or inertial.source,
         link=link.name,
         help=HELP,
+        detail=f"a principal moment is at most {fmt(value, 4)} kg·m², whatever the other values "
+        f"are: {_engines(True)}",
     )

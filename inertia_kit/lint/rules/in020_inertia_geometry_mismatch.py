@@ -7,6 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.bounds import BOUND_RTOL
+from inertia_kit.analysis.forensics.diagnosis import Diagnosis
 from inertia_kit.analysis.forensics.links import diagnose_basis
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
@@ -48,6 +49,15 @@ OPTIONS = (
 # this one (SUPERSEDES); otherwise the slip is named here.
 MISMATCH = 1.5
 
+# the slip each forensic rule names, in a few words for the message (its wording is the detail)
+_SLIPS = {
+    "IN060": "about another point",
+    "IN061": "signs flipped",
+    "IN062": "in other axes",
+    "IN063": "in other units",
+    "IN064": "values transposed",
+}
+
 
 def _about(axis: np.ndarray) -> str:
     """``ixx`` for a link axis, else the moment about the axis."""
@@ -57,6 +67,17 @@ def _about(axis: np.ndarray) -> str:
     if axis[np.argmax(np.abs(axis))] < 0:
         axis = -axis
     return "the moment about the axis (" + ", ".join(fmt(v, 3) for v in axis) + ")"
+
+
+def _short_about(axis: np.ndarray) -> str:
+    """``ixx`` for a link axis, else ``a moment`` (the detail gives the axis)."""
+    name = axis_name(axis)
+    return f"i{name}{name}" if name is not None else "a moment"
+
+
+def _ratio(ratio: float) -> str:
+    """``2.5 times`` or ``1/10 of``."""
+    return f"{fmt(ratio, 3)} times" if ratio > 1 else f"1/{fmt(1 / ratio, 3)} of"
 
 
 def _prefer_link_axis(
@@ -81,21 +102,18 @@ def _verdict(
     expected: MassProperties,
     above: float,
     below: float,
-) -> tuple[TensorComparison, str | None] | None:
+) -> tuple[TensorComparison, Diagnosis | None] | None:
     """The comparison with one geometry and the slip it shows, if it is far; else None."""
     comparison = compare_tensors(declared.inertia, expected.inertia)
     if comparison is None or comparison.factor <= min(MISMATCH, above, below):
         return None  # close enough whatever the cause: no need to look for a slip
     # a slip explained within rounding (an IN06x finding), else the likely one
     diagnosis = diagnose_basis(link, basis) or diagnose_basis(link, basis, loose=True)
-    mistake = (
-        None if diagnosis is None else f"likely {diagnosis.wording.summary} ({diagnosis.code})"
-    )
     ratios = comparison.ratios
     if ratios.max() > above or ratios.min() < 1.0 / below:
-        return comparison, mistake
-    if mistake is not None:
-        return comparison, mistake
+        return comparison, diagnosis
+    if diagnosis is not None:
+        return comparison, diagnosis
     return None
 
 
@@ -104,7 +122,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if declared is None or not declared.mass > 0:
         return
     above, below = float(ctx.option("factor")), float(ctx.option("factor_below"))
-    verdicts: list[tuple[Geometry, MassProperties, TensorComparison, str | None]] = []
+    verdicts: list[tuple[Geometry, MassProperties, TensorComparison, Diagnosis | None]] = []
     for basis in link.bases:
         expected = basis.at_mass(declared.mass)
         if expected is None:
@@ -116,14 +134,14 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         verdicts.append((basis, expected, *verdict))
     if not verdicts:
         return
-    geometry, expected, comparison, mistake = verdicts[0]
+    geometry, expected, comparison, diagnosis = verdicts[0]
     worst = comparison.worst
     ratio = float(comparison.ratios[worst])
     axis = _prefer_link_axis(comparison.axes[worst], ratio, declared.inertia, expected.inertia)
     moment = float(axis @ declared.inertia @ axis)
     estimate = float(axis @ expected.inertia @ axis)
-    relation = f"{fmt(ratio, 3)} times" if ratio > 1 else f"1/{fmt(1 / ratio, 3)} of"
-    notes = [] if mistake is None else [mistake]
+    relation = _ratio(ratio)
+    notes = [] if diagnosis is None else [f"likely {diagnosis.wording.summary} ({diagnosis.code})"]
     severity = None
     excess = link.excess
     beyond = excess is not None and excess.ratio > 1.0 + BOUND_RTOL
@@ -144,10 +162,18 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     tensor = expected.cleaned().inertia
     inertial = link.link.inertial
     assert inertial is not None
+    # the message: the moment, its ratio to the geometry's and the slip, named by its rule; the
+    # values, the geometry's dimensions, what the slip is and the bound are in the detail
+    slip = ""
+    if diagnosis is not None:
+        slip = f", likely {_SLIPS.get(diagnosis.code, 'a slip')} ({diagnosis.code})"
+    basis = (
+        f"{_about(axis)} = {fmt(moment, 4)} kg·m² but its {geometry.describe()} with the "
+        f"declared {fmt(declared.mass)} kg gives {fmt(estimate, 4)} kg·m² ({relation} that)"
+    )
     yield ctx.finding(
-        f"link `{link.name}`: {_about(axis)} = {fmt(moment, 4)} kg·m² but its "
-        f"{geometry.describe()} with the declared {fmt(declared.mass)} kg gives "
-        f"{fmt(estimate, 4)} kg·m² ({relation} that)" + "".join(f"; {n}" for n in notes),
+        f"link `{link.name}`: {_short_about(axis)} {relation} its "
+        f"{geometry.name(possessive=True)}{slip}",
         inertial.inertia_source or inertial.source,
         link=link.name,
         expected={
@@ -165,6 +191,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         },
         help="write the tensor of the link's real mass distribution about its centre of mass, "
         "in the axes of <inertial><origin rpy>; the expected values assume uniform density",
+        detail="; ".join([basis, *notes]),
         severity=severity,
         # only an error is certainly impossible; a warning may be a real part (`--fix all`)
         repairs=None if severity is Severity.ERROR else Repairs.DOUBTFUL,

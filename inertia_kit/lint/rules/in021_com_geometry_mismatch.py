@@ -58,13 +58,17 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         size = float((high - low).max())
         outside = envelope.distance_outside(com)
         if outside > float(ctx.option("margin")) * size:
-            shapes = " and ".join(g.describe() for g in (link.collision, link.visual) if g.solids)
+            solids = [g for g in (link.collision, link.visual) if g.solids]
+            shapes = " and ".join(g.describe() for g in solids)
+            named = solids[0].name() if len(solids) == 1 else "geometry"
             centroid = link.bases[0].unit.com if link.bases else None  # type: ignore[union-attr]
             yield ctx.finding(
-                f"link `{link.name}`: the centre of mass {_xyz(com)} m lies at least "
-                f"{fmt(outside, 3)} m outside its {shapes}: no mass inside the geometry has it",
+                f"link `{link.name}`: centre of mass at least {fmt(outside, 3)} m outside its "
+                f"{named}",
                 source,
                 link=link.name,
+                detail=f"the centre of mass {_xyz(com)} m lies at least {fmt(outside, 3)} m "
+                f"outside its {shapes}: no mass inside the geometry has it",
                 expected=None if centroid is None else {"xyz": [float(v) for v in centroid]},
                 help="the centre of mass is in the link frame (check the sign, the axes and the "
                 "unit of <inertial><origin xyz>), or the geometry is misplaced" + _alike(link),
@@ -84,11 +88,14 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     centroid = geometry.unit.com
     distance = float(np.linalg.norm(com - centroid))
     yield ctx.finding(
-        f"link `{link.name}`: the centre of mass {_xyz(com)} m is {fmt(distance, 3)} m from the "
-        f"centroid {_xyz(centroid)} m of its {geometry.describe()}, "
-        f"{fmt(100 * fractions[0], 3)}% of the way to its edge",
+        f"link `{link.name}`: centre of mass {fmt(distance, 3)} m from its "
+        f"{geometry.name(kind=False, possessive=True)} centroid "
+        f"({fmt(100 * fractions[0], 3)}% to the edge)",
         source,
         link=link.name,
+        detail=f"the centre of mass {_xyz(com)} m is {fmt(distance, 3)} m from the centroid "
+        f"{_xyz(centroid)} m of its {geometry.describe()}, {fmt(100 * fractions[0], 3)}% of "
+        "the way to its edge",
         expected={"xyz": [float(v) for v in centroid], "offset_fraction": fractions[0]},
         help="check <inertial><origin xyz> (link frame, metres); a heavy motor or counterweight "
         "at one end explains an offset, a value about another frame does not" + _alike(link),

@@ -9,12 +9,14 @@ detailed visual, are compared by their bounding boxes with generous tolerances.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import PurePosixPath
 
 import numpy as np
 
 from inertia_kit.analysis.describe import describe_geometry
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.analysis.same_shape import Pair, pair_shapes
+from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
@@ -34,6 +36,8 @@ OPTIONS = (
     Option("max_offset", float, 0.5, "largest centroid distance as a fraction of the size"),
 )
 
+# a message longer than this leaves out what the detail says (the shape's file or dimensions)
+LONG = 100
 # boxes are padded by this fraction of the larger geometry's size, so that a flat plate
 # (zero thickness) still overlaps the box around it
 PAD = 0.02
@@ -129,17 +133,36 @@ def _misplaced(link: LinkAnalysis, pair: Pair, ctx: RuleContext) -> Finding:
     reference = _other(subject)
     offset = pair.offset if subject == "visual" else -pair.offset
     apart = float(np.linalg.norm(offset))
-    moves = []
+    moves, short = [], []
     if pair.angle is not None and pair.angle * 0.5 * pair.size > pair.tolerance:
         moves.append(f"turned {fmt(np.degrees(pair.angle), 3)}°")
+        short.append(moves[-1])
     if apart > pair.tolerance:
         unit = "m" if apart >= 1 else "mm"
         scale = 1.0 if unit == "m" else 1000.0
         vector = ", ".join(fmt(scale * v, 3) for v in offset)
         moves.append(f"moved {_length(apart)} ({vector} {unit})")
+        short.append(f"moved {_length(apart)}")
     if not moves:
         moves.append(f"placed so that their points lie up to {_length(pair.distance)} apart")
-    shape = describe_geometry(getattr(pair, subject).shape.geometry)
+        short.append(f"up to {_length(pair.distance)} off")
+    geometry = getattr(pair, subject).shape.geometry
+    shape = describe_geometry(geometry)
+    # a mesh by its file name, a primitive with its dimensions: two twins of one xacro call
+    # must differ in their message; the link's only shape of its kind needs neither when the
+    # message would be long
+    named = (
+        f"mesh `{PurePosixPath(geometry.filename).name}`"
+        if isinstance(geometry, model.Mesh)
+        else shape
+    )
+    alone = len(link.link.visuals if subject == "visual" else link.link.collisions) == 1
+    for what in (named, type(geometry).__name__.lower()):
+        message = (
+            f"link `{link.name}`: {subject} {what} {', '.join(short)} from its {reference} twin"
+        )
+        if len(message) <= LONG or not alone:
+            break
     if right is None:
         severity, agrees = None, ""
         which = (
@@ -160,11 +183,12 @@ def _misplaced(link: LinkAnalysis, pair: Pair, ctx: RuleContext) -> Finding:
         "shapes by default) simulate the collision placement"
     )
     return ctx.finding(
-        f"link `{link.name}`: the {subject} {shape} is {' and '.join(moves)} from its identical "
-        f"{reference} shape{agrees}: the same shape at two poses is no simplification",
+        message,
         getattr(pair, subject).shape.source,
         link=link.name,
         severity=severity,
+        detail=f"the {subject} {shape} is {' and '.join(moves)} from its identical "
+        f"{reference} shape{agrees}: the same shape at two poses is no simplification",
         expected={
             "same_shape": True,
             "distance": pair.distance,
@@ -188,10 +212,11 @@ def _bounding_boxes(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     largest_c, largest_v = float(c_size.max()), float(v_size.max())
     if not (largest_c > 0 and largest_v > 0):
         return
-    problems = []
+    problems, short = [], []
     factor = float(ctx.option("size_factor"))
     ratio = largest_c / largest_v
     if ratio > factor or ratio < 1.0 / factor:
+        short.append(f"collision {fmt(ratio, 4)} times the visual's size")
         problems.append(
             f"its collision geometry is {fmt(ratio, 4)} times the size of its visual geometry "
             f"({fmt(largest_c, 3)} m against {fmt(largest_v, 3)} m across)"
@@ -203,6 +228,7 @@ def _bounding_boxes(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     smaller = min(float(np.prod(c_size + pad)), float(np.prod(v_size + pad)))
     fraction = float(np.prod(overlap)) / smaller
     if fraction < float(ctx.option("min_overlap")):
+        short.append(f"bounding boxes share {fmt(100 * fraction, 2)}%")
         problems.append(
             f"their bounding boxes share {fmt(100 * fraction, 2)}% of the smaller one "
             "(misplaced or turned: check both <origin>s)"
@@ -211,6 +237,7 @@ def _bounding_boxes(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     offset = float(np.linalg.norm(collision.unit.com - visual.unit.com))
     size = max(largest_c, largest_v)
     if offset > float(ctx.option("max_offset")) * size:
+        short.append(f"centroids {fmt(offset, 3)} m apart")
         problems.append(
             f"their centroids are {fmt(offset, 3)} m apart, {fmt(100 * offset / size, 3)}% of "
             "the geometry's size"
@@ -219,10 +246,10 @@ def _bounding_boxes(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         return
     shape = link.link.collisions[0]
     yield ctx.finding(
-        f"link `{link.name}`: {'; '.join(problems)}; collision {_box(c_bounds)}, "
-        f"visual {_box(v_bounds)}",
+        f"link `{link.name}`: {', '.join(short)}",
         shape.source,
         link=link.name,
+        detail=f"{'; '.join(problems)}; collision {_box(c_bounds)}, visual {_box(v_bounds)}",
         expected={
             "collision_bounds": c_bounds.tolist(),
             "visual_bounds": v_bounds.tolist(),

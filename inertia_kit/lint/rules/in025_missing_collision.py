@@ -40,10 +40,10 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if link.robot is not None and link.robot.group_fact(link.name, "collision", _any_collision):
         return
     yield ctx.finding(
-        f"link `{link.name}` has {fmt(mass)} kg and a visual shape but no <collision>: "
-        f"{_consequence(link)} ({geometry_summary(element)})",
+        f"link `{link.name}` has {fmt(mass)} kg and a visual shape but no <collision>",
         element.source,
         link=link.name,
+        detail=f"{_consequence(link)} ({geometry_summary(element)})",
         help="add a <collision> element: the visual geometry, or a simpler box, cylinder or "
         "convex mesh around it",
     )

@@ -32,6 +32,8 @@ PACKAGE = "package://"
 MAX_ANCESTORS = 8
 # levels climbed from a place searched to the nearest existing folder, for a file of that name
 MOVED_LEVELS = 3
+# a URI longer than this is shortened in the message (its middle folders elided)
+LONG_URI = 48
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
@@ -46,13 +48,30 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         if hint:
             expected["found"] = hint[1]
         yield ctx.finding(
-            f"link `{link.name}`: {shape.kind} mesh `{mesh.filename}` not found: {reason}"
-            f"{searched}",
+            f"link `{link.name}`: {shape.kind} mesh `{_shortened(mesh.filename)}` not found",
             mesh.source,
             link=link.name,
             expected=expected,
+            detail=f"`{mesh.filename}`: {reason}{searched}",
             help=hint[0] if hint else advice,
         )
+
+
+def _shortened(uri: str) -> str:
+    """
+    A URI longer than :data:`LONG_URI` with its middle folders elided, for the message:
+    ``package://pkg/…/part.stl`` (the detail and ``expected`` have it whole).
+    """
+    if len(uri) <= LONG_URI:
+        return uri
+    scheme, sep, rest = uri.rpartition("://")
+    head = f"{scheme}{sep}" if sep else ""
+    parts = rest.split("/")
+    first = next((i for i, p in enumerate(parts) if p), None)
+    if first is None or first >= len(parts) - 2:
+        return uri
+    short = head + "/".join(parts[: first + 1]) + "/…/" + parts[-1]
+    return short if len(short) < len(uri) else uri
 
 
 def _split(problem: str) -> tuple[str, str]:

@@ -50,6 +50,9 @@ JOINT_BAND = (-1.5, 1.2)  # log10(mesh extent / largest joint offset at the link
 PEER_BAND = (-1.5, 1.5)  # log10(mesh extent / extent of the link's other shapes)
 # joint offsets shorter than this say nothing about a link's size
 MIN_OFFSET = 0.001
+# the unit a slip that shrinks the mesh says it is in, for the message (SLIPS says how it
+# happened); a slip that grows it says it is in metres already
+_AUTHORED = {0.001: "mm", 0.01: "cm", 0.0254: "inches"}
 # a mesh vouches for the size of the link's other meshes when this many observations of its
 # own, all in band, back it (its size alone would let a tiny slipped mesh accuse a sound one)
 TRUST = 2
@@ -85,6 +88,18 @@ def _same_file(a: Solid, b: Solid) -> bool:
         and ga.path == gb.path
         and ga.scale == gb.scale
     )
+
+
+def _authored(slips: tuple[float, ...]) -> str:
+    """``in mm``, ``in cm or inches``, ``already in metres``: the units the slips say."""
+    units = list(dict.fromkeys(_AUTHORED[s] for s in slips if s in _AUTHORED))
+    grown = any(s not in _AUTHORED for s in slips)
+    words = []
+    if units:
+        words.append("in " + (", ".join(units[:-1]) + " or " if len(units) > 1 else "") + units[-1])
+    if grown:
+        words.append("already in metres")
+    return " or ".join(words)
 
 
 def _describe(solid: Solid) -> str:
@@ -231,12 +246,22 @@ def _finding(link: LinkAnalysis, verdict: Verdict, ctx: RuleContext) -> Finding:
         for other in verdict.others
     ]
     also = f"; {' or '.join(alternatives)} would fit too" if alternatives else ""
+    # the message: the mesh, its size and the unit it looks authored in; the evidence, the
+    # scale that fits and its alternatives are in the detail (and ``expected``)
+    if scale == (1.0, 1.0, 1.0):
+        at = ""
+    elif len(set(scale)) == 1:
+        at = f" at scale {fmt(scale[0])}"
+    else:
+        at = " at its scale"
     return ctx.finding(
-        f"link `{link.name}`: {_describe(solid)} spans {fmt(extent, 3)} m with {written}, "
-        f'{SLIPS[slip]}: {"; ".join(against)}; with scale="{text}" it spans '
-        f"{fmt(extent * slip, 3)} m" + (f" and {density[0]}" if density else "") + also,
+        f"link `{link.name}`: {_describe(solid)} spans {fmt(extent, 3)} m{at}, "
+        f"as if {_authored((slip, *verdict.others))}",
         element.source,
         link=link.name,
+        detail=f"{_describe(solid)} spans {fmt(extent, 3)} m with {written}, "
+        f'{SLIPS[slip]}: {"; ".join(against)}; with scale="{text}" it spans '
+        f"{fmt(extent * slip, 3)} m" + (f" and {density[0]}" if density else "") + also,
         expected={
             "scale": list(new),
             "factor": slip,

@@ -23,6 +23,20 @@ OPTIONS = (
 )
 
 
+# a message longer than this leaves out the file name (the detail has it) when the link has no
+# other shape of that kind
+LONG = 100
+
+
+def _message(link: LinkAnalysis, kind: str, filename: str, claim: str) -> str:
+    """``link `arm`: collision mesh `arm.stl` <claim>``, without the file name when long."""
+    message = f"link `{link.name}`: {kind} mesh `{Path(filename).name}` {claim}"
+    shapes = link.link.visuals if kind == "visual" else link.link.collisions
+    if len(message) <= LONG or len(shapes) != 1:
+        return message
+    return f"link `{link.name}`: {kind} mesh {claim}"
+
+
 def _kinds(link: LinkAnalysis) -> tuple[str, ...]:
     """
     Where a mesh's volume matters: collision meshes always (engines derive mass, contact
@@ -49,12 +63,17 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         count = f"{mesh.triangle_count} triangles"
         if mesh.method == "convex-hull" and mesh.volume_error > tolerance:
             yield ctx.finding(
-                f"link `{link.name}`: {kind} mesh `{name}` is not closed ({count}): its "
-                f"mass properties are those of its convex hull, whose volume "
-                f"({fmt(mesh.volume, 4)} m³) differs from the open surface's by "
-                f"{fmt(100 * mesh.volume_error, 3)}%",
+                _message(
+                    link,
+                    kind,
+                    element.filename,
+                    f"is open, hull volume {fmt(100 * mesh.volume_error, 3)}% off",
+                ),
                 element.source,
                 link=link.name,
+                detail=f"{kind} mesh `{name}` is not closed ({count}): its mass properties "
+                f"are those of its convex hull, whose volume ({fmt(mesh.volume, 4)} m³) "
+                f"differs from the open surface's by {fmt(100 * mesh.volume_error, 3)}%",
                 expected={
                     "method": mesh.method,
                     "volume": float(mesh.volume),
@@ -67,12 +86,12 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             )
         elif mesh.method == "repaired" and ctx.option("repaired"):
             yield ctx.finding(
-                f"link `{link.name}`: {kind} mesh `{name}` is closed ({count}) but its "
-                "triangles are wound inconsistently: computed after repairing the "
-                "winding, but engines that integrate the triangles as given get a wrong "
-                "volume",
+                _message(link, kind, element.filename, "is closed but wound inconsistently"),
                 element.source,
                 link=link.name,
+                detail=f"{kind} mesh `{name}` is closed ({count}) but its triangles are wound "
+                "inconsistently: computed after repairing the winding, but engines that "
+                "integrate the triangles as given get a wrong volume",
                 expected={
                     "method": mesh.method,
                     "volume": float(mesh.volume),

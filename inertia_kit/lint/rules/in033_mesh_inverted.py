@@ -20,6 +20,20 @@ SCOPE = "link"
 SUMMARY = "a closed mesh is wound inside-out: its signed volume is negative"
 
 
+# a message longer than this leaves out the file name (the detail has it) when the link has no
+# other shape of that kind
+LONG = 100
+
+
+def _message(link: LinkAnalysis, kind: str, filename: str, claim: str) -> str:
+    """``link `arm`: collision mesh `arm.stl` <claim>``, without the file name when long."""
+    message = f"link `{link.name}`: {kind} mesh `{Path(filename).name}` {claim}"
+    shapes = link.link.visuals if kind == "visual" else link.link.collisions
+    if len(message) <= LONG or len(shapes) != 1:
+        return message
+    return f"link `{link.name}`: {kind} mesh {claim}"
+
+
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     for solid in link.mesh_kind_solids():
         kind = solid.shape.kind
@@ -38,11 +52,14 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             else f" (only {fmt(100 * fill, 2)}% of its bounding box: probably one shell "
             "of several is inside-out and cancels the others' volume)"
         )
+        name = f"{kind} mesh `{Path(element.filename).name}`"
+        claim = f"is inside-out, volume {fmt(-mesh.volume, 4)} m³"
         yield ctx.finding(
-            f"link `{link.name}`: {kind} mesh `{Path(element.filename).name}` is wound "
-            f"inside-out: its signed volume is {fmt(-mesh.volume, 4)} m³{shells}",
+            _message(link, kind, element.filename, claim),
             element.source,
             link=link.name,
+            detail=f"{name} is wound inside-out: its signed volume is "
+            f"{fmt(-mesh.volume, 4)} m³{shells}",
             expected={"signed_volume": -float(mesh.volume), "triangles": mesh.triangle_count},
             help="flip the triangles' winding (normals) in a mesh tool, e.g. Blender's "
             "Recalculate Outside or trimesh's `mesh.invert()`, and export again",

@@ -26,24 +26,28 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         mesh = solid.shape.geometry
         assert isinstance(mesh, model.Mesh)
         suffix = Path(mesh.path or mesh.filename).suffix.lower()
+        name = Path(mesh.filename).name  # the URI whole is in the detail
         if suffix not in FORMATS:
             # a format some engines read (Drake's .vtk, assimp's .3ds) but we do not:
             # the file may be fine, the geometry checks are what is lost
             yield ctx.finding(
-                f"link `{link.name}`: {kind} mesh `{mesh.filename}` is in a format "
-                f"inertia-kit does not read (`{suffix or '(no suffix)'}`; it reads "
-                f"{', '.join(FORMATS)}): its geometry checks are skipped",
+                f"link `{link.name}`: {kind} mesh `{name}` is in a format inertia-kit does "
+                "not read",
                 mesh.source,
                 link=link.name,
+                detail=f"{kind} mesh `{mesh.filename}` is in a format inertia-kit does not "
+                f"read (`{suffix or '(no suffix)'}`; it reads {', '.join(FORMATS)}): its "
+                "geometry checks are skipped",
                 help="convert the mesh to STL, OBJ or DAE (MuJoCo reads STL and OBJ, "
                 "Drake OBJ, PyBullet OBJ and STL), or ignore IN034 for this link",
                 severity=Severity.WARNING,
             )
             continue
         yield ctx.finding(
-            f"link `{link.name}`: {kind} mesh `{mesh.filename}` cannot be read: {solid.problem[1]}",
+            f"link `{link.name}`: {kind} mesh `{name}` cannot be read",
             mesh.source,
             link=link.name,
+            detail=f"{kind} mesh `{mesh.filename}` cannot be read: {solid.problem[1]}",
             help="re-export the part from the CAD tool (binary STL is read by every "
             "engine); until then no engine can use it and its geometry checks are skipped",
         )

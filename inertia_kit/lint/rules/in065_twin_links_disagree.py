@@ -34,6 +34,8 @@ SUMMARY = (
 )
 
 _PRODUCTS = ("ixy", "ixz", "iyz")
+# a message longer than this drops its numbers (they are in the detail)
+LONG = 100
 
 
 def _same(a: float, b: float, scale: float) -> bool:
@@ -74,6 +76,32 @@ def _parts(d: Disagreement, left: str, right: str) -> list[str]:
             f"from `{left}`{scaled}, {_values(d, shown, d.expected_tensor)}"
         )
     return parts
+
+
+def _message(d: Disagreement, left: str, right: str) -> str:
+    """
+    ``twins `l_hip` and `r_hip` disagree in mass (×1.5) and inertia``: what does not mirror,
+    with the mass ratio and the distance between the centres of mass; without them when the
+    names are long (the detail has every value).
+    """
+    counted, bare = [], []
+    if d.mass_ratio is not None:
+        counted.append(f"mass (×{fmt(d.mass_ratio, 3)})")
+        bare.append("mass")
+    if d.com_gap is not None:
+        counted.append(f"centre of mass ({fmt(d.com_gap, 2)} m)")
+        bare.append("centre of mass")
+    if d.unflipped or d.tensor_off:
+        others = any(n not in d.unflipped for n in d.tensor_off)
+        tensor = "inertia" if others else "products of inertia"
+        counted.append(tensor)
+        bare.append(tensor)
+    for what in (counted, bare):
+        listed = ", ".join(what[:-1]) + " and " + what[-1] if len(what) > 1 else what[0]
+        message = f"twins `{left}` and `{right}` disagree in {listed}"
+        if len(message) <= LONG:
+            break
+    return message
 
 
 def _turned(twin: Twins) -> Twins:
@@ -172,13 +200,14 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         )
         flips = ", ".join(n for n in _PRODUCTS if axis in n[1:]) if axis else "the products"
         first, *rest = parts
-        message = f"`{left}` and `{right}` mirror in geometry, but " + first
+        detail = f"`{left}` and `{right}` mirror in geometry, but " + first
         if rest:
-            message += "; " + "; ".join(p.removeprefix("not in ") for p in rest)
+            detail += "; " + "; ".join(p.removeprefix("not in ") for p in rest)
         source = twin.right.link.inertial.source if twin.right.link.inertial else None
         yield ctx.finding(
-            message,
+            _message(found, left, right),
             source or twin.right.link.source,
+            detail=detail,
             # a pair the file cannot judge blames neither twin (their names are in the message)
             link=right if told else None,
             expected={

@@ -29,12 +29,20 @@ def _negligible(robot: RobotAnalysis, name: str) -> bool:
 
 
 def _message(copy: Copy) -> str:
+    return (
+        f"link `{copy.link.name}`: <inertial> copied from `{copy.original.name}`, whose "
+        "geometry it fits"
+    )
+
+
+def _detail(copy: Copy) -> str:
+    """The block that is the same, and how far it is from each link's geometry."""
     link, original = copy.link.name, copy.original.name
     declared = copy.link.declared
     assert declared is not None
     block = f"{fmt(declared.mass)} kg at {vector_text(declared.com)} m and the same six values"
     return (
-        f"link `{link}`: its `<inertial>` is the one of `{original}`, copied ({block}): it "
+        f"the `<inertial>` of `{link}` is the one of `{original}`, copied ({block}): it "
         f"fits `{original}`'s geometry ({copy.theirs.text()}) far better than its own "
         f"({copy.mine.text()})"
     )
@@ -60,6 +68,7 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             _message(copy),
             inertial.source,
             link=link.name,
+            detail=_detail(copy),
             expected=expected,
             help=(
                 f"give `{link.name}` its own mass, centre of mass and tensor, from its CAD part "

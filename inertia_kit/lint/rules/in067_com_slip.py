@@ -7,7 +7,8 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.com_offset import judged_com
-from inertia_kit.analysis.forensics.com_slip import diagnose_link_com
+from inertia_kit.analysis.forensics.candidate import one_line
+from inertia_kit.analysis.forensics.com_slip import ComReading, diagnose_link_com
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -42,6 +43,22 @@ def _length(metres: float) -> str:
     return f"{fmt(metres * 1000, 2)} mm" if metres < 0.1 else f"{fmt(metres, 3)} m"
 
 
+#: the slip undone in the message, for each kind of reading (its ``words`` say it in full)
+_UNDONE = {"mirrored": "with every sign negated", "unit": "read as millimetres"}
+
+
+def _message(name: str, where: str, reading: ComReading, distance: float) -> str:
+    """``link `arm`: COM 73% to the edge; with y negated, 10 mm from the centroid``: without
+    the distance, and a frame's name, when a long name makes it too long."""
+    undone = _UNDONE.get(reading.kind, f"with {reading.words}")
+    brief = undone
+    if reading.kind == "frame":
+        undone = reading.words.replace("the point read in ", "read in ")
+        brief = "read in another frame"
+    head = f"link `{name}`: COM {where}; "
+    return one_line(head, f"{undone}, {_length(distance)} from the centroid", brief)
+
+
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     com = judged_com(link, float(ctx.option("min_mass_share")))
     inertial = link.link.inertial
@@ -57,20 +74,23 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     shapes = " and ".join(g.describe() for g in (link.collision, link.visual) if g.solids)
     percent = fmt(100 * diagnosis.declared_fraction, 2)
     where = f"lies {percent}% of the way from the centroid to the edge of its {shapes}"
+    # the message: how far out the point is, the slip and where undoing it puts the point
+    short = f"{percent}% to the edge"
     severity = None
     if envelope is not None:
         low, high = envelope.bounds
         outside = envelope.distance_outside(com)
         if outside > float(ctx.option("margin")) * float((high - low).max()):
             where = f"lies at least {_length(outside)} outside its {shapes}"
+            short = f"{_length(outside)} outside its geometry"
             severity = Severity.ERROR
     corrected = [float(v) for v in reading.point]
     yield ctx.finding(
-        f"link `{link.name}`: the centre of mass {vector_text(com)} m {where}; with "
-        f"{reading.words} it is inside, {_length(diagnosis.centroid_distance)} from the "
-        "geometry's centroid",
+        _message(link.name, short, reading, diagnosis.centroid_distance),
         inertial.origin.source or inertial.source,
         link=link.name,
+        detail=f"the centre of mass {vector_text(com)} m {where}; with {reading.words} it is "
+        f"inside, {_length(diagnosis.centroid_distance)} from the geometry's centroid",
         expected={
             "xyz": corrected,
             "hypothesis": reading.kind,

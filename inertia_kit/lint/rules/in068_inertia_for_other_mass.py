@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from inertia_kit.analysis.forensics.candidate import one_line
 from inertia_kit.analysis.forensics.links import diagnose_link
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy, mass_change
 from inertia_kit.analysis.forensics.unit_slip import one_digit
@@ -60,13 +61,15 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     basis, change = found[0]
     relation = _times(change.factor)
     yield ctx.finding(
-        f"link `{link.name}`: the tensor is its {basis.describe()}'s for "
-        f"{fmt(change.tensor_mass, 3)} kg, not the declared {fmt(declared.mass)} kg: every "
-        f"principal moment is {relation} the geometry's at the declared mass (alike within a "
-        f"factor of {fmt(math.exp(change.shape), 2)}); the mass was likely changed after the "
-        "tensor was computed",
+        f"link `{link.name}`: inertia fits its geometry for {fmt(change.tensor_mass, 3)} kg, "
+        f"not the declared {fmt(declared.mass)} kg",
         inertial.mass_source or inertial.source,
         link=link.name,
+        detail=f"the tensor is its {basis.describe()}'s for {fmt(change.tensor_mass, 3)} kg, "
+        f"not the declared {fmt(declared.mass)} kg: every principal moment is {relation} the "
+        f"geometry's at the declared mass (alike within a factor of "
+        f"{fmt(math.exp(change.shape), 2)}); the mass was likely changed after the tensor was "
+        "computed",
         expected={
             "mass": declared.mass,
             "tensor_mass": change.tensor_mass,
@@ -89,13 +92,19 @@ def _beside_copy(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     other = found.other
     assert declared is not None and inertial is not None and other.declared is not None
     relation = _times(found.factor)
+    masses = f" {fmt(other.declared.mass)} kg, not the declared {fmt(declared.mass)} kg"
     yield ctx.finding(
-        f"link `{link.name}`: its six `<inertia>` values are those of `{other.name}`, whose "
-        f"geometry is the same shape per kilogram, but its mass is {relation} `{other.name}`'s "
-        f"({fmt(declared.mass)} kg against {fmt(other.declared.mass)} kg): the mass was likely "
-        "changed after the tensor was computed",
+        one_line(
+            f"link `{link.name}`: ",
+            f"inertia is `{other.name}`'s, for its{masses}",
+            f"inertia is another link's, for its{masses}",
+        ),
         inertial.mass_source or inertial.source,
         link=link.name,
+        detail=f"its six `<inertia>` values are those of `{other.name}`, whose geometry is the "
+        f"same shape per kilogram, but its mass is {relation} `{other.name}`'s "
+        f"({fmt(declared.mass)} kg against {fmt(other.declared.mass)} kg): the mass was likely "
+        "changed after the tensor was computed",
         expected={
             "mass": declared.mass,
             "tensor_mass": other.declared.mass,

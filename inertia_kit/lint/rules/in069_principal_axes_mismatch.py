@@ -52,13 +52,14 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     kind, geometry, axis = found[0]
     rank = _RANKS[axis.rank]
     yield ctx.finding(
-        f"link `{link.name}`: the declared axis of {rank} inertia "
-        f"{vector_text(_pointing(axis.declared), 3)} is {fmt(axis.angle, 2)}° from its "
-        f"{geometry}'s {vector_text(_pointing(axis.geometry), 3)}; with its moments apart by a "
-        f"factor of {fmt(math.exp(axis.gap), 2)} a real part's axis strays at most "
-        f"{fmt(axis.limit, 2)}°",
+        f"link `{link.name}`: axis of {rank} inertia {fmt(axis.angle, 2)}° from the geometry's "
+        f"(real parts ≤ {fmt(axis.limit, 2)}°)",
         inertial.inertia_source or inertial.source,
         link=link.name,
+        detail=f"the declared axis of {rank} inertia {vector_text(_pointing(axis.declared), 3)} "
+        f"is {fmt(axis.angle, 2)}° from its {geometry}'s "
+        f"{vector_text(_pointing(axis.geometry), 3)}; with its moments apart by a factor of "
+        f"{fmt(math.exp(axis.gap), 2)} a real part's axis strays at most {fmt(axis.limit, 2)}°",
         expected={
             "axis": [float(v) for v in _pointing(axis.geometry)],
             "declared_axis": [float(v) for v in _pointing(axis.declared)],

@@ -27,8 +27,9 @@ def test_moving_link_without_inertial_gives_geometry_values(lint):
     volume = 0.1 * 0.1 * 0.3
     mass = 1000.0 * volume
     ixx, _, izz = box_moments(mass, (0.1, 0.1, 0.3))
-    message = finding.message
-    assert "revolute joint `j`" in message and "`<inertial>`" in message
+    assert finding.message == "link `arm` moves on joint `j` but has no `<inertial>`"
+    message = finding.detail
+    assert "revolute joint `j`" in message
     assert f"{fmt(mass, 4)} kg at 1000 kg/m³" in message
     assert f"ixx = {fmt(ixx, 4)}" in message and f"izz = {fmt(izz, 4)}" in message
     assert "Gazebo drops it" in message and "MuJoCo fills in mass" in message
@@ -43,7 +44,7 @@ def test_moving_link_without_inertial_gives_geometry_values(lint):
 
 def test_without_collision_mujoco_refuses(lint):
     (finding,) = in001(lint, robot(link("world"), joint("world", "arm", name="j"), link("arm")))
-    assert "mjMINVAL" in finding.message and finding.expected is None
+    assert "mjMINVAL" in finding.detail and finding.expected is None
 
 
 @pytest.mark.parametrize("kind", ["continuous", "prismatic", "floating", "planar"])
@@ -100,7 +101,8 @@ def test_the_inertial_belongs_where_the_geometry_is(lint):
     )
     (finding,) = in001(lint, text)
     assert finding.link == "shell"
-    assert "`motor`" in finding.message and "revolute joint `j`" in finding.message
+    assert finding.message == "link `shell` moves with joint `j` but has no `<inertial>`"
+    assert "`motor`" in finding.detail and "revolute joint `j`" in finding.detail
     assert finding.expected["mass"] == pytest.approx(3.0)
 
 
@@ -125,8 +127,11 @@ def wheeled(base: str = "", footprint: str = "") -> str:
 def test_massless_base_above_wheels_says_what_each_engine_does(lint):
     (finding,) = in001(lint, wheeled(collision(box(0.4, 0.3, 0.1))))
     assert finding.link == "base_link" and finding.severity.name == "ERROR"
-    message = finding.message
-    assert "welded to the root `base_footprint`" in message
+    assert finding.message == (
+        "link `base_link` is welded to the root `base_footprint` but has no `<inertial>`: a "
+        "massless base"
+    )
+    message = finding.detail
     assert "so the robot's base has no mass" in message
     assert (
         "Gazebo drops the base and with it every link below it (`left_wheel` and "
@@ -151,8 +156,8 @@ def test_massless_base_above_wheels_says_what_each_engine_does(lint):
 def test_massless_base_without_collision_is_flagged_too(lint, base):
     (finding,) = in001(lint, wheeled(base))
     site = "base_link" if base else "base_footprint"
-    assert finding.link == site and "carries moving links" in finding.message
-    assert "Gazebo drops the base" in finding.message
+    assert finding.link == site and "carries moving links" in finding.detail
+    assert "Gazebo drops the base" in finding.detail
 
 
 def test_a_massless_root_frame_above_a_base_with_mass_is_fine(lint):
@@ -162,7 +167,7 @@ def test_a_massless_root_frame_above_a_base_with_mass_is_fine(lint):
 def test_floating_base_false_takes_the_root_as_fixed(lint):
     text = robot(link("base"), joint("base", "arm", name="j"), link("arm", MASS + BOX))
     (finding,) = in001(lint, text)
-    assert finding.link == "base" and "carries moving links" in finding.message
+    assert finding.link == "base" and "carries moving links" in finding.detail
     assert in001(lint, text, floating_base=False) == []
     # collision geometry on the root still needs mass: it is a body, not a frame
     solid = robot(link("base", BOX), joint("base", "arm", name="j"), link("arm", MASS + BOX))
@@ -174,15 +179,17 @@ def test_many_links_below_are_counted(lint):
     for i in range(7):
         chain += [joint("base" if i == 0 else f"l{i - 1}", f"l{i}"), link(f"l{i}", MASS + BOX)]
     (finding,) = in001(lint, robot(*chain))
-    assert "(`l0`, `l1`, `l2`, `l3` and 3 more)" in finding.message
+    assert "(`l0`, `l1`, `l2`, `l3` and 3 more)" in finding.detail
 
 
 def test_root_with_collision_geometry_needs_mass(lint):
     text = robot(link("base", BOX))
     (finding,) = in001(lint, text)
-    assert finding.link == "base" and "is the root and has collision geometry" in finding.message
-    assert "Gazebo drops it, leaving nothing of the robot to simulate" in finding.message
-    assert "Drake refuses to step it" in finding.message and "body base is not" in finding.message
+    assert finding.message == "link `base` is the root but has no `<inertial>`: a massless base"
+    detail = finding.detail
+    assert finding.link == "base" and "is the root and has collision geometry" in detail
+    assert "Gazebo drops it, leaving nothing of the robot to simulate" in detail
+    assert "Drake refuses to step it" in detail and "body base is not" in detail
 
 
 @pytest.mark.parametrize("name", ["world"])
@@ -213,7 +220,7 @@ def test_the_seed_wheeled_robot_through_the_command(monkeypatch):
     (line,) = [x for x in result.stdout.splitlines() if " IN001 " in x]
     assert line.startswith("examples/my_robot_description/urdf/robot.xacro:14:3: IN001 ")
     assert "link `base_link` is welded to the root `base_footprint`" in line
-    assert "every link below it (`left_wheel_link` and `right_wheel_link`)" in line
+    assert "every link below it" not in line  # the detail: not in the concise line
 
 
 def test_visual_only_root_alone_is_not_simulated(lint):
@@ -236,7 +243,7 @@ def test_one_finding_per_body(lint):
         link("cover", BOX),
     )
     (finding,) = in001(lint, text)
-    assert finding.link == "arm" and "`cover`" in finding.message
+    assert finding.link == "arm" and "`cover`" in finding.detail
 
 
 # --- a base made massless by its own layout ---------------------------------------------------
@@ -258,7 +265,11 @@ def test_a_base_whose_mass_is_a_small_welded_part_is_massless(lint):
     (finding,) = in001(lint, with_caster(collision(box(*BASE_BOX))))
     volume = BASE_BOX[0] * BASE_BOX[1] * BASE_BOX[2]
     assert finding.link == "base_link" and finding.severity.name == "ERROR"
-    message = finding.message
+    assert finding.message == (
+        f"link `base_link`: the base declares only 0.1 kg, {fmt(0.1 / volume, 2)} kg/m³ over "
+        "its collision box"
+    )
+    message = finding.detail
     assert "declares only 0.1 kg (in `caster`)" in message
     assert f"{fmt(0.1 / volume, 2)} kg/m³ over its collision box" in message
     assert "below the plausible 50 kg/m³" in message
@@ -297,3 +308,12 @@ def test_a_light_base_welded_to_the_world_is_static(lint):
 def test_a_base_shape_wider_than_a_robot_is_not_judged(lint):
     # a mesh in millimetres read as metres would be 400 m wide: its volume says nothing
     assert in001(lint, with_caster(collision(box(400, 400, 100)))) == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    findings = in001(lint, wheeled(collision(box(0.4, 0.3, 0.1))))
+    findings += in001(lint, robot(link("world"), joint("world", "arm", name="j"), link("arm", BOX)))
+    findings += in001(lint, with_caster(collision(box(*BASE_BOX))))
+    for finding in findings:
+        assert len(finding.message) <= 100, finding.message
+        assert "Gazebo" in finding.detail and "1000 kg/m³" in finding.detail

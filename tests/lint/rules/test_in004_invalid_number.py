@@ -34,22 +34,22 @@ def test_valid_numbers_are_quiet(lint):
 def test_mass_with_a_unit(lint):
     (finding,) = in004(lint, robot(mass="3kg"))
     assert finding.link == "arm" and finding.line == 5
-    assert "`<mass value>` = '3kg'" in finding.message
-    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.message
-    assert "MuJoCo refuses the file" in finding.message
-    assert "PyBullet silently reads '3kg' as 3" in finding.message
+    assert finding.message == "link `arm`: `<mass value>` = '3kg' (not a number)"
+    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.detail
+    assert "MuJoCo refuses the file" in finding.detail
+    assert "PyBullet silently reads '3kg' as 3" in finding.detail
 
 
 def test_nan_and_inf_mujoco_reads_them(lint):
     (finding,) = in004(lint, robot(mass="nan"))
-    assert "not a number" in finding.message and "MuJoCo reads nan/inf" in finding.message
+    assert "not a number" in finding.message and "MuJoCo reads nan/inf" in finding.detail
     (finding,) = in004(lint, robot(six=SIX.replace('izz="0.005"', 'izz="inf"')))
     assert "`<inertia izz>` = 'inf' (infinite)" in finding.message
 
 
 def test_overflow_is_infinite(lint):
     (finding,) = in004(lint, robot(mass="1e999"))
-    assert "(infinite)" in finding.message and "MuJoCo refuses" in finding.message
+    assert "(infinite)" in finding.message and "MuJoCo refuses" in finding.detail
 
 
 def test_attributes_of_one_element_are_reported_together(lint):
@@ -57,7 +57,7 @@ def test_attributes_of_one_element_are_reported_together(lint):
     (finding,) = in004(lint, robot(six=six))
     assert "`<inertia ixx>` = 'a'" in finding.message
     assert "`<inertia iyy>` = 'b'" in finding.message
-    assert "'a' as 0, 'b' as 0" in finding.message
+    assert "'a' as 0, 'b' as 0" in finding.detail
 
 
 def test_elements_are_reported_separately(lint):
@@ -81,7 +81,7 @@ def test_elements_are_reported_separately(lint):
 def test_vectors(lint, origin, described, read):
     (finding,) = in004(lint, robot(origin=origin))
     assert f"`<joint><origin xyz>` = {origin!r} ({described})" in finding.message
-    assert f"as {read}" in finding.message
+    assert f"as {read}" in finding.detail
 
 
 @pytest.mark.parametrize(
@@ -112,8 +112,8 @@ def test_strtod_nan():
 def test_numbers_no_arithmetic_can_use(lint, six, item):
     (finding,) = in004(lint, robot(six=six))
     assert item in finding.message
-    assert "no robot has such a value" in finding.message
-    assert "refuse the file" not in finding.message  # every parser reads it
+    assert "no robot has such a value" in finding.detail
+    assert "refuse the file" not in finding.detail  # every parser reads it
 
 
 def test_vectors_name_the_unusable_values(lint):
@@ -146,8 +146,26 @@ def test_a_broken_and_an_extreme_value_together(lint):
     six = SIX.replace('ixx="0.025"', 'ixx="a"').replace('iyy="0.025"', 'iyy="1e308"')
     (finding,) = in004(lint, robot(six=six))
     assert "`<inertia iyy>` = '1e308' (beyond ±1e50)" in finding.message
-    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.message
+    assert "ROS (urdfdom) and Gazebo refuse the file" in finding.detail
     assert (
-        "PyBullet silently reads 'a' as 0" in finding.message
-        and "'1e308' as" not in finding.message
+        "PyBullet silently reads 'a' as 0" in finding.detail and "'1e308' as" not in finding.detail
     )
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    six = " ".join(f'{n}="{n}_value"' for n in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+    (finding,) = in004(lint, robot(six=six))
+    assert len(finding.message) <= 100
+    assert finding.message.startswith("link `arm`: `<inertia ixx>` = 'ixx_value' (not a number)")
+    assert finding.message.endswith(" more)")
+    # every value, whole, and what each parser does with them
+    for name in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"):
+        assert f"`<inertia {name}>` = '{name}_value' (not a number)" in finding.detail
+    assert "PyBullet silently reads 'ixx_value' as 0" in finding.detail
+
+
+def test_a_long_text_is_cut_short_in_the_message(lint):
+    expression = "${" + "+".join(["mass_of_the_upper_arm_link"] * 4) + "}"
+    (finding,) = in004(lint, robot(mass=expression))
+    assert len(finding.message) <= 100 and "…" in finding.message
+    assert repr(expression) in finding.detail

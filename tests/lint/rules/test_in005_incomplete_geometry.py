@@ -51,15 +51,15 @@ def test_reproducer_is_an_error_through_inertia_lint(tmp_path, geometry, what, u
     assert exit_code == 1
     (finding,) = [f for f in findings if f["code"] == "IN005"]
     assert finding["severity"] == "error" and finding["link"] == "arm"
-    assert what in finding["message"] and f'(urdfdom: "{urdfdom}' in finding["message"]
-    assert "Gazebo, Drake, PyBullet and MuJoCo refuse the file" in finding["message"]
+    assert what in finding["message"] and f'(urdfdom: "{urdfdom}' in finding["detail"]
+    assert "Gazebo, Drake, PyBullet and MuJoCo refuse the file" in finding["detail"]
 
 
 @pytest.mark.parametrize(("geometry", "what", "urdfdom"), REPRODUCERS.values(), ids=REPRODUCERS)
 def test_a_visual_shape_is_an_error_too(lint, geometry, what, urdfdom):
     (finding,) = lint(moving(HEAVY + visual(geometry) + collision(box(1, 1, 1))), "IN005")
     assert finding.severity == Severity.ERROR and what in finding.message
-    assert "Gazebo, Drake and PyBullet refuse the file (MuJoCo drops visuals" in finding.message
+    assert "Gazebo, Drake and PyBullet refuse the file (MuJoCo drops visuals" in finding.detail
 
 
 def test_points_at_the_shape_or_the_element_at_fault(lint):
@@ -76,7 +76,7 @@ def test_no_geometry_element(lint):
     text = moving(HEAVY + "<collision><origin/></collision>")
     (finding,) = lint(text, "IN005")
     assert "its collision has no `<geometry>`" in finding.message
-    assert "Could not parse collision element for Link [arm]" in finding.message
+    assert "Could not parse collision element for Link [arm]" in finding.detail
     assert text.split("\n")[finding.line - 1][finding.column - 1 :].startswith("<collision>")
 
 
@@ -89,17 +89,19 @@ def test_drake_shapes_are_an_info_saying_drake_reads_them(lint):
     shape = '<drake:ellipsoid a="0.1" b="0.2" c="0.3"/>'
     (finding,) = lint(moving(HEAVY + collision(shape)), "IN005")
     assert finding.severity == Severity.INFO
-    assert "a Drake extension: Drake reads it" in finding.message
-    assert "Gazebo, PyBullet and MuJoCo refuse" in finding.message
+    assert finding.message.endswith("`<drake:ellipsoid>`, a Drake extension")
+    assert finding.detail.startswith("Drake reads it; ")
+    assert "Gazebo, PyBullet and MuJoCo refuse" in finding.detail
 
 
 def test_pybullet_shapes_are_an_info_saying_pybullet_reads_them(lint):
     """pybullet_data's plane_implicit.urdf: `<plane normal="0 0 1"/>` loads in PyBullet."""
     (finding,) = lint(moving(HEAVY + collision('<plane normal="0 0 1"/>')), "IN005")
     assert finding.severity == Severity.INFO
-    assert "a PyBullet extension: PyBullet reads it" in finding.message
-    assert "Unknown geometry type 'plane'" in finding.message
-    assert "Gazebo, Drake and MuJoCo refuse" in finding.message
+    assert finding.message.endswith("a PyBullet extension")
+    assert finding.detail.startswith("PyBullet reads it; ")
+    assert "Unknown geometry type 'plane'" in finding.detail
+    assert "Gazebo, Drake and MuJoCo refuse" in finding.detail
 
 
 def test_complete_shapes_and_capsules_are_quiet(lint):
@@ -122,3 +124,16 @@ def test_the_rest_of_the_link_is_still_checked(tmp_path):
     assert exit_code == 1
     # the shape, the tensor (judged without geometry), the density (against the visual box)
     assert {"IN005", "IN010", "IN022"} <= codes
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    (finding,) = lint(moving(HEAVY + collision("<cylinder/>")), "IN005")
+    assert finding.message == (
+        "link `arm`: its collision `<cylinder>` has no `radius` and no `length`"
+    )
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        'ROS (urdfdom: "Cylinder shape must have both length and radius attributes"), Gazebo, '
+        "Drake, PyBullet and MuJoCo refuse the file; the link's mass and inertia are not checked "
+        "against this shape"
+    )

@@ -61,13 +61,13 @@ def test_a_second_inertial_that_differs_is_an_error_naming_both_and_the_values(l
     (finding,) = in006(lint, text)
     assert finding.severity == Severity.ERROR
     assert finding.line == 4  # on the ignored one
-    assert "second `<inertial>` (line 4)" in finding.message
-    assert "read line 3" in finding.message and "MuJoCo refuses the file" in finding.message
-    assert "mass 3.0 vs 30.0" in finding.message
-    # every difference is in the help, the message shows two and counts the rest
-    assert "(+2 more)" in finding.message
+    assert finding.message == (
+        "link `arm`: second `<inertial>` (line 4) ignored, they differ: mass 3.0 vs 30.0 (+3 more)"
+    )
+    assert "read line 3" in finding.detail and "MuJoCo refuses the file" in finding.detail
+    # every difference is in the detail and the help, the message shows one and counts the rest
     for name in ("ixx", "iyy", "izz"):
-        assert f"inertia {name} " in finding.help
+        assert f"inertia {name} " in finding.help and f"inertia {name} " in finding.detail
     assert finding.fix is None  # which one is right is the author's call
     # inertia-kit reads the first, as the engines do, and every other rule judges that one
     (link,) = [link for link in load(write(tmp_path, text)).links if link.name == "arm"]
@@ -145,7 +145,7 @@ def test_two_shapes_in_a_geometry_the_first_is_read(lint, tmp_path):
     assert finding.severity == Severity.ERROR
     assert "second shape `<sphere>` in `<geometry>`" in finding.message
     assert "shape box vs sphere" in finding.message
-    assert "MuJoCo refuses" not in finding.message  # it reads the first shape too
+    assert "MuJoCo refuses" not in finding.detail  # it reads the first shape too
     (shape,) = load(write(tmp_path, text)).link("arm").collisions
     assert type(shape.geometry).__name__ == "Box"
 
@@ -160,7 +160,7 @@ def test_a_second_origin_in_a_collision_is_an_error_in_a_visual_a_warning(lint):
     )
     assert [f.severity for f in collision] == [Severity.ERROR]
     assert [f.severity for f in visual] == [Severity.WARNING]
-    assert "MuJoCo refuses" not in visual[0].message  # its URDF import drops visuals
+    assert "MuJoCo refuses" not in visual[0].detail  # its URDF import drops visuals
 
 
 def test_a_second_shape_in_a_visual_is_a_warning_and_a_material_there_no_shape(lint):
@@ -220,7 +220,7 @@ def test_xacro_a_duplicate_from_a_macro_points_at_its_line_in_the_body(tmp_path)
     for link, call in (("a", 17), ("b", 19)):
         assert by_link[link]["line"] == call
         assert "second `<inertial>` (line 9)" in by_link[link]["message"]
-        assert "read line 5" in by_link[link]["message"]
+        assert "read line 5" in by_link[link]["detail"]
         # no removal inside a macro body: it would drop b's element too
         assert by_link[link]["fix"] is None
 
@@ -261,7 +261,9 @@ def test_mujoco_refuses_a_repeated_element_as_in070_predicts(tag, tmp_path):
         ["--engine", "mujoco", "--select", "IN070", "--output-format", "json", str(path)],
     )
     (finding,) = json.loads(result.stdout)
-    assert f"repeated element: '{tag}'" in finding["message"]
+    assert finding["expected"]["engine_message"] == f"repeated element: '{tag}'"
+    assert f"a second <{tag}>" in finding["message"]
+    assert f"repeated element: '{tag}'" in finding["detail"]
 
 
 @pytest.mark.parametrize("tag", sorted(CASES))
@@ -306,7 +308,7 @@ def test_xacro_one_macro_line_made_both_the_calls_are_named(tmp_path):
     (finding,) = json.loads(result.stdout)
     assert finding["line"] == 11
     assert "second `<inertial>` (line 11)" in finding["message"]
-    assert "read line 10" in finding["message"] and "mass 2 vs 4" in finding["message"]
+    assert "read line 10" in finding["detail"] and "mass 2 vs 4" in finding["message"]
 
 
 def test_xacro_no_removal_when_one_is_in_a_condition_the_other_is_not(tmp_path):
@@ -332,3 +334,12 @@ def test_xacro_no_removal_when_one_is_in_a_condition_the_other_is_not(tmp_path):
     )
     (finding,) = json.loads(result.stdout)
     assert finding["fix"]["safety"] == "safe"
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    (finding,) = in006(lint, robot(inertial(3.0) + inertial(30.0) + BOX))
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(
+        "the second `<inertial>` (line 4) is ignored, urdfdom, Drake and PyBullet read line 3, "
+        "MuJoCo refuses the file: they differ: mass 3.0 vs 30.0, inertia ixx "
+    )

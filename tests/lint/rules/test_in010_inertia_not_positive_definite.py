@@ -24,10 +24,12 @@ def test_positive_definite_is_quiet(lint):
 
 def test_zero_tensor_on_a_moving_link(lint):
     (finding,) = in010(lint, moving(inertial(3, 0) + BOX))
-    assert "all six `<inertia>` values are 0" in finding.message
-    assert "MuJoCo refuses the model" in finding.message
+    assert finding.message == (
+        "link `arm`: all six `<inertia>` values are 0: not positive definite"
+    )
+    assert "MuJoCo refuses the model" in finding.detail
     ixx, _, izz = box_moments(3, (0.1, 0.1, 0.3))
-    assert f"ixx = {fmt(ixx, 4)}" in finding.message
+    assert f"ixx = {fmt(ixx, 4)}" in finding.detail
     assert finding.expected["ixx"] == pytest.approx(ixx)
     assert finding.expected["izz"] == pytest.approx(izz)
 
@@ -36,18 +38,19 @@ def test_negative_moment_from_large_products(lint):
     # eigenvalues of [[0.01, 0.02], [0.02, 0.01]] are 0.01 ± 0.02
     (finding,) = in010(lint, moving(inertial(1, 0.01, 0.01, 0.02, ixy=0.02)))
     assert f"{fmt(0.01 - 0.02, 4)} kg·m² is negative" in finding.message
-    assert "Gazebo rejects the tensor, Drake replaces it by a sphere of water" in finding.message
+    assert "Gazebo rejects the tensor, Drake replaces it by a sphere of water" in finding.detail
 
 
 def test_rod_tensor_on_a_moving_link(lint):
     (finding,) = in010(lint, moving(inertial(1, 0.01, 0.01, 0)))
-    assert "(0, 0.01, 0.01) kg·m²: the smallest is 0" in finding.message
+    assert "the smallest principal moment is 0" in finding.message
+    assert "principal moments (0, 0.01, 0.01) kg·m²" in finding.detail
 
 
 def test_eigenvalue_noise_is_shown_as_zero(lint):
     # rank one: every value 1e-6, eigenvalues (0, 0, 3e-6) up to rounding
     (finding,) = in010(lint, moving(inertial(1, 1e-6, ixy=1e-6, ixz=1e-6, iyz=1e-6)))
-    assert f"(0, 0, {fmt(3e-6, 4)}) kg·m²" in finding.message
+    assert f"(0, 0, {fmt(3e-6, 4)}) kg·m²" in finding.detail
 
 
 def test_point_mass_welded_to_a_body_is_lumped(lint):
@@ -91,7 +94,7 @@ def test_a_negative_moment_is_flagged_whatever_the_mass(lint, mass):
     (finding,) = in010(lint, moving(inertial(mass, 0.025, 0.025, -1) + BOX))
     assert "-1 kg·m² is negative" in finding.message
     # no geometry values without a positive mass to scale them
-    assert finding.expected is None and "gives" not in finding.message
+    assert finding.expected is None and "gives" not in finding.detail
 
 
 def test_a_zero_tensor_with_a_bad_origin_is_flagged_with_the_mass_known(lint):
@@ -103,9 +106,21 @@ def test_a_negative_diagonal_value_is_flagged_when_another_value_is_not_a_number
     for products in ({"ixy": "abc"}, {"ixz": "1,5"}):
         (finding,) = in010(lint, moving(inertial(3, 0.025, 0.025, -0.5, **products) + BOX))
         assert "izz = -0.5 kg·m² is negative" in finding.message
-        assert "whatever the other values are" in finding.message
+        assert "whatever the other values are" in finding.detail
     text = moving(inertial(3, 0.025, 0.025, -0.5).replace(' ixy="0"', "") + BOX)
     (finding,) = in010(lint, text)
     assert "izz = -0.5 kg·m²" in finding.message
     # a partial tensor with positive diagonal values cannot be judged
     assert in010(lint, moving(inertial(3, *GOOD, ixy="abc") + BOX)) == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    (finding,) = in010(lint, moving(inertial(1, 0.01, 0.01, 0.02, ixy=0.02) + BOX))
+    assert finding.message == (
+        f"link `arm`: principal moment {fmt(0.01 - 0.02, 4)} kg·m² is negative: not positive "
+        "definite"
+    )
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(f"principal moments ({fmt(0.01 - 0.02, 4)}, ")
+    assert "MuJoCo refuses the model" in finding.detail
+    assert "its collision box (0.1 × 0.1 × 0.3 m) with the declared 1 kg gives" in finding.detail

@@ -35,7 +35,8 @@ def test_tensor_three_times_too_large_fires_with_the_expected_value(lint):
     finding = findings[0]
     assert finding.severity == Severity.WARNING  # within the hard bound (3 × uniform for a box)
     assert finding.link == "arm"
-    assert "iyy = " in finding.message and "collision box (0.4 × 0.2 × 0.1 m)" in finding.message
+    assert finding.message == "link `arm`: iyy 3 times its collision box's"
+    assert "iyy = " in finding.detail and "collision box (0.4 × 0.2 × 0.1 m)" in finding.detail
     assert finding.expected["iyy"] == pytest.approx(iyy)
     assert finding.expected["ixx"] == pytest.approx(ixx)
     assert finding.expected["ratio"] == pytest.approx(3.0)
@@ -44,7 +45,8 @@ def test_tensor_three_times_too_large_fires_with_the_expected_value(lint):
 def test_tensor_far_too_small_fires(lint):
     ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
     findings = lint(moving(BOX + inertial(2.0, ixx / 10, iyy, izz)), "IN020")
-    assert len(findings) == 1 and "1/10 of that" in findings[0].message
+    assert len(findings) == 1 and "ixx 1/10 of its collision box's" in findings[0].message
+    assert "(1/10 of that)" in findings[0].detail
 
 
 def test_factor_options(lint):
@@ -68,7 +70,8 @@ def test_rotated_cylinder_with_a_tensor_for_z_fires_in_link_axes(lint):
     findings = lint(moving(body), "IN020")
     assert len(findings) == 1
     finding = findings[0]
-    assert "other axes" in finding.message
+    assert "likely in other axes (IN062)" in finding.message
+    assert "other axes" in finding.detail
     # about the link x axis the cylinder has its axial moment m r²/2
     assert finding.expected["ixx"] == pytest.approx(axial)
     assert finding.expected["izz"] == pytest.approx(transverse)
@@ -90,7 +93,8 @@ def test_tensor_about_the_link_origin_is_recognised_below_the_factor(lint):
     )
     findings = lint(moving(body), "IN020")
     assert len(findings) == 1
-    assert "about the link origin" in findings[0].message
+    assert "likely about another point (IN060)" in findings[0].message
+    assert "about the link origin" in findings[0].detail
     assert findings[0].expected["ixx"] == pytest.approx(transverse)
     assert transverse == pytest.approx(6.929, abs=1e-3)
 
@@ -101,7 +105,7 @@ def test_error_when_also_beyond_the_hard_bound(lint):
     body = collision(cylinder(radius, length)) + inertial(mass, 1.0, 1.0, 1.0)
     findings = lint(moving(body), "IN020")
     assert len(findings) == 1 and findings[0].severity == Severity.ERROR
-    assert "IN023" in findings[0].message
+    assert "IN023" in findings[0].detail
 
 
 def test_beyond_the_bound_only_within_rounding_or_on_visual_geometry_is_a_warning(lint):
@@ -117,15 +121,15 @@ def test_beyond_the_bound_only_within_rounding_or_on_visual_geometry_is_a_warnin
     assert (
         "; beyond what 0.089 kg inside the link's geometry can have, but 2.3% over is within "
         "what rounding of the written cylinder radius 0.035 m and mass 0.089 kg can explain"
-    ) in finding.message
+    ) in finding.detail
     (finding,) = lint(moving(visual(rounded, rpy=along_x) + far), "IN020")
     assert finding.severity == Severity.WARNING
-    assert "but its only geometry is visual, often a schematic stand-in" in finding.message
+    assert "but its only geometry is visual, often a schematic stand-in" in finding.detail
     precise = cylinder("0.0349999", "0.0200001")
     exact = inertial("0.0890001", 0.000111842, 8e-05, 4.9e-05)
     (finding,) = lint(moving(collision(precise, rpy=along_x) + exact), "IN020")
     assert finding.severity == Severity.ERROR
-    assert "no 0.089 kg inside the link's geometry can have it (IN023)" in finding.message
+    assert "no 0.089 kg inside the link's geometry can have it (IN023)" in finding.detail
 
 
 def test_overlapping_collision_shapes_are_a_union(lint):
@@ -137,7 +141,8 @@ def test_overlapping_collision_shapes_are_a_union(lint):
     assert lint(moving(shapes + inertial(3.0, ixx, iyy, izz)), "IN020") == []
     findings = lint(moving(shapes + inertial(3.0, ixx, 3 * iyy, izz)), "IN020")
     assert len(findings) == 1 and findings[0].expected["iyy"] == pytest.approx(iyy, rel=1e-4)
-    assert "2 collision shapes" in findings[0].message
+    assert "its 2 collision shapes'" in findings[0].message
+    assert "2 collision shapes (box (0.4 × 0.2 × 0.1 m); box" in findings[0].detail
 
 
 def test_a_tensor_matching_the_visual_geometry_is_quiet(lint):
@@ -153,7 +158,7 @@ def test_visual_only_link_uses_the_visual_geometry(lint):
     ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
     body = visual(box(0.4, 0.2, 0.1))
     findings = lint(moving(body + inertial(2.0, ixx, iyy, 4 * izz)), "IN020")
-    assert len(findings) == 1 and "its visual box" in findings[0].message
+    assert len(findings) == 1 and "its visual box's" in findings[0].message
 
 
 def test_mesh_with_scale(lint, tmp_path):
@@ -198,3 +203,14 @@ def test_seed_simple_arm_and_robot1_fire_and_pan_tilt_is_quiet():
     robot1 = _seed("robot1/urdf/robot1_base.xacro")
     assert {f.link for f in robot1} >= {"base_link", "wheel_1", "wheel_2"}
     assert _seed("pan_tilt_description/urdf/pan_tilt.urdf", (str(EXAMPLES),)) == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis():
+    """The seed arm's mrm links: the ratio and the slip's rule in the message; the moments, the
+    cylinder's dimensions, the slip's wording and the bound in the detail."""
+    findings = _seed("mrm_description/urdf/mrm.xacro", (str(EXAMPLES),))
+    link_01 = next(f for f in findings if f.link == "link_01")
+    assert len(link_01.message) <= 100
+    assert link_01.message.startswith("link `link_01`: ") and "(IN060)" in link_01.message
+    assert "collision cylinder (r = 0.35 m, l = 0.4 m) with the declared" in link_01.detail
+    assert "6.929" in link_01.detail and "about the link origin" in link_01.detail

@@ -33,7 +33,11 @@ def test_com_far_from_the_centroid_warns_with_the_centroid(lint):
     assert finding.severity == Severity.WARNING
     assert finding.expected["xyz"] == pytest.approx([0.2, 0.0, 0.0])
     assert finding.expected["offset_fraction"] == pytest.approx(1.0)
-    assert "0.2 m from the centroid (0.2, 0, 0) m" in finding.message
+    assert (
+        finding.message
+        == "link `arm`: centre of mass 0.2 m from its box's centroid (100% to the edge)"
+    )
+    assert "0.2 m from the centroid (0.2, 0, 0) m of its collision box" in finding.detail
 
 
 def test_max_offset_option(lint):
@@ -47,7 +51,8 @@ def test_com_outside_the_hull_is_an_error(lint):
     findings = lint(moving(BOX + inertial_at("0.65 0 0")), "IN021")
     assert len(findings) == 1
     assert findings[0].severity == Severity.ERROR
-    assert "0.25 m outside" in findings[0].message
+    assert "0.25 m outside its collision box" in findings[0].message
+    assert "the centre of mass (0.65, 0, 0) m lies at least 0.25 m outside" in findings[0].detail
 
 
 def test_margin_option(lint):
@@ -109,3 +114,14 @@ def test_the_com_is_judged_whatever_the_rest_of_the_inertial(lint, inertial_text
 
 def test_a_massless_link_has_no_centre_of_mass(lint):
     assert lint(moving(BOX + inertial(0, 0, xyz="2 0 0")), "IN021") == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint):
+    """The simple arm's pattern: the distance and the fraction in the message; the centre of
+    mass, the centroid and the geometry's dimensions in the detail."""
+    (finding,) = lint(moving(BOX + inertial_at("0 0 0")), "IN021")
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        "the centre of mass (0, 0, 0) m is 0.2 m from the centroid (0.2, 0, 0) m of its "
+        "collision box (0.4 × 0.2 × 0.1 m), 100% of the way to its edge"
+    )

@@ -41,7 +41,8 @@ def test_collision_turned_the_other_way_fires(lint):
     body = visual(CYLINDER, rpy=ALONG_X) + collision(THICKER)
     findings = lint(moving(body), "IN024")
     assert len(findings) == 1
-    assert "misplaced or turned" in findings[0].message
+    assert "bounding boxes share " in findings[0].message
+    assert "misplaced or turned" in findings[0].detail
     pad = 0.02 * 0.3
     expected = (0.05 + pad) * (0.04 + pad) ** 2 / ((0.3 + pad) * (0.04 + pad) ** 2)
     assert findings[0].expected["overlap"] == pytest.approx(expected, rel=1e-2)
@@ -52,7 +53,8 @@ def test_millimetre_scale_missing_on_one_side_fires(lint):
     findings = lint(moving(body), "IN024")
     assert len(findings) == 1
     assert findings[0].expected["size_ratio"] == pytest.approx(1000.0)
-    assert "1000 times the size" in findings[0].message
+    assert findings[0].message == "link `arm`: collision 1000 times the visual's size"
+    assert "(100 m against 0.1 m across)" in findings[0].detail
 
 
 def test_misplaced_collision_fires_on_the_centroid_offset(lint):
@@ -61,7 +63,8 @@ def test_misplaced_collision_fires_on_the_centroid_offset(lint):
     findings = lint(moving(body), "IN024")
     assert len(findings) == 1
     assert findings[0].expected["centroid_offset"] == pytest.approx(0.06)
-    assert "centroids are 0.06 m apart" in findings[0].message
+    assert "centroids 0.06 m apart" in findings[0].message
+    assert "centroids are 0.06 m apart" in findings[0].detail
 
 
 def test_options(lint):
@@ -112,8 +115,10 @@ def test_a_box_turned_88_degrees_over_its_twin_fires(lint):
     """
     turn = math.radians(88)
     finding = _one(lint, visual(PLATE, rpy=f"0 0 {turn!r}") + collision(PLATE))
-    assert "turned 88°" in finding.message
-    assert "identical collision shape" in finding.message
+    assert finding.message == (
+        "link `arm`: visual box (0.1 × 0.2 × 0.3 m) turned 88° from its collision twin"
+    )
+    assert "identical collision shape" in finding.detail
     assert finding.expected["angle_deg"] == pytest.approx(88.0)
     corners = [(x, y) for x in (-0.05, 0.05) for y in (-0.1, 0.1)]
     turned = [
@@ -130,7 +135,8 @@ def test_a_sphere_lifted_by_its_radius_fires(lint):
     """The issue's second example: 50 % overlap by volume, and centroids one radius apart."""
     ball = sphere(0.05)
     finding = _one(lint, visual(ball, xyz="0 0 0.05") + collision(ball))
-    assert "moved 50 mm (0, 0, 50 mm)" in finding.message
+    assert "moved 50 mm from its collision twin" in finding.message
+    assert "moved 50 mm (0, 0, 50 mm)" in finding.detail
     assert "turned" not in finding.message  # a sphere turned is the same sphere
     assert finding.expected["distance"] == pytest.approx(0.05)
     assert finding.expected["angle_deg"] is None
@@ -338,7 +344,11 @@ def test_a_mesh_at_its_own_pose_twice_is_quiet_and_moved_fires(lint, tmp_path):
     assert lint(moving(same), "IN024") == []
     moved = _mesh_robot(tmp_path, part, {"xyz": "0 0 0.0867"}, {})
     finding = _one(lint, moved)
-    assert "moved 86.7 mm (0, 0, 86.7 mm)" in finding.message
+    assert (
+        finding.message
+        == "link `arm`: visual mesh `part.stl` moved 86.7 mm from its collision twin"
+    )
+    assert "moved 86.7 mm (0, 0, 86.7 mm)" in finding.detail
 
 
 def test_a_mesh_turned_by_one_of_its_symmetries_is_quiet(lint, tmp_path):
@@ -398,3 +408,42 @@ def test_an_unreadable_mesh_is_judged_by_its_centroids(tmp_path):
     assert pair.misplaced and pair.distance == pytest.approx(0.05)
     [pair] = pair_shapes((turned,), (still,), read=lambda s: None)
     assert not pair.misplaced  # a centred mesh turned: nothing left to tell
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint):
+    """A twin moved and a geometry out of scale: what moved or differs, by how much, in the
+    message; the offset vector, the verdict and the bounding boxes in the detail."""
+    finding = _one(lint, visual(PLATE, xyz="0 0 0.05") + collision(PLATE))
+    assert finding.message == (
+        "link `arm`: visual box (0.1 × 0.2 × 0.3 m) moved 50 mm from its collision twin"
+    )
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        "the visual box (0.1 × 0.2 × 0.3 m) is moved 50 mm (0, 0, 50 mm) from its identical "
+        "collision shape: the same shape at two poses is no simplification"
+    )
+    finding = _one(lint, visual(box(0.1, 0.1, 0.1)) + collision(box(100, 100, 100)))
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(
+        "its collision geometry is 1000 times the size of its visual geometry (100 m against "
+        "0.1 m across)"
+    )
+    assert finding.detail.endswith(
+        "collision 100 × 100 × 100 m at (0, 0, 0), visual 0.1 × 0.1 × 0.1 m at (0, 0, 0)"
+    )
+
+
+def test_a_long_message_names_the_only_shape_of_its_kind_by_its_type(lint, tmp_path):
+    """example-robot-data's `RightSakeBaseFingerLink1`: its one visual mesh, turned and moved,
+    would make a message of 120 characters with its file name, which the detail keeps."""
+    triangles = box_triangles((0.1, 0.1, 0.2), low=(-0.05, -0.05, -0.1))  # centred
+    write(tmp_path / "sake_finger_knuckle.stl", binary_stl(triangles))
+    name = "RightSakeBaseFingerLink1"
+    body = visual(mesh("sake_finger_knuckle.stl"), xyz="0 0 0.0309", rpy="0 0 1.5707963") + (
+        collision(mesh("sake_finger_knuckle.stl"))
+    )
+    (finding,) = lint(moving(body, name=name), "IN024")
+    assert finding.message == (
+        f"link `{name}`: visual mesh turned 90°, moved 30.9 mm from its collision twin"
+    )
+    assert "the visual mesh `sake_finger_knuckle.stl` is turned 90° and moved" in finding.detail

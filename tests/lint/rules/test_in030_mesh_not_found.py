@@ -42,8 +42,8 @@ def test_missing_relative_path_names_the_shape_and_the_file(lint, tmp_path):
     assert kinds == ["collision", "visual"]
     for finding in findings:
         assert finding.severity == Severity.ERROR and finding.link == "part"
-        assert "mesh `meshes/part.stl` not found" in finding.message
-        assert "does not exist" in finding.message
+        assert finding.message.endswith("mesh `meshes/part.stl` not found")
+        assert "does not exist" in finding.detail
         assert finding.line in (3, 4)
 
 
@@ -65,7 +65,7 @@ def test_name_differing_in_case(lint, tmp_path):
 def test_unknown_package_says_to_pass_package_path(lint):
     findings = lint(robot("package://nowhere_description/meshes/part.stl"), "IN030")
     assert len(findings) == 2
-    assert "package `nowhere_description` not found" in findings[0].message
+    assert "package `nowhere_description` not found" in findings[0].detail
     assert findings[0].help.startswith("pass --package-path DIR")
 
 
@@ -103,7 +103,7 @@ def test_folder_named_after_the_package_elsewhere_with_another_package_xml(tmp_p
     assert "package.xml names the package `example_robot_descriptions`" in findings[0].help
 
 
-def test_the_message_names_every_place_searched(tmp_path):
+def test_the_detail_names_every_place_searched(tmp_path):
     (tmp_path / "pkgs").mkdir()
     path = tmp_path / "robot" / "urdf" / "robot.urdf"
     path.parent.mkdir(parents=True)
@@ -121,7 +121,11 @@ def test_the_message_names_every_place_searched(tmp_path):
     stripped = os.path.join("nowhere_description", "meshes", "part.stl")
     assert searched[4] == f"next to the file: {path.parent / stripped}"
     assert f"search path (--package-path): {tmp_path / 'pkgs' / stripped}" in searched
-    assert "; searched " + "; ".join(searched) in visual.message
+    assert "; searched " + "; ".join(searched) in visual.detail
+    assert visual.message == (
+        "link `part`: visual mesh `package://nowhere_description/meshes/part.stl` not found"
+    )
+    assert visual.detail.startswith("`package://nowhere_description/meshes/part.stl`: package")
     # a relative path: next to the file, then the search path
     assert collision.expected["searched"][:2] == [
         f"next to the file: {path.parent / 'meshes' / 'part.stl'}",
@@ -139,7 +143,7 @@ def test_the_path_after_the_package_name_in_the_folder_above(tmp_path):
     path.write_text(robot("package://arm_support/meshes/base.stl"))
     findings = lint_file(path, Selection(select=("IN030",))).findings
     assert len(findings) == 2
-    assert "package `arm_support` not found" in findings[0].message
+    assert "package `arm_support` not found" in findings[0].detail
     assert (
         "write `package://arm_description/meshes/base.stl` if that is the file" in findings[0].help
     )
@@ -155,8 +159,25 @@ def test_a_file_of_that_name_near_where_the_uri_points(tmp_path):
     path.write_text(robot("package://fingers/meshes/stl/table.stl"))
     findings = lint_file(path, Selection(select=("IN030",))).findings
     assert len(findings) == 2
-    assert f"{package / 'meshes' / 'stl' / 'table.stl'} does not exist" in findings[0].message
+    assert f"{package / 'meshes' / 'stl' / 'table.stl'} does not exist" in findings[0].detail
     assert findings[0].help.startswith(f"`{package / 'meshes' / 'table.stl'}` exists, nearest to")
+
+
+def test_the_message_is_one_short_line_with_a_long_uri_shortened(lint):
+    """The URI's middle folders are elided in the message (rtb-data's KUKA names
+    `package://kuka_lbr_iiwa_support/meshes/lbr_iiwa_14_r820/collision/base_link.stl`); the
+    detail and `expected` keep it whole, with the reason and every place searched."""
+    uri = "package://kuka_lbr_iiwa_support/meshes/lbr_iiwa_14_r820/collision/base_link.stl"
+    findings = lint(robot(uri), "IN030")
+    assert [f.message for f in findings] == [
+        f"link `part`: {kind} mesh `package://kuka_lbr_iiwa_support/…/base_link.stl` not found"
+        for kind in ("visual", "collision")
+    ]
+    assert all(len(f.message) <= 100 for f in findings)
+    for finding in findings:
+        assert finding.expected["filename"] == uri
+        assert finding.detail.startswith(f"`{uri}`: package `kuka_lbr_iiwa_support` not found")
+        assert "; searched " in finding.detail
 
 
 def test_three_slashes_name_an_empty_package(lint):
@@ -166,7 +187,7 @@ def test_three_slashes_name_an_empty_package(lint):
 
 def test_remote_uri(lint):
     findings = lint(robot("https://example.com/part.stl"), "IN030")
-    assert len(findings) == 2 and "are not resolved" in findings[0].message
+    assert len(findings) == 2 and "are not resolved" in findings[0].detail
 
 
 def test_primitives_are_not_meshes(lint):

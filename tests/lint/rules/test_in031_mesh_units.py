@@ -36,11 +36,13 @@ def test_millimetre_mesh_is_found_with_the_exact_scale(lint, tmp_path):
     assert len(findings) == 2
     for finding in findings:
         assert finding.severity == Severity.WARNING and finding.link == "arm"
+        assert finding.message.endswith("mesh `arm.stl` spans 300 m, as if in mm")
+        assert len(finding.message) <= 100
         assert "spans 300 m with no scale, as if millimetres were read as metres" in (
-            finding.message
+            finding.detail
         )
-        assert "the link's longest joint offset is 0.3 m" in finding.message
-        assert 'with scale="0.001 0.001 0.001" it spans 0.3 m' in finding.message
+        assert "the link's longest joint offset is 0.3 m" in finding.detail
+        assert 'with scale="0.001 0.001 0.001" it spans 0.3 m' in finding.detail
         assert (
             finding.help
             == 'set <mesh ... scale="0.001 0.001 0.001"/>, or re-export the mesh in metres'
@@ -49,9 +51,9 @@ def test_millimetre_mesh_is_found_with_the_exact_scale(lint, tmp_path):
         assert finding.expected["factor"] == 0.001
     in_collision = next(f for f in findings if f.expected["kind"] == "collision")
     # the density settles it: mm, not cm
-    assert "2 kg in it is 2.667e-06 kg/m³" in in_collision.message
-    assert "would fit too" not in in_collision.message
-    assert "and 2 kg in it is 2667 kg/m³" in in_collision.message
+    assert "2 kg in it is 2.667e-06 kg/m³" in in_collision.detail
+    assert "would fit too" not in in_collision.detail
+    assert "and 2 kg in it is 2667 kg/m³" in in_collision.detail
 
 
 def test_right_scale_is_quiet(lint, tmp_path):
@@ -69,7 +71,11 @@ def test_millimetre_scale_on_a_metre_mesh(lint, tmp_path):
     body = collision(mesh("arm.stl", scale="0.001 0.001 0.001")) + inertial(2.0, 0.001)
     findings = lint(arm(body), "IN031")
     assert len(findings) == 1
-    assert "as if a millimetre scale were put on a mesh already in metres" in findings[0].message
+    assert findings[0].message == (
+        "link `arm`: collision mesh `arm.stl` spans 0.0003 m at scale 0.001, as if already in "
+        "metres"
+    )
+    assert "as if a millimetre scale were put on a mesh already in metres" in findings[0].detail
     assert findings[0].expected["scale"] == pytest.approx([1.0, 1.0, 1.0])
 
 
@@ -78,7 +84,8 @@ def test_non_uniform_scale_keeps_its_shape(lint, tmp_path):
     body = collision(mesh("arm.stl", scale="2 1 1")) + inertial(2.0, 0.001)
     (finding,) = lint(arm(body), "IN031")
     assert finding.expected["scale"] == pytest.approx([0.002, 0.001, 0.001])
-    assert 'scale="0.002 0.001 0.001"' in finding.message
+    assert "spans 300 m at its scale, as if in mm" in finding.message
+    assert 'scale="0.002 0.001 0.001"' in finding.detail
 
 
 def test_genuinely_large_part_is_quiet(lint, tmp_path):
@@ -108,7 +115,7 @@ def test_visual_in_mm_next_to_a_collision_primitive(lint, tmp_path):
     )
     findings = lint(arm(body), "IN031")
     assert len(findings) == 1 and findings[0].expected["kind"] == "visual"
-    assert "its collision box (0.3 × 0.05 × 0.05 m) spans 0.3 m" in findings[0].message
+    assert "its collision box (0.3 × 0.05 × 0.05 m) spans 0.3 m" in findings[0].detail
 
 
 def test_visual_in_mm_told_apart_by_a_collision_mesh_in_metres(lint, tmp_path):
@@ -119,7 +126,7 @@ def test_visual_in_mm_told_apart_by_a_collision_mesh_in_metres(lint, tmp_path):
     body = visual(mesh("pad_mm.stl")) + collision(mesh("pad.stl")) + inertial(0.002, 0.001)
     findings = lint(mounted(body), "IN031")
     assert len(findings) == 1 and findings[0].expected["kind"] == "visual"
-    assert "its collision mesh `pad.stl` spans 0.02 m" in findings[0].message
+    assert "its collision mesh `pad.stl` spans 0.02 m" in findings[0].detail
 
 
 def test_a_mesh_that_passes_on_size_alone_vouches_for_nothing(lint, tmp_path):
@@ -175,7 +182,8 @@ def test_ambiguous_units_name_the_alternatives(lint, tmp_path):
     (finding,) = lint(arm(visual(mesh("arm_cm.stl"))), "IN031")
     assert finding.expected["factor"] == 0.01
     assert finding.expected["alternatives"]
-    assert "would fit too" in finding.message and "inches" in finding.message
+    assert finding.message.endswith("spans 30 m, as if in cm, mm or inches")
+    assert "would fit too" in finding.detail and "inches" in finding.detail
 
 
 def test_the_same_file_at_the_same_scale_slips_together(lint, tmp_path):
@@ -186,3 +194,21 @@ def test_the_same_file_at_the_same_scale_slips_together(lint, tmp_path):
     findings = lint(lone(body), "IN031")
     assert sorted(f.expected["kind"] for f in findings) == ["collision", "visual"]
     assert all(f.expected["factor"] == 0.001 for f in findings)
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint, tmp_path):
+    """The mesh, its size and the unit it looks authored in in the message; the evidence, the
+    scale that fits and the size and density it gives in the detail (the scale also in
+    `expected` and the help)."""
+    write_box_stl(tmp_path / "arm.stl", (300, 50, 50))
+    body = collision(mesh("arm.stl")) + inertial(2.0, 0.001)
+    (finding,) = lint(arm(body), "IN031")
+    assert finding.message == "link `arm`: collision mesh `arm.stl` spans 300 m, as if in mm"
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(
+        "collision mesh `arm.stl` spans 300 m with no scale, as if millimetres were read as "
+        "metres: "
+    )
+    assert finding.detail.endswith(
+        'with scale="0.001 0.001 0.001" it spans 0.3 m and 2 kg in it is 2667 kg/m³'
+    )

@@ -39,12 +39,15 @@ def test_open_collision_mesh_warns_with_method_and_error_bound(lint, meshes):
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.WARNING and finding.link == "part"
-    assert "collision mesh `open.stl` is not closed (10 triangles)" in finding.message
-    assert "convex hull" in finding.message
+    assert finding.message == (
+        "link `part`: collision mesh `open.stl` is open, hull volume 16.7% off"
+    )
+    assert "collision mesh `open.stl` is not closed (10 triangles)" in finding.detail
+    assert "convex hull" in finding.detail
     assert finding.expected["method"] == "convex-hull"
     # the lid's pyramid about the centre is 1/6 of the box
     assert finding.expected["volume_error"] == pytest.approx(1 / 6, rel=1e-6)
-    assert "17%" in finding.message or "16.7%" in finding.message
+    assert "differs from the open surface's by 16.7%" in finding.detail
 
 
 def test_open_visual_next_to_collision_geometry_is_quiet(lint, meshes):
@@ -69,10 +72,24 @@ def test_tolerance_option(lint, meshes):
 def test_inconsistent_winding_warns(lint, meshes):
     findings = lint(part(collision(mesh("flipped.stl")) + INERTIAL), "IN032")
     assert len(findings) == 1
-    assert "wound inconsistently" in findings[0].message
+    assert findings[0].message == (
+        "link `part`: collision mesh `flipped.stl` is closed but wound inconsistently"
+    )
+    assert "computed after repairing the winding" in findings[0].detail
     assert findings[0].expected["method"] == "repaired"
 
 
 def test_repaired_option(lint, meshes):
     text = part(collision(mesh("flipped.stl")) + INERTIAL)
     assert lint(text, "IN032", options={"IN032": {"repaired": False}}) == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint, meshes):
+    """The mesh and the hull's volume error in the message; the triangle count, the method
+    and the hull's volume in the detail."""
+    (finding,) = lint(part(collision(mesh("open.stl")) + INERTIAL), "IN032")
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        "collision mesh `open.stl` is not closed (10 triangles): its mass properties are those "
+        "of its convex hull, whose volume (0.001 m³) differs from the open surface's by 16.7%"
+    )

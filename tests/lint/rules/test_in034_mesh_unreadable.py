@@ -22,14 +22,15 @@ def test_truncated_binary_stl_is_an_error(lint, tmp_path):
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.ERROR and finding.link == "part"
-    assert finding.message.startswith("link `part`: collision mesh `cut.stl` cannot be read: ")
+    assert finding.message == "link `part`: collision mesh `cut.stl` cannot be read"
+    assert finding.detail.startswith("collision mesh `cut.stl` cannot be read: ")
     assert "re-export" in finding.help
 
 
 def test_non_finite_obj_is_an_error(lint, tmp_path):
     (tmp_path / "nan.obj").write_text("v nan nan nan\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n")
     findings = lint(part("nan.obj"), "IN034")
-    assert len(findings) == 1 and "non-finite" in findings[0].message
+    assert len(findings) == 1 and "non-finite" in findings[0].detail
 
 
 def test_unsupported_format_is_a_warning(lint, tmp_path):
@@ -37,7 +38,10 @@ def test_unsupported_format_is_a_warning(lint, tmp_path):
     findings = lint(part("part.vtk"), "IN034")
     assert len(findings) == 1
     assert findings[0].severity == Severity.WARNING
-    assert "in a format inertia-kit does not read (`.vtk`" in findings[0].message
+    assert findings[0].message == (
+        "link `part`: collision mesh `part.vtk` is in a format inertia-kit does not read"
+    )
+    assert "in a format inertia-kit does not read (`.vtk`" in findings[0].detail
 
 
 def test_readable_mesh_is_quiet(lint, tmp_path):
@@ -51,3 +55,15 @@ def test_missing_and_empty_meshes_belong_to_other_rules(lint, tmp_path):
     (tmp_path / "empty.stl").write_bytes(b"")
     assert lint(part("empty.stl"), "IN034") == []  # IN026
     assert lint(part("missing.stl"), "IN034") == []  # IN030
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint, tmp_path):
+    """The mesh's file name in the message; its whole URI and the reader's reason in the
+    detail."""
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "nan.obj").write_text("v nan nan nan\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    (finding,) = lint(part("meshes/nan.obj"), "IN034")
+    assert finding.message == "link `part`: collision mesh `nan.obj` cannot be read"
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith("collision mesh `meshes/nan.obj` cannot be read: ")
+    assert "non-finite" in finding.detail

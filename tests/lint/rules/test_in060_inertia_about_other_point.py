@@ -30,9 +30,12 @@ def test_tensor_about_the_link_origin_fires_with_the_corrected_tensor(lint):
     # about the COM the written tensor has ∫z² dm = m l²/12 + m (l/2)² = m l²/3, more than the
     # m (l/2)² any mass in the drum's length can have (IN023's bound along a direction)
     assert finding.severity == Severity.ERROR and finding.link == "arm"
-    assert finding.message.endswith("as written no mass inside the geometry can have it (IN023)")
-    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.05)" in finding.message
-    assert "2 kg × (0.05 m)²" in finding.message
+    assert (
+        finding.message == "link `arm`: inertia written about the link origin, 0.05 m from the COM"
+    )
+    assert finding.detail.endswith("as written no mass inside the geometry can have it (IN023)")
+    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.05)" in finding.detail
+    assert "2 kg × (0.05 m)²" in finding.detail
     expected = finding.expected
     assert expected["ixx"] == pytest.approx(transverse) and expected["iyy"] == pytest.approx(
         transverse
@@ -71,11 +74,11 @@ def test_it_replaces_in020_only_while_enabled(lint):
     findings = lint(text)
     assert [f.code for f in findings] == ["IN060"]
     assert findings[0].severity == Severity.ERROR  # it stands for IN023's error
-    assert "no mass inside the geometry can have it (IN023)" in findings[0].message
+    assert "no mass inside the geometry can have it (IN023)" in findings[0].detail
     alone = lint(text, ("IN0",), ignore=("IN060",))
     assert [f.code for f in alone] == ["IN020", "IN023"]
-    assert "likely the declared inertia is the tensor about the link origin" in alone[0].message
-    assert "(IN060)" in alone[0].message
+    assert "likely the declared inertia is the tensor about the link origin" in alone[0].detail
+    assert alone[0].message.endswith(", likely about another point (IN060)")
 
 
 def test_beyond_the_bound_of_visual_geometry_only_stays_a_warning(lint):
@@ -83,7 +86,7 @@ def test_beyond_the_bound_of_visual_geometry_only_stays_a_warning(lint):
     text = moving(drum(mass=2.0, radius=0.05, length=0.4).replace("collision", "visual"))
     (finding,) = lint(text, ("IN0",), ignore=("IN025",))
     assert finding.code == "IN060" and finding.severity == Severity.WARNING
-    assert "(IN023)" not in finding.message
+    assert "(IN023)" not in finding.message + finding.detail
 
 
 def test_severity_is_configurable(lint):
@@ -102,8 +105,33 @@ def test_a_child_joint_origin_is_named(lint):
     tip = joint("arm", "tool", "fixed", name="tip", xyz="0 0 0.4") + link("tool")
     findings = lint(moving(body, tip), "IN060")
     assert len(findings) == 1
-    assert "about the origin of joint `tip` (0, 0, 0.4)" in findings[0].message
+    assert "about the origin of joint `tip` (0, 0, 0.4)" in findings[0].detail
+    assert findings[0].message.endswith(
+        "inertia written about joint `tip`'s origin, 0.3 m from the COM"
+    )
     assert findings[0].expected["ixx"] == pytest.approx(transverse)
+    assert findings[0].expected["point_name"] == "the origin of joint `tip`"
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_arithmetic(lint):
+    """The claim and its key number in the message; the point, the arithmetic and the geometry
+    in the detail. A joint name that would make the line too long is left to the detail."""
+    mass, radius, length = 3.0, 0.05, 0.2
+    transverse, _, axial = cylinder_moments(mass, radius, length)
+    shifted = transverse + mass * 0.3**2
+    body = collision(cylinder(radius, length), xyz="0 0 0.1") + inertial(
+        mass, shifted, shifted, axial, xyz="0 0 0.1"
+    )
+    for name in ("tip", "a_rather_long_tool_flange_mounting_joint"):
+        tip = joint("arm", "tool", "fixed", name=name, xyz="0 0 0.4") + link("tool")
+        (finding,) = lint(moving(body, tip), "IN060")
+        assert len(finding.message) <= 100
+        assert finding.message.endswith(", 0.3 m from the COM")
+        detail = finding.detail
+        assert f"the tensor about the origin of joint `{name}` (0, 0, 0.4)" in detail
+        assert "not about the COM (0, 0, 0.1)" in detail and "3 kg × (0.3 m)²" in detail
+        assert "the collision cylinder (r = 0.05 m, l = 0.2 m) gives" in detail
+    assert "about a joint's origin" in finding.message
 
 
 def _seed(path: str, packages: tuple[str, ...] = ()) -> list:
@@ -120,7 +148,11 @@ def test_seed_mrm_cylinders_are_about_the_link_origin_and_the_base_is_quiet():
     assert not [f for f in findings if f.code == "IN020"]  # replaced
     assert not [f for f in findings if f.link == "base_link" and f.code in ("IN020", "IN060")]
     link_01 = next(f for f in forensic if f.link == "link_01")
-    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.2)" in link_01.message
+    assert "about the link origin (0, 0, 0), not about the COM (0, 0, 0.2)" in link_01.detail
+    assert (
+        link_01.message
+        == "link `link_01`: inertia written about the link origin, 0.2 m from the COM"
+    )
     # the declared 13.235 less the parallel-axis term m d²: the cylinder's m (3r² + l²) / 12
     mass = 157.633
     assert link_01.expected["ixx"] == pytest.approx(13.235 - mass * 0.2**2)

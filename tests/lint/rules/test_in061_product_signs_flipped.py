@@ -9,6 +9,7 @@ import pytest
 from kit.moments import box_tensor
 from kit.urdf import box, collision, inertial, moving
 
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
 
 MASS, SIZE = 2.0, (0.4, 0.2, 0.1)
@@ -42,9 +43,10 @@ def test_flipped_products_fire_with_the_geometry_signs(lint, rpy, codes):
     expected = findings[-1].expected
     for name, (i, j) in {"ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2), "ixx": (0, 0)}.items():
         assert expected[name] == pytest.approx(right[i, j], abs=1e-12)
-    assert "opposite sign" in findings[-1].message and findings[-1].help == (
+    assert "opposite sign" in findings[-1].detail and findings[-1].help == (
         "negate ixy, ixz and iyz"
     )
+    assert findings[-1].message.startswith("link `plate`: product signs flipped: ")
     # the same values with URDF's signs: nothing to say
     assert lint(plate(right[0, 1], right[0, 2], right[1, 2], diag, rpy)) == []
 
@@ -55,3 +57,25 @@ def test_small_products_flipped_are_within_the_mismatch_floor(lint):
     right = turned_box(rpy)
     diag = tuple(float(v) for v in np.diag(right))
     assert lint(plate(-right[0, 1], 0.0, 0.0, diag, rpy)) == []
+
+
+def test_the_message_names_the_largest_product_and_the_detail_every_one(lint):
+    """One line: the largest written product against the geometry's; the detail lists the three
+    written and the geometry's, and the convention."""
+    rpy = (0.4, 0.3, 0.5)
+    right = turned_box(rpy)
+    diag = tuple(float(v) for v in np.diag(right))
+    (finding,) = lint(plate(-right[0, 1], -right[0, 2], -right[1, 2], diag, rpy), "IN061")
+    i, j = max(((0, 1), (0, 2), (1, 2)), key=lambda ij: abs(right[ij]))
+    name = "i" + "xyz"[i] + "xyz"[j]
+    assert finding.message == (
+        f"link `plate`: product signs flipped: {name} {fmt(-right[i, j], 3)}, "
+        f"geometry {fmt(right[i, j], 3)}"
+    )
+    assert len(finding.message) <= 100
+    detail = finding.detail
+    assert "URDF's convention is ixy = -∫xy dm" in detail
+    for n, (a, b) in {"ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2)}.items():
+        assert f"{n} {fmt(-right[a, b], 5)}" in detail.split("; ")[0]  # written
+        assert f"{n} {fmt(right[a, b], 5)}" in detail.split("; ")[1]  # the geometry's
+    assert "the collision box (0.4 × 0.2 × 0.1 m) gives" in detail

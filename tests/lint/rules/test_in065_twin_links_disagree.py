@@ -107,7 +107,8 @@ def test_products_not_flipped_are_named(lint, meshes):
     finding = findings[0]
     # both hips depart from their geometry alike: the finding blames neither
     assert finding.severity == Severity.WARNING and finding.link is None
-    assert finding.message == (
+    assert finding.message == "twins `l_hip` and `r_hip` disagree in products of inertia"
+    assert finding.detail == (
         "`l_hip` and `r_hip` mirror in geometry, but their products of inertia do not: "
         "ixy 0.00015, iyz -0.0002 on both; mirrored, `r_hip` should have ixy -0.00015, iyz 0.0002"
     )
@@ -126,7 +127,7 @@ def test_products_not_flipped_are_named(lint, meshes):
 def test_name_spellings_pair(lint, meshes, names):
     findings = lint(pair(VALUES, names=names), "IN065")
     assert len(findings) == 1  # blaming neither (the same values as below: the file cannot say)
-    assert findings[0].message.startswith(f"`{names[0]}` and `{names[1]}` mirror in geometry")
+    assert findings[0].detail.startswith(f"`{names[0]}` and `{names[1]}` mirror in geometry")
 
 
 def test_masses_differ(lint, meshes):
@@ -135,7 +136,9 @@ def test_masses_differ(lint, meshes):
     scaled = {k: v * 1.5 for k, v in mirrored(VALUES).items()}
     findings = lint(pair(scaled, right_mass=0.675), "IN065")
     assert len(findings) == 1
-    assert findings[0].message == (
+    assert findings[0].message == "twins `l_hip` and `r_hip` disagree in mass (×1.5)"
+    assert len(findings[0].message) <= 100
+    assert findings[0].detail == (
         "`l_hip` and `r_hip` mirror in geometry, but not in mass: 0.45 kg and 0.675 kg (×1.5)"
     )
     # the same values with 1.5 times the mass: the tensor, per kilogram, differs too. VALUES
@@ -143,8 +146,9 @@ def test_masses_differ(lint, meshes):
     # fits its geometry better: the left one is at fault (analysis.fault) and named
     findings = lint(pair(mirrored(VALUES), right_mass=0.675), "IN065")
     assert len(findings) == 1 and findings[0].link == "l_hip"
-    assert "(×1.5); inertia: `l_hip` has ixx 0.0009" in findings[0].message
-    assert "mirrored from `r_hip` (at its mass), ixx 0.0006" in findings[0].message
+    assert findings[0].message == "twins `r_hip` and `l_hip` disagree in mass (×1.5) and inertia"
+    assert "(×1.5); inertia: `l_hip` has ixx 0.0009" in findings[0].detail
+    assert "mirrored from `r_hip` (at its mass), ixx 0.0006" in findings[0].detail
 
 
 # the tetrahedron's own values at 0.45 kg (uniform density), rounded as CAD prints them
@@ -177,7 +181,7 @@ def test_the_twin_at_fault_is_named_whichever_side(lint, meshes):
     # a slipped mass on the left twin, the first in the file: the finding lands on it
     findings = lint(geometric_pair(left_mass=1.35), "IN065")
     assert [f.link for f in findings] == ["l_hip"]
-    assert findings[0].message.startswith("`r_hip` and `l_hip` mirror in geometry, but not in mass")
+    assert findings[0].detail.startswith("`r_hip` and `l_hip` mirror in geometry, but not in mass")
     assert "`l_hip`'s values are the ones that depart from the geometry" in findings[0].help
     assert findings[0].expected["twin"] == "r_hip"
     findings = lint(geometric_pair(right_mass=1.35), "IN065")
@@ -198,7 +202,7 @@ def test_twins_that_depart_alike_keep_one_finding_for_the_pair(lint, meshes):
     findings = lint(biped(left, right), "IN065")
     # one finding for the pair, located at the second twin's values, blaming neither link
     assert [f.link for f in findings] == [None]
-    assert findings[0].message.startswith("`l_hip` and `r_hip` mirror in geometry")
+    assert findings[0].detail.startswith("`l_hip` and `r_hip` mirror in geometry")
     assert "Which twin is right the file cannot say" in findings[0].help
 
 
@@ -241,9 +245,10 @@ def test_centre_of_mass_not_mirrored(lint, meshes):
     # the y of the COM copied: 0.025 m apart on a 0.2 m link (5 % is 0.01 m)
     findings = lint(pair(mirrored(VALUES), right_com=(0.025, 0.0125, -0.05)), "IN065")
     assert len(findings) == 1
-    message = findings[0].message
-    assert "but not in centre of mass: `r_hip` has (0.025, 0.0125, -0.05) m" in message
-    assert "mirrored from `l_hip` (0.025, -0.0125, -0.05) m, 0.025 m apart" in message
+    detail = findings[0].detail
+    assert "but not in centre of mass: `r_hip` has (0.025, 0.0125, -0.05) m" in detail
+    assert "mirrored from `l_hip` (0.025, -0.0125, -0.05) m, 0.025 m apart" in detail
+    assert findings[0].message == "twins `l_hip` and `r_hip` disagree in centre of mass (0.025 m)"
 
 
 def test_moment_differs(lint, meshes):
@@ -251,7 +256,7 @@ def test_moment_differs(lint, meshes):
     findings = lint(pair(values), "IN065")
     assert len(findings) == 1
     assert "not in inertia: `r_hip` has ixx 0.0011; mirrored from `l_hip`, ixx 0.0009" in (
-        findings[0].message
+        findings[0].detail
     )
 
 
@@ -265,7 +270,7 @@ def test_front_and_rear_never_pair(lint, meshes):
     # the same two links named as a left/right pair are compared (across the yz-plane): only
     # the names kept them apart
     findings = lint(biped(front, rear.replace("RL_hip", "FR_hip")), "IN065")
-    assert len(findings) == 1 and "ixy 0.00015, ixz -0.00014 on both" in findings[0].message
+    assert len(findings) == 1 and "ixy 0.00015, ixz -0.00014 on both" in findings[0].detail
 
 
 def test_leg_codes_pair_left_and_right(lint, meshes):
@@ -273,7 +278,7 @@ def test_leg_codes_pair_left_and_right(lint, meshes):
     right = hip("FR_hip", "right_hip.stl", "0.2 -0.1 -0.15", VALUES, com=(0.025, -0.0125, -0.05))
     findings = lint(biped(left, right), "IN065")
     assert len(findings) == 1
-    assert findings[0].message.startswith("`FL_hip` and `FR_hip` mirror in geometry")
+    assert findings[0].detail.startswith("`FL_hip` and `FR_hip` mirror in geometry")
 
 
 def test_frames_that_take_the_reflection_are_quiet(lint, meshes):
@@ -292,9 +297,7 @@ def test_frames_that_take_the_reflection_are_quiet(lint, meshes):
     )
     findings = lint(biped(left, flipped), "IN065")
     assert len(findings) == 1
-    assert (
-        "`r_hip` has iyz 0.0002; mirrored, `r_hip` should have iyz -0.0002" in findings[0].message
-    )
+    assert "`r_hip` has iyz 0.0002; mirrored, `r_hip` should have iyz -0.0002" in findings[0].detail
 
 
 def test_same_part_twice_need_not_mirror(lint, meshes):
@@ -316,7 +319,7 @@ def test_same_part_twice_with_a_centre_of_mass_neither_explains(lint, meshes):
     right = hip("r_hip", "drive.stl", "0 -0.1 -0.15", VALUES, com=(0.025, 0.05, -0.05))
     findings = lint(biped(left, right), "IN065")
     assert len(findings) == 1
-    assert findings[0].message == (
+    assert findings[0].detail == (
         "`l_hip` and `r_hip` mirror in geometry, but not in centre of mass: `r_hip` has "
         "(0.025, 0.05, -0.05) m, mirrored from `l_hip` (0.025, -0.0125, -0.05) m, 0.062 m apart"
     )
@@ -345,7 +348,7 @@ def test_primitive_twins_compare_mass(lint):
     findings = lint(text, "IN065")
     # the same tensor at 3 kg is closer to the box's (izz 0.004 where 2 kg gives 0.00083):
     # the left leg departs more from its geometry and is named
-    assert len(findings) == 1 and "3 kg and 2 kg (×1.5)" in findings[0].message
+    assert len(findings) == 1 and "3 kg and 2 kg (×1.5)" in findings[0].detail
     assert findings[0].link == "left_leg"
 
 
@@ -399,7 +402,7 @@ def test_xacro_reflect_forgotten_on_a_product(lint, meshes):
     # the two hips depart from their geometry alike (a product of 1.5e-4 beside moments of
     # 1e-3): the file cannot say which is wrong (the macro is), so no link is blamed
     assert finding.link is None
-    assert "`right_hip` has ixy 0.00015; mirrored from `left_hip`, ixy -0.00015" in finding.message
+    assert "`right_hip` has ixy 0.00015; mirrored from `left_hip`, ixy -0.00015" in finding.detail
     # reported at the macro call that made the right hip
     assert finding.line == XACRO.splitlines().index('  <xacro:hip side="right" reflect="-1"/>') + 1
 
@@ -419,3 +422,19 @@ def test_bad_input_gives_no_finding_and_no_crash(lint, meshes, broken):
     old, new = broken
     assert old in tail
     assert lint(head + "r_hip_yaw" + tail.replace(old, new, 1), "IN065") == []
+
+
+def test_long_names_keep_the_message_short(lint, meshes):
+    """Names as long as Talos' hand links drop the message's numbers, which the detail keeps."""
+    left, right = "hand_left_middle_abd_link", "hand_right_middle_abd_link"
+    values = {**mirrored(VALUES), "ixx": 0.0011}
+    text = biped(
+        hip(left, "left_hip.stl", "0 0.1 -0.15", VALUES),
+        hip(right, "right_hip.stl", "0 -0.1 -0.15", values, mass=0.675, com=(0.025, 0.05, -0.05)),
+    )
+    (finding,) = lint(text, "IN065")
+    assert finding.message == (
+        f"twins `{left}` and `{right}` disagree in mass, centre of mass and inertia"
+    )
+    assert len(finding.message) <= 120  # the hard limit, with 51 characters of names
+    assert "0.45 kg and 0.675 kg (×1.5)" in finding.detail and "m apart" in finding.detail

@@ -35,9 +35,13 @@ def test_own_blocks_are_quiet(lint):
 def test_the_copy_is_named_on_the_link_it_does_not_fit(lint):
     (finding,) = lint(arm(block(2.0, UPPER), block(2.0, UPPER)), "IN066")
     assert finding.link == "forearm" and finding.expected["original"] == "upper_arm"
-    assert finding.message.startswith(
-        "link `forearm`: its `<inertial>` is the one of `upper_arm`, copied (2 kg at "
-        "(0, 0, 0.15) m and the same six values): it fits `upper_arm`'s geometry"
+    assert finding.message == (
+        "link `forearm`: <inertial> copied from `upper_arm`, whose geometry it fits"
+    )
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(
+        "the `<inertial>` of `forearm` is the one of `upper_arm`, copied (2 kg at "
+        "(0, 0, 0.15) m and the same six values): it fits `upper_arm`'s geometry (tensor"
     )
     assert finding.expected["com"] == [0.0, 0.0, 0.12]
     # the forearm's block pasted into the upper arm, the first link in the file: named there
@@ -137,7 +141,7 @@ def test_a_block_its_own_link_fits_loosely_is_still_named_where_it_fits_nothing(
     )
     (finding,) = lint(text, "IN066")
     assert finding.link == "tip" and finding.expected["original"] == "upper_arm"
-    assert "far better than its own" in finding.message
+    assert "far better than its own" in finding.detail
     # the same loose block on a link it fits about as well: no copy named
     text = robot(
         link("world"),
@@ -147,3 +151,12 @@ def test_a_block_its_own_link_fits_loosely_is_still_named_where_it_fits_nothing(
         part("twin", loose, (0.08, 0.08, 0.28)),
     )
     assert lint(text, "IN066") == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_keeps_the_basis(lint):
+    """Both names in the message; the copied block and how far it is from each link's
+    geometry in the detail."""
+    (finding,) = lint(arm(block(2.0, UPPER), block(2.0, UPPER)), "IN066")
+    assert len(finding.message) <= 100
+    assert "(0, 0, 0.15) m and the same six values" in finding.detail
+    assert finding.detail.count("from its geometry's") == 2  # the tensor, against each link's

@@ -20,7 +20,10 @@ def test_a_flipped_sign_is_named_and_replaces_in021(lint):
     assert [f.code for f in findings] == ["IN067"]
     finding = findings[0]
     assert finding.severity == Severity.ERROR  # outside the hull, as IN021's error
-    assert "with y negated it is inside, 41 mm from the geometry's centroid" in finding.message
+    assert "with y negated it is inside, 41 mm from the geometry's centroid" in finding.detail
+    assert finding.message == (
+        "link `arm`: COM 0.24 m outside its geometry; with y negated, 41 mm from the centroid"
+    )
     assert finding.expected["xyz"] == pytest.approx([0.01, 0.24, 0.0])
     assert finding.expected["hypothesis"] == "flip"
     assert finding.wants.safety == Safety.UNSAFE and finding.wants.repairs == Repairs.LIKELY
@@ -32,9 +35,26 @@ def test_inside_but_far_is_a_warning(lint):
     plate = collision(box(0.4, 0.3, 0.05), xyz="0.2 0.05 0")
     findings = lint(moving(inertial(2.0, 0.016, 0.027, 0.042, xyz="0.2 -0.06 0") + plate))
     assert [(f.code, f.severity) for f in findings] == [("IN067", Severity.WARNING)]
-    message = findings[0].message
-    assert "73% of the way from the centroid to the edge of its collision box" in message
-    assert "with y negated it is inside, 10 mm from" in message
+    message, detail = findings[0].message, findings[0].detail
+    assert message == ("link `arm`: COM 73% to the edge; with y negated, 10 mm from the centroid")
+    assert len(message) <= 100
+    # the detail: the point, the geometry it is judged against, and the reading
+    assert detail == (
+        "the centre of mass (0.2, -0.06, 0) m lies 73% of the way from the centroid to the edge "
+        "of its collision box (0.4 × 0.3 × 0.05 m); with y negated it is inside, 10 mm from "
+        "the geometry's centroid"
+    )
+
+
+def test_a_long_name_leaves_the_distance_to_the_detail(lint):
+    """The message keeps the slip and how far out the point is; with a link name of 40
+    characters the corrected point's distance from the centroid is the detail's alone."""
+    name = "hand_right_thumb_abduction_proximal_link"
+    text = arm("0.01 -0.24 0").replace('"arm"', f'"{name}"')
+    (finding,) = lint(text, "IN067")
+    assert finding.message == f"link `{name}`: COM 0.24 m outside its geometry; with y negated"
+    assert len(finding.message) <= 100
+    assert "with y negated it is inside, 41 mm from the geometry's centroid" in finding.detail
 
 
 def test_two_slips_alike_leave_in021(lint):

@@ -19,8 +19,16 @@ def test_a_tensor_for_a_third_of_the_mass(lint):
     ixx, iyy, izz = box_moments(2.0, (0.4, 0.2, 0.1))
     body = inertial(6.0, ixx, iyy, izz) + collision(box(0.4, 0.2, 0.1))
     (finding,) = in068(lint, moving(body))
-    assert "for 2 kg, not the declared 6 kg" in finding.message
-    assert "1/3 of the geometry's" in finding.message
+    assert (
+        finding.message == "link `arm`: inertia fits its geometry for 2 kg, not the declared 6 kg"
+    )
+    assert len(finding.message) <= 100
+    # the detail: the geometry, the factor on every principal moment and how alike they are
+    assert finding.detail.startswith(
+        "the tensor is its collision box (0.4 × 0.2 × 0.1 m)'s for 2 kg, not the declared 6 kg: "
+        "every principal moment is 1/3 of the geometry's at the declared mass (alike within a "
+        "factor of "
+    )
     assert "multiply the six values by 3" in finding.help
     assert finding.expected["tensor_mass"] == pytest.approx(2.0)
     assert finding.expected["factor"] == pytest.approx(1 / 3)
@@ -63,9 +71,12 @@ def test_a_mass_changed_beside_its_twin(lint):
     (finding,) = in068(lint, _twins(2.0, 6.0))
     assert finding.link == "right_leg"
     assert finding.message == (
-        "link `right_leg`: its six `<inertia>` values are those of `left_leg`, whose geometry is "
-        "the same shape per kilogram, but its mass is 3 times `left_leg`'s (6 kg against 2 kg): "
-        "the mass was likely changed after the tensor was computed"
+        "link `right_leg`: inertia is `left_leg`'s, for its 2 kg, not the declared 6 kg"
+    )
+    assert finding.detail == (
+        "its six `<inertia>` values are those of `left_leg`, whose geometry is the same shape "
+        "per kilogram, but its mass is 3 times `left_leg`'s (6 kg against 2 kg): the mass was "
+        "likely changed after the tensor was computed"
     )
     assert finding.expected["tensor_mass"] == pytest.approx(2.0)
     assert "multiply the six values by 3" in finding.help
@@ -73,3 +84,19 @@ def test_a_mass_changed_beside_its_twin(lint):
     assert [f.link for f in lint(_twins(2.0, 6.0), "IN013")] == []
     # a factor within real parts' scatter (2) is not named
     assert in068(lint, _twins(2.0, 4.0)) == []
+
+
+def test_long_names_leave_the_other_link_to_the_detail(lint):
+    """Two names of 40 characters would make the line too long: the message says "another
+    link's", the detail names it."""
+    left, right = (
+        "left_hind_leg_lower_segment_with_the_foot",
+        "right_hind_leg_lower_segment_with_foot",
+    )
+    text = _twins(2.0, 6.0).replace('"left_leg"', f'"{left}"').replace('"right_leg"', f'"{right}"')
+    (finding,) = in068(lint, text)
+    assert finding.message == (
+        f"link `{right}`: inertia is another link's, for its 2 kg, not the declared 6 kg"
+    )
+    assert len(finding.message) <= 120  # the hard limit, with a name of 38 characters
+    assert f"are those of `{left}`" in finding.detail

@@ -10,6 +10,7 @@ from kit.moments import box_tensor
 from kit.urdf import box, collision, inertial, moving, visual
 
 from inertia_kit.analysis.principal_axes import angle_limit
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
 
 SIZE = (0.5, 0.2, 0.1)
@@ -34,8 +35,16 @@ def test_a_part_turned_35_degrees(lint):
     findings = lint(moving(turned(35.0, SCATTER) + collision(box(*SIZE))))
     assert [f.code for f in findings] == ["IN069"]
     (finding,) = findings
-    message = finding.message
-    assert "axis of least inertia (0.819, 0.574, 0) is 35° from its collision box" in message
+    limit = finding.expected["limit"]
+    assert finding.message == (
+        f"link `arm`: axis of least inertia 35° from the geometry's (real parts ≤ {fmt(limit, 2)}°)"
+    )
+    assert len(finding.message) <= 100
+    # the detail: both axes, the geometry, the spread of the moments and the limit it allows
+    detail = finding.detail
+    assert "axis of least inertia (0.819, 0.574, 0) is 35° from its collision box" in detail
+    assert "(0.5 × 0.2 × 0.1 m)'s (1, 0, 0); with its moments apart by a factor of " in detail
+    assert detail.endswith(f"a real part's axis strays at most {fmt(limit, 2)}°")
     assert finding.severity.name == "WARNING"
     assert finding.expected["rank"] == 0
     assert finding.expected["angle"] == pytest.approx(35.0, abs=1e-3)
