@@ -108,3 +108,19 @@ def geometry_summary(link: model.Link) -> str:
         if shapes:
             return what + ", ".join(describe_geometry(s.geometry, TABLE) for s in shapes)
     return "no geometry"
+
+
+#: a mesh finding's message longer than this leaves out the file name (its detail has it) when
+#: the link has no other shape of that kind
+MESH_MESSAGE = 100
+
+
+def mesh_message(link: model.Link, kind: str, filename: str, claim: str) -> str:
+    """``link `arm`: collision mesh `arm.stl` <claim>``, without the file name when long."""
+    from pathlib import Path
+
+    message = f"link `{link.name}`: {kind} mesh `{Path(filename).name}` {claim}"
+    shapes = link.visuals if kind == "visual" else link.collisions
+    if len(message) <= MESH_MESSAGE or len(shapes) != 1:
+        return message
+    return f"link `{link.name}`: {kind} mesh {claim}"

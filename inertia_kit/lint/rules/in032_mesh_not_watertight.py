@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from pathlib import Path
 
+from inertia_kit.analysis.describe import mesh_message
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
@@ -21,20 +22,6 @@ OPTIONS = (
     Option("tolerance", float, 0.05, "open meshes with a volume_error up to this pass"),
     Option("repaired", bool, True, "flag closed meshes with inconsistent triangle winding"),
 )
-
-
-# a message longer than this leaves out the file name (the detail has it) when the link has no
-# other shape of that kind
-LONG = 100
-
-
-def _message(link: LinkAnalysis, kind: str, filename: str, claim: str) -> str:
-    """``link `arm`: collision mesh `arm.stl` <claim>``, without the file name when long."""
-    message = f"link `{link.name}`: {kind} mesh `{Path(filename).name}` {claim}"
-    shapes = link.link.visuals if kind == "visual" else link.link.collisions
-    if len(message) <= LONG or len(shapes) != 1:
-        return message
-    return f"link `{link.name}`: {kind} mesh {claim}"
 
 
 def _kinds(link: LinkAnalysis) -> tuple[str, ...]:
@@ -63,8 +50,8 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         count = f"{mesh.triangle_count} triangles"
         if mesh.method == "convex-hull" and mesh.volume_error > tolerance:
             yield ctx.finding(
-                _message(
-                    link,
+                mesh_message(
+                    link.link,
                     kind,
                     element.filename,
                     f"is open, hull volume {fmt(100 * mesh.volume_error, 3)}% off",
@@ -86,7 +73,9 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             )
         elif mesh.method == "repaired" and ctx.option("repaired"):
             yield ctx.finding(
-                _message(link, kind, element.filename, "is closed but wound inconsistently"),
+                mesh_message(
+                    link.link, kind, element.filename, "is closed but wound inconsistently"
+                ),
                 element.source,
                 link=link.name,
                 detail=f"{kind} mesh `{name}` is closed ({count}) but its triangles are wound "

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from inertia_kit.analysis.describe import mesh_message
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
@@ -18,20 +19,6 @@ NAME = "mesh-inverted"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
 SUMMARY = "a closed mesh is wound inside-out: its signed volume is negative"
-
-
-# a message longer than this leaves out the file name (the detail has it) when the link has no
-# other shape of that kind
-LONG = 100
-
-
-def _message(link: LinkAnalysis, kind: str, filename: str, claim: str) -> str:
-    """``link `arm`: collision mesh `arm.stl` <claim>``, without the file name when long."""
-    message = f"link `{link.name}`: {kind} mesh `{Path(filename).name}` {claim}"
-    shapes = link.link.visuals if kind == "visual" else link.link.collisions
-    if len(message) <= LONG or len(shapes) != 1:
-        return message
-    return f"link `{link.name}`: {kind} mesh {claim}"
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
@@ -55,7 +42,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         name = f"{kind} mesh `{Path(element.filename).name}`"
         claim = f"is inside-out, volume {fmt(-mesh.volume, 4)} m³"
         yield ctx.finding(
-            _message(link, kind, element.filename, claim),
+            mesh_message(link.link, kind, element.filename, claim),
             element.source,
             link=link.name,
             detail=f"{name} is wound inside-out: its signed volume is "
