@@ -100,7 +100,7 @@ def test_a_dimension_thinner_than_an_atom_is_degenerate(tmp_path, length):
         tmp_path / "robot.urdf", moving(inertial(1, 0.01), collision(cylinder(0.1, length)))
     )
     (finding,) = only(lint(path, "--output-format", "json"), "IN026")
-    assert f"a dimension of {length} m is below 1e-10 m, the size of an atom" in finding["message"]
+    assert f"a dimension of {length} m is below 1e-10 m, the size of an atom" in finding["detail"]
 
 
 def test_contact_point_spheres_are_solids(tmp_path):

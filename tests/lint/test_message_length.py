@@ -40,25 +40,10 @@ def too_long(findings: list[dict]) -> list[str]:
     ]
 
 
-#: rules whose messages are still being cut to one line (issue 21, item 5, in progress): each
-#: is expected to fail, strictly, so that one that passes must leave this set
-STILL_LONG: frozenset[str] = frozenset({"IN013", "IN023", "IN041"})
-
-
-def _example_findings() -> list[dict]:
-    return [f for folder in sorted(EXAMPLES.iterdir()) for f in messages(folder)]
-
-
 def test_every_message_on_the_examples_is_one_short_line():
-    findings = _example_findings()
+    findings = [f for folder in sorted(EXAMPLES.iterdir()) for f in messages(folder)]
     assert len({f["code"] for f in findings}) >= 8  # enough rules speak to measure
-    assert too_long([f for f in findings if f["code"] not in STILL_LONG]) == []
-
-
-@pytest.mark.parametrize("code", sorted(STILL_LONG))
-@pytest.mark.xfail(strict=True, reason="its messages are being shortened (issue 21, item 5)")
-def test_a_rule_still_being_shortened(code):
-    assert too_long([f for f in _example_findings() if f["code"] == code]) == []
+    assert too_long(findings) == []
 
 
 def test_the_detail_keeps_what_the_message_leaves_out():
@@ -94,4 +79,4 @@ def test_every_message_on_the_installed_robot_packages_is_one_short_line(folder)
     if folder is None:
         pytest.skip("no robot package installed (pip install example-robot-data pybullet ...)")
     findings = messages(folder, "--package-path", str(folder), "-j", "2")
-    assert too_long([f for f in findings if f["code"] not in STILL_LONG]) == []
+    assert too_long(findings) == []

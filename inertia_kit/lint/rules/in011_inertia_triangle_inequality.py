@@ -106,15 +106,15 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         principal = np.array([a, b, c])
         shown = [0.0 if abs(v) <= tol0 else v for v in (a, b)]
         yield ctx.finding(
-            f"link `{link.name}`: principal moments {moments_text(principal)} break "
-            f"A + B ≥ C: {fmt(shown[0], 4)} + {fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)}"
-            f" < {fmt(c, 4)}, "
-            f"{fmt(100 * shortfall / c, 3)} % short (no rigid body has such a tensor; MuJoCo "
-            f"refuses it, Gazebo rejects it, Drake replaces it by a sphere of water, PyBullet "
-            f"zeroes it){basis}",
+            f"link `{link.name}`: the principal moments break A + B ≥ C, "
+            f"{fmt(100 * shortfall / c, 3)} % short",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected=None if written is None else written.fields,
+            detail=f"principal moments {moments_text(principal)}: {fmt(shown[0], 4)} + "
+            f"{fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)} < {fmt(c, 4)}; no rigid body "
+            "has such a tensor: MuJoCo refuses it, Gazebo rejects it, Drake replaces it by a "
+            f"sphere of water, PyBullet zeroes it{basis}",
             help="the tensor is impossible: check that it is about the centre of mass (not the "
             "link origin), that the products of inertia have the URDF sign (ixy = -∫xy dm), and "
             "that the values were not typed by hand; `inertia-fill --fix invalid` recomputes it "

@@ -99,13 +99,14 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"{vector_text(geometry_moments, 3)} kg·m²"
             )
         yield ctx.finding(
-            f"link `{link.name}`: smallest principal moment {fmt(smallest, 3)} kg·m² (radius of "
-            f"gyration {fmt(radius * 1000, 3)} mm for {fmt(mass)} kg) is below {basis}: "
-            f"simulators integrate such a light rotation stiffly and it jitters or blows up"
-            f"{geometry_text}",
+            f"link `{link.name}`: smallest principal moment {fmt(smallest, 3)} kg·m² is below "
+            f"{fmt(floor, 3)} kg·m²",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected=payload,
+            detail=f"radius of gyration {fmt(radius * 1000, 3)} mm for {fmt(mass)} kg, below "
+            f"{basis}: simulators integrate such a light rotation stiffly and it jitters or blows "
+            f"up{geometry_text}",
             help="use the part's real tensor about its centre of mass (from CAD, or "
             "`inertia-fill --fix invalid` from the geometry); lower `min_moment`/`min_radius` "
             "in [tool.inertia-kit.rules.IN012] if this part really is that small",

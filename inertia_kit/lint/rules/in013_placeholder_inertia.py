@@ -198,12 +198,13 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             else f"is near-isotropic but gives 1/{fmt(ratio, 3)} of that"
         )
         yield ctx.finding(
-            f"link `{link.name}`: ixx = iyy = izz = {fmt(values[0], 4)} kg·m² with no products "
-            f"of inertia is an isotropic placeholder, but its {link.geometry.describe()} "
-            f"{why}: with the declared {fmt(declared.mass)} kg it gives {written.text()}",
+            f"link `{link.name}`: ixx = iyy = izz = {fmt(values[0], 4)} kg·m² is an isotropic "
+            "placeholder",
             inertial.inertia_source or inertial.source,
             link=link.name,
             expected={"mass": declared.mass, **written.fields},
+            detail=f"with no products of inertia; its {link.geometry.describe()} {why}: with the "
+            f"declared {fmt(declared.mass)} kg it gives {written.text()}",
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )
@@ -279,12 +280,14 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"their masses the principal moments differ by a factor of {fmt(apart, 3)}"
             )
             yield ctx.finding(
-                f"link `{member.name}`: its six `<inertia>` values are those of link "
-                f"`{original.name}` ({tensor_text(declared_tensor)} kg·m²), but {why}: "
-                f"{basis_text(member, mass)} {written.text()}",
+                f"link `{member.name}`: `<inertia>` copied from `{original.name}`, a different "
+                f"body (×{fmt(apart, 3)})",
                 inertial.inertia_source or inertial.source,
                 link=member.name,
                 expected={"mass": mass, **written.fields},
+                detail=f"its six `<inertia>` values are those of link `{original.name}` "
+                f"({tensor_text(declared_tensor)} kg·m²), but {why}: "
+                f"{basis_text(member, mass)} {written.text()}",
                 help="compute this link's own tensor (from CAD, or `inertia-fill --fix invalid` "
                 "from the geometry) instead of copying another link's"
                 + ("" if shape > copy_factor else "; or check its mass"),

@@ -56,6 +56,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if not verdicts:
         return
     side, geometry, density = verdicts[0]
+    limit = f"above {fmt(high)}" if side == "high" else f"below {fmt(low)}"
     bound = (
         f"above the plausible {fmt(high)} kg/m³ (tungsten is 19 300)"
         if side == "high"
@@ -63,10 +64,12 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     )
     assert inertial is not None
     yield ctx.finding(
-        f"link `{link.name}`: {fmt(mass)} kg in its {geometry.describe()} of "
-        f"{fmt(geometry.volume, 4)} m³ is {fmt(density, 4)} kg/m³, {bound}",
+        f"link `{link.name}`: {fmt(mass)} kg in its {geometry.name()} is {fmt(density, 4)} "
+        f"kg/m³, {limit} kg/m³",
         inertial.mass_source or inertial.source,
         link=link.name,
+        detail=f"{fmt(mass)} kg in its {geometry.describe()} of {fmt(geometry.volume, 4)} m³ is "
+        f"{fmt(density, 4)} kg/m³, {bound}",
         expected={
             "density": density,
             "volume": geometry.volume,

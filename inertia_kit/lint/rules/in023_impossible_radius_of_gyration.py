@@ -106,6 +106,17 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     if firmness is not None:
         result["firm"] = firmness.firm
         result["max_with_rounding"] = firmness.margin.bound
+    # the message: the value and the bound; the geometry, the basis and the doubt: the detail
+    if excess.kind == "about":
+        short = (
+            f"i{name}{name} = {fmt(excess.moment, 4)} kg·m²"
+            if name is not None
+            else f"an oblique moment of {fmt(excess.moment, 4)} kg·m²"
+        )
+    else:
+        short = (
+            f"∫{name}² dm" if name is not None else "an oblique ∫(u·r)² dm"
+        ) + f" = {fmt(excess.moment, 4)} kg·m²"
     if excess.kind == "about":
         what = f"i{name}{name}" if name is not None else f"the moment about the axis {words}"
         gyration = float(np.sqrt(excess.moment / declared.mass))
@@ -132,11 +143,12 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             f"along {words} than its shapes"
         )
     yield ctx.finding(
-        f"link `{link.name}`: {claim}{uniform}"
-        + ("" if doubt is None else f"; a warning, not an error: {doubt}"),
+        f"link `{link.name}`: {short} exceeds the {fmt(excess.bound, 4)} kg·m² its geometry allows",
         inertial.inertia_source or inertial.source,
         link=link.name,
         expected=result,
+        detail=f"{claim}{uniform}"
+        + ("" if doubt is None else f"; a warning, not an error: {doubt}"),
         help=help
         if doubt is None
         else "check the tensor against the part (recompute it about the centre of mass), or "

@@ -47,6 +47,13 @@ def _drake_refuses(geometry: model.Geometry) -> bool:
     return any(isinstance(v, float) and v <= 0 for v in dimensions)
 
 
+def _named(geometry: model.Geometry) -> str:
+    """The shape for the message: with its sizes, a mesh by its file's name alone."""
+    if isinstance(geometry, model.Mesh):
+        return f"mesh `{geometry.filename.replace(chr(92), '/').rsplit('/', 1)[-1]}`"
+    return describe_geometry(geometry)
+
+
 def _has_mass(link: LinkAnalysis) -> bool:
     inertial = link.link.inertial
     return inertial is not None and isinstance(inertial.mass, float) and inertial.mass > 0
@@ -73,11 +80,12 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                     continue  # a flat decal or ground plane draws fine and weighs nothing
                 if not _drake_refuses(shape.geometry):
                     severity = Severity.WARNING
+            described = describe_geometry(shape.geometry)
             yield ctx.finding(
-                f"link `{link.name}`: its {shape.kind} {describe_geometry(shape.geometry)} is "
-                f"degenerate: {detail}",
+                f"link `{link.name}`: its {shape.kind} {_named(shape.geometry)} is degenerate",
                 shape.geometry.source or shape.source,
                 link=link.name,
+                detail=f"its {shape.kind} {described}: {detail}",
                 help=HELP[kind],
                 severity=severity,
             )

@@ -22,6 +22,7 @@ SUMMARY = (
 )
 OPTIONS = (Option("extra_joint_types", tuple, (), "joint types to accept besides URDF's six"),)
 
+SHOWN = 3  # joints of a cycle the message names; the rest are counted (the detail has the cycle)
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 # joint types one engine reads in URDF and urdfdom (so ROS, Gazebo) rejects
 EXTENSIONS = {
@@ -56,8 +57,9 @@ def _names(urdf: model.Robot, ctx: RuleContext) -> Iterator[Finding]:
     # a xacro file without links or joints never gets here: it loads as a fragment
     if not urdf.links:
         yield ctx.finding(
-            'the robot has no <link>: urdfdom refuses it ("No link elements found in urdf file")',
+            "the robot has no <link>",
             urdf.source,
+            detail='urdfdom refuses it ("No link elements found in urdf file")',
             help="a robot description needs at least one link",
         )
     for kind, elements in (("link", urdf.links), ("joint", urdf.joints)):
@@ -74,9 +76,9 @@ def _names(urdf: model.Robot, ctx: RuleContext) -> Iterator[Finding]:
             if element.name in first:
                 yield ctx.finding(
                     f"{kind} `{element.name}` is defined twice (first at "
-                    f"{_line(first[element.name].source)}): urdfdom refuses the file, others "
-                    "keep one of the two",
+                    f"{_line(first[element.name].source)})",
                     element.source,
+                    detail="urdfdom refuses the file, others keep one of the two",
                     help=f"rename or remove one of the two {kind}s",
                     **{kind: element.name},
                 )
@@ -99,9 +101,10 @@ def _joints(
             else:
                 what = "no type"
             yield ctx.finding(
-                f'{label} has {what}: urdfdom refuses the file ("Joint [{joint.name}] has no '
-                f'known type [{joint.type}]"), and with it ROS and Gazebo',
+                f"{label} has {what}",
                 joint.source,
+                detail=f'urdfdom refuses the file ("Joint [{joint.name}] has no known type '
+                f'[{joint.type}]"), and with it ROS and Gazebo',
                 joint=name,
                 help=f"use one of {', '.join(JOINT_TYPES)}; if the file is only for an engine "
                 "that reads this type, list it in the rule's extra_joint_types",
@@ -141,8 +144,10 @@ def _parents(urdf: model.Robot, links: set[str], ctx: RuleContext) -> Iterator[F
             other = first[child]
             yield ctx.finding(
                 f"link `{child}` has two parent joints: `{other.name}` ({_line(other.source)}) "
-                f"and `{joint.name}`: a URDF is a tree, a closed chain cannot be written in it",
+                f"and `{joint.name}`",
                 joint.source,
+                detail="a URDF is a tree, a closed chain cannot be written in it; urdfdom "
+                "refuses the file",
                 joint=joint.name or None,
                 link=child,
                 help="keep one parent joint; model a closed chain with a mimic joint or the "
@@ -172,9 +177,9 @@ def _roots(urdf: model.Robot, links: set[str], ctx: RuleContext) -> Iterator[Fin
     if not roots:
         if links:
             yield ctx.finding(
-                "no root link: every link is some joint's child, so the joints form a cycle "
-                '(urdfdom: "No root link found")',
+                "no root link: the joints form a cycle",
                 urdf.source,
+                detail='every link is some joint\'s child (urdfdom: "No root link found")',
                 help="the link the robot is built from (base_link) must be no joint's child",
             )
         return
@@ -196,9 +201,10 @@ def _roots(urdf: model.Robot, links: set[str], ctx: RuleContext) -> Iterator[Fin
         what = "a link" if size <= 1 else f"a subtree of {size} links"
         yield ctx.finding(
             f"link `{link.name}` is a second root ({what} no joint connects to the tree of "
-            f"`{main.name}`): urdfdom refuses several roots, Gazebo and PyBullet load "
-            "one body per root or fail",
+            f"`{main.name}`)",
             link.source,
+            detail="urdfdom refuses several roots, Gazebo and PyBullet load one body per root "
+            "or fail",
             link=link.name,
             help=f"connect `{link.name}` with a joint (fixed, if it does not move) to a link "
             f"of `{main.name}`'s tree, or remove it",
@@ -222,9 +228,13 @@ def _cycles(urdf: model.Robot, links: set[str], ctx: RuleContext) -> Iterator[Fi
             # report at the last joint of the cycle in the file: the one that closed it
             closing = max(joints, key=lambda j: urdf.joints.index(j))
             chain = " → ".join(f"`{link}`" for link in [*reversed(cycle), cycle[-1]])
+            names = [f"`{j.name}`" for j in joints]
+            if len(names) > SHOWN:
+                names = [*names[:SHOWN], f"{len(names) - SHOWN} more"]
             yield ctx.finding(
-                f"joints {', '.join(f'`{j.name}`' for j in joints)} form a cycle: {chain}",
+                f"joints {', '.join(names[:-1])} and {names[-1]} form a cycle",
                 closing.source,
+                detail=f"the cycle: {chain}",
                 joint=closing.name or None,
                 help="a URDF is a tree: remove or re-parent one joint of the cycle",
             )

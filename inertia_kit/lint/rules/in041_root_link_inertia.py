@@ -38,11 +38,11 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     weight = "" if mass is None else f" ({fmt(mass)} kg)"
     root = _new_root(robot, name)
     yield ctx.finding(
-        f"root link `{name}` has an <inertial>{weight}: KDL, so robot_state_publisher, "
-        f'MoveIt\'s KDL plugins and KDL dynamics, leave it out ("{KDL.format(name=name)}"), '
-        "and MuJoCo's URDF import fuses the root with the world body; Gazebo, Drake and "
-        "PyBullet keep it, which a floating base needs",
+        f"root link `{name}` has an <inertial>{weight}, which KDL leaves out",
         inertial.source,
+        detail="KDL, so robot_state_publisher, MoveIt's KDL plugins and KDL dynamics, leave it "
+        f'out ("{KDL.format(name=name)}"), and MuJoCo\'s URDF import fuses the root with the '
+        "world body; Gazebo, Drake and PyBullet keep it, which a floating base needs",
         link=name,
         expected={"root": name, "mass": mass},
         help=f'add a massless root above it: <link name="{root}"/> and <joint '

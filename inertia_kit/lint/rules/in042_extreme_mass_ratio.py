@@ -65,13 +65,15 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         # the ratio is the joint's, not a link's: the finding blames neither (a heavy body of
         # plausible density beside a light one of plausible density, either may be wrong)
         named = culprit.name if culprit is not None else _too_light(robot, light)
+        likely = "" if culprit is None else f" (likely `{culprit.name}`'s mass)"
         yield ctx.finding(
-            f"joint `{joint.name}`: {_body(robot, light)} weighs "
-            f"{fmt(min(parent, child), 4)} kg, 1/{_ratio(ratio)} of {_body(robot, heavy)} at "
-            f"{fmt(max(parent, child), 4)} kg (beyond 1/{_ratio(limit)}): the joint's "
-            "equations are ill-conditioned, so solvers jitter, drift or need tiny time steps"
-            + cause,
+            f"joint `{joint.name}`: `{light}` weighs {fmt(min(parent, child), 4)} kg, "
+            f"1/{_ratio(ratio)} of `{heavy}` at {fmt(max(parent, child), 4)} kg{likely}",
             joint.source,
+            detail=f"{_body(robot, light)} weighs {fmt(min(parent, child), 4)} kg, "
+            f"1/{_ratio(ratio)} of {_body(robot, heavy)} at {fmt(max(parent, child), 4)} kg "
+            f"(beyond 1/{_ratio(limit)}): the joint's equations are ill-conditioned, so solvers "
+            "jitter, drift or need tiny time steps" + cause,
             joint=joint.name or None,
             link=named,
             expected={

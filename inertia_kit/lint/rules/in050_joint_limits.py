@@ -35,12 +35,13 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 yield _finding(
                     ctx,
                     joint,
-                    f"{joint.type} joint has no <limit>: urdfdom (so ROS, Gazebo) and "
-                    f'PyBullet refuse the file ("{_URDFDOM[joint.type].format(joint.name)}")',
+                    f"{joint.type} joint has no <limit>",
                     joint.source,
                     'add <limit lower="..." upper="..." effort="..." velocity="..."/> '
                     f"({'rad, rad' if joint.type == 'revolute' else 'm, m'}, "
                     f"{'N·m, rad/s' if joint.type == 'revolute' else 'N, m/s'})",
+                    detail="urdfdom (so ROS, Gazebo) and PyBullet refuse the file "
+                    f'("{_URDFDOM[joint.type].format(joint.name)}")',
                 )
                 continue
             yield from _range(ctx, joint, joint.limit)
@@ -55,6 +56,7 @@ def _finding(
     source: model.Source,
     help: str,
     severity: Severity | None = None,
+    detail: str | None = None,
 ):
     return ctx.finding(
         f"joint `{joint.name}`: {text}",
@@ -63,6 +65,7 @@ def _finding(
         link=joint.child,
         help=help,
         severity=severity,
+        detail=detail,
     )
 
 
@@ -75,25 +78,25 @@ def _range(ctx: RuleContext, joint: model.Joint, limit: model.Limit) -> Iterator
         yield _finding(
             ctx,
             joint,
-            f"<limit> has no {missing}: {'both' if verb == 'default' else 'it'} {verb} to 0 "
-            f"in urdfdom, so the joint moves in "
+            f"<limit> has no {missing}, so the joint moves in "
             f"[{fmt(lower if isinstance(lower, float) else 0.0)}, "
             f"{fmt(upper if isinstance(upper, float) else 0.0)}] {unit}",
             limit.source,
             "write both lower and upper; a joint that must not move is a fixed joint",
             severity=Severity.WARNING,
+            detail=f"{missing}: {'both' if verb == 'default' else 'it'} {verb} to 0 in urdfdom",
         )
         return
     if isinstance(lower, float) and isinstance(upper, float) and lower > upper:
         yield _finding(
             ctx,
             joint,
-            f"lower = {fmt(lower)} {unit} is above upper = {fmt(upper)} {unit}: no position "
-            "satisfies the limits; PyBullet reads this as 'no limits', other engines clamp "
-            "the joint to one end or reject the range",
+            f"lower = {fmt(lower)} {unit} is above upper = {fmt(upper)} {unit}",
             limit.source,
             "swap lower and upper; for a joint without limits write a continuous joint "
             '(revolute) or a wide range (prismatic: lower="-1e3" upper="1e3")',
+            detail="no position satisfies the limits; PyBullet reads this as 'no limits', other "
+            "engines clamp the joint to one end or reject the range",
         )
 
 
@@ -107,17 +110,19 @@ def _effort_velocity(ctx: RuleContext, joint: model.Joint, limit: model.Limit) -
             yield _finding(
                 ctx,
                 joint,
-                f'<limit> has no {name}: urdfdom refuses the file ("joint limit: no {name}")',
+                f"<limit> has no {name}",
                 limit.source,
                 f"give the actuator's {name} limit in {units[name]} (from its datasheet)",
+                detail=f'urdfdom refuses the file ("joint limit: no {name}")',
             )
         elif isinstance(value, float) and value < 0:
             yield _finding(
                 ctx,
                 joint,
-                f"{name} = {fmt(value)} {units[name]} is negative: a limit is a magnitude",
+                f"{name} = {fmt(value)} {units[name]} is negative",
                 limit.source,
                 f"give the {name} limit as a positive number in {units[name]}",
+                detail="a limit is a magnitude",
             )
         elif isinstance(value, float) and value == 0:
             zero.append(name)
@@ -136,14 +141,16 @@ def _effort_velocity(ctx: RuleContext, joint: model.Joint, limit: model.Limit) -
             "MoveIt reads 0 as unlimited"
         )
     values = " and ".join(f"{name} = 0 {units[name]}" for name in zero)
+    claim = "nothing can drive it" if "effort" in zero else "it is held still"
     yield _finding(
         ctx,
         joint,
-        f"{values}: {'; '.join(what)}",
+        f"{values}: {claim}",
         limit.source,
         f"give the actuator's {' and '.join(zero)} limit"
         f"{'s' if len(zero) > 1 else ''} from its datasheet "
         f"({', '.join(units[name] for name in zero)}); a passive joint takes a real bound "
         "too (or set allow_zero)",
         severity=Severity.WARNING,
+        detail="; ".join(what),
     )

@@ -36,10 +36,10 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         written = " ".join(fmt(v) for v in axis)
         if length < ZERO:
             yield ctx.finding(
-                f'joint `{joint.name}`: axis xyz="{written}" has no direction: Gazebo '
-                '(SDFormat) and Drake refuse it, MuJoCo too ("axis too small"), KDL divides '
-                "by its length (NaN poses)",
+                f"joint `{joint.name}`: axis `{written}` has no direction",
                 joint.source,
+                detail='Gazebo (SDFormat) and Drake refuse it, MuJoCo too ("axis too small"), '
+                "KDL divides by its length (NaN poses)",
                 joint=joint.name or None,
                 link=joint.child,
                 help="give the unit vector of the joint's rotation (revolute, continuous), "
@@ -50,11 +50,11 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             continue
         unit = " ".join(xml_number(v / length, 6) for v in axis)
         yield ctx.finding(
-            f'joint `{joint.name}`: axis xyz="{written}" has length {fmt(length, 4)}, not 1: '
-            "Gazebo (SDFormat), Drake, MuJoCo and KDL normalise it, but PyBullet and "
-            "urdfdom users (robot_state_publisher plugins, IK solvers) take it as written, "
-            f"so the joint moves {fmt(length, 4)} times as far per unit of position",
+            f"joint `{joint.name}`: axis `{written}` has length {fmt(length, 4)}, not 1",
             joint.source,
+            detail="Gazebo (SDFormat), Drake, MuJoCo and KDL normalise it, but PyBullet and "
+            "urdfdom users (robot_state_publisher plugins, IK solvers) take it as written, so "
+            f"the joint moves {fmt(length, 4)} times as far per unit of position",
             joint=joint.name or None,
             link=joint.child,
             expected={"axis": [v / length for v in axis], "length": length},

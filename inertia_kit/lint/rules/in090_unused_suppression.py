@@ -45,9 +45,9 @@ def check(comments: Sequence[CommentUse], ctx: RuleContext) -> Iterator[Finding]
         span = f"line {first}" if first == last else f"lines {first}–{last}"
         fix = _fix(use.path, use.line, set(unused), use.digest)
         yield ctx.finding(
-            f"`ignore[{', '.join(use.selectors)}]`: {what}: no finding of {listed} on the "
-            f"element it covers ({span}){over}",
+            f"`ignore[{', '.join(use.selectors)}]`: {what}",
             Source(use.path, use.line, None if fix is None else fix[1]),
+            detail=f"no finding of {listed} on the element it covers ({span}){over}",
             help="remove it (the fix does, safely); if a rule should fire there, find out why "
             "it no longer does before removing the comment",
             fix=None if fix is None else fix[0],

@@ -28,14 +28,18 @@ def test_violation_with_numbers(lint):
     (finding,) = in011(lint, plate(0.006, 0.006, 0.0135, geometry=geometry))
     short = (0.0135 - 0.012) / 0.0135
     assert f"{fmt(0.006, 4)} + {fmt(0.006, 4)} = {fmt(0.012, 4)} < {fmt(0.0135, 4)}" in (
-        finding.message
+        finding.detail
     )
-    assert f"{fmt(100 * short, 3)} % short" in finding.message
+    assert finding.message == (
+        f"link `plate`: the principal moments break A + B ≥ C, {fmt(100 * short, 3)} % short"
+    )
+    assert len(finding.message) <= 100
     # the plate's own tensor: m(b² + c²)/12 and m(a² + b²)/12
     ixx, _, izz = box_moments(0.9, (0.3, 0.3, 0.012))
     assert finding.expected["ixx"] == pytest.approx(ixx)
     assert finding.expected["izz"] == pytest.approx(izz)
-    assert f"ixx = {fmt(ixx, 4)}" in finding.message
+    assert f"ixx = {fmt(ixx, 4)}" in finding.detail
+    assert "its collision box (0.3 × 0.3 × 0.012 m) with the declared 0.9 kg" in finding.detail
 
 
 def test_a_disk_sits_on_the_bound(lint):
@@ -76,7 +80,7 @@ def test_products_count(lint):
     a, b, c = np.linalg.eigvalsh([[0.01, 0, 0.004], [0, 0.01, 0], [0.004, 0, 0.019]])
     assert a + b < c
     (finding,) = in011(lint, text)
-    assert f"({fmt(a, 4)}, {fmt(b, 4)}, {fmt(c, 4)}) kg·m²" in finding.message
+    assert f"({fmt(a, 4)}, {fmt(b, 4)}, {fmt(c, 4)}) kg·m²" in finding.detail
 
 
 @pytest.mark.parametrize(

@@ -19,10 +19,13 @@ def in012(lint, text, **options):
 def test_below_both_floors(lint):
     (finding,) = in012(lint, moving(inertial(0.3, 1e-10)))
     radius_mm = math.sqrt(1e-10 / 0.3) * 1000
-    assert f"smallest principal moment {fmt(1e-10, 3)} kg·m²" in finding.message
-    assert f"radius of gyration {fmt(radius_mm, 3)} mm for 0.3 kg" in finding.message
+    assert finding.message == (
+        f"link `arm`: smallest principal moment {fmt(1e-10, 3)} kg·m² is below "
+        f"{fmt(0.3 * 1e-6, 3)} kg·m²"
+    )
+    assert f"radius of gyration {fmt(radius_mm, 3)} mm for 0.3 kg" in finding.detail
     # the binding floor is the larger: m·(1 mm)² = 3e-7 kg·m²
-    assert f"{fmt(0.3 * 1e-6, 3)} kg·m², a 1 mm radius of gyration" in finding.message
+    assert f"{fmt(0.3 * 1e-6, 3)} kg·m², a 1 mm radius of gyration" in finding.detail
     assert finding.expected == {"min_moment": 0.3 * 1e-6}
     assert finding.severity.name == "WARNING"
 
@@ -30,7 +33,7 @@ def test_below_both_floors(lint):
 def test_heavy_link_with_a_placeholder(lint):
     # 2 kg with 1e-6 kg·m²: above 1e-9 but a 0.71 mm radius of gyration
     (finding,) = in012(lint, moving(inertial(2, 1e-6, 1e-3, 1e-3)))
-    assert f"radius of gyration {fmt(math.sqrt(1e-6 / 2) * 1000, 3)} mm" in finding.message
+    assert f"radius of gyration {fmt(math.sqrt(1e-6 / 2) * 1000, 3)} mm" in finding.detail
     assert in012(lint, moving(inertial(2, 1e-6, 1e-3, 1e-3)), min_radius=0.0005) == []
 
 
@@ -39,7 +42,8 @@ def test_light_part_against_the_absolute_floor(lint):
     text = moving(inertial(0.001, 5e-9))
     assert in012(lint, text) == []
     (finding,) = in012(lint, text, min_moment=1e-8)
-    assert f"below the floor of {fmt(1e-8)} kg·m²" in finding.message
+    assert f"is below {fmt(1e-8)} kg·m²" in finding.message
+    assert f"mm for 0.001 kg, below the floor of {fmt(1e-8)} kg·m²" in finding.detail
 
 
 def test_a_real_gripper_finger_is_quiet(lint):
@@ -53,6 +57,10 @@ def test_geometry_values_when_there_is_geometry(lint):
     (finding,) = in012(lint, moving(inertial(3, 1e-9) + collision(box(0.1, 0.1, 0.3))))
     moments = sorted(box_moments(3, (0.1, 0.1, 0.3)))
     assert finding.expected["geometry_principal_moments"] == pytest.approx(moments)
+    assert len(finding.message) <= 100
+    assert "its collision box (0.1 × 0.1 × 0.3 m) with the declared 3 kg gives principal " in (
+        finding.detail
+    )
 
 
 def test_welded_to_a_body_that_carries_the_inertia(lint):

@@ -17,6 +17,8 @@ from kit.urdf import (
     visual,
 )
 
+from inertia_kit.physics.formatting import fmt
+
 SIZE = (0.1, 0.1, 0.1)  # a cube: the shape, and the inertial scaled with the mass
 CUBE = collision(box(*SIZE))
 VOLUME = 0.1**3
@@ -32,7 +34,13 @@ def test_grams_written_as_kilograms_is_too_dense(lint):
     assert len(findings) == 1
     assert findings[0].expected["density"] == pytest.approx(mass / VOLUME)
     assert findings[0].expected["volume"] == pytest.approx(VOLUME)
-    assert "above the plausible 25000 kg/m³" in findings[0].message
+    assert findings[0].message == (
+        f"link `arm`: 2700 kg in its collision box is {fmt(mass / VOLUME, 4)} kg/m³, above "
+        "25000 kg/m³"
+    )
+    assert len(findings[0].message) <= 100
+    assert "box (0.1 × 0.1 × 0.1 m) of 0.001 m³" in findings[0].detail
+    assert "above the plausible 25000 kg/m³ (tungsten is 19 300)" in findings[0].detail
 
 
 def test_placeholder_mass_is_too_light(lint):
@@ -111,7 +119,8 @@ def test_a_density_that_prints_as_the_bound_is_at_it(lint, mass, fires):
     assert len(findings) == int(fires)
     for finding in findings:
         shown = finding.message.split(" is ")[1].split(" kg/m³")[0]
-        assert shown != "50" and "below the plausible 50 kg/m³" in finding.message
+        assert shown != "50" and finding.message.endswith("below 50 kg/m³")
+        assert "below the plausible 50 kg/m³" in finding.detail
 
 
 def test_the_same_holds_at_the_upper_bound(lint):

@@ -16,6 +16,7 @@ from kit.urdf import box, collision, cylinder, inertial, mesh, moving, sphere, v
 from inertia_kit.analysis.bounds import RIM_SIDES
 from inertia_kit.cli.lint import lint_command
 from inertia_kit.lint.findings import Severity
+from inertia_kit.physics.formatting import fmt
 
 RIM = 1.0 / math.cos(math.pi / RIM_SIDES)
 CYLINDER = collision(cylinder(0.05, 0.05))
@@ -30,7 +31,13 @@ def test_unit_placeholder_on_a_small_wheel_is_impossible(lint):
     # worst about the axis z: at most m r² (the rim polygon overshoots r by 1/cos(π/64))
     assert finding.expected["max"] == pytest.approx((0.05 * RIM) ** 2)
     assert finding.expected["uniform"] == pytest.approx(0.05**2 / 2)
-    assert "izz = 1 kg·m²" in finding.message
+    assert finding.message == (
+        f"link `arm`: izz = 1 kg·m² exceeds the {fmt(finding.expected['max'], 4)} kg·m² its "
+        "geometry allows"
+    )
+    assert len(finding.message) <= 100
+    assert "(radius of gyration 1 m)" in finding.detail
+    assert "inside its collision cylinder (r = 0.05 m, l = 0.05 m) can have" in finding.detail
 
 
 def test_ring_at_the_rim_is_the_limit_and_passes(lint):
@@ -114,7 +121,7 @@ def test_go1_rotor_2_percent_over_a_rounded_radius_is_a_warning(lint):
         moving(collision(shape, rpy=ROTOR_RPY) + visual(shape, rpy=ROTOR_RPY) + ROTOR), "IN023"
     )
     assert finding.severity == Severity.WARNING
-    assert finding.message.endswith(
+    assert finding.detail.endswith(
         "; a warning, not an error: 2.3% over is within what rounding of the written cylinder "
         "radius 0.035 m and mass 0.089 kg can explain (the bound then reaches 0.0001131 kg·m²)"
     )
@@ -129,7 +136,7 @@ def test_a_schematic_visual_only_rotor_is_a_warning(lint):
     (finding,) = lint(moving(shape + ROTOR), "IN023")
     assert finding.severity == Severity.WARNING
     assert "its only geometry is visual, often a schematic stand-in for the part" in (
-        finding.message
+        finding.detail
     )
 
 
@@ -138,7 +145,7 @@ def test_firm_overshoots_stay_errors(lint):
     precise = collision(cylinder("0.0349999", "0.0200001"), rpy=ROTOR_RPY)
     mass = inertial("0.0890001", 0.000111842, 5.9647e-05, 5.9647e-05)
     (finding,) = lint(moving(precise + mass), "IN023")
-    assert finding.severity == Severity.ERROR and "a warning" not in finding.message
+    assert finding.severity == Severity.ERROR and "a warning" not in finding.detail
     # Unitree B1's thigh rotor (b1.urdf): 38 % over its 0.05 m cylinder, beyond any rounding
     b1 = inertial(0.266, 0.000485657, 0.00091885, 0.000485657)
     b1_shape = cylinder(0.05, 0.02)
@@ -224,8 +231,11 @@ def test_a_wheel_with_the_axial_formula_on_every_axis_is_impossible(lint):
     assert finding.expected["max"] == pytest.approx(mass * (width / 2) ** 2)
     assert finding.expected["sides"] == pytest.approx([width / 2, width / 2])
     assert finding.expected["uniform"] == pytest.approx(mass * width**2 / 12)
-    assert finding.message.startswith(
-        "link `arm`: the second moment along y, ∫y² dm = (ixx + izz - iyy)/2 = 0.000625 kg·m², "
+    assert finding.message == (
+        "link `arm`: ∫y² dm = 0.000625 kg·m² exceeds the 0.0001 kg·m² its geometry allows"
+    )
+    assert finding.detail.startswith(
+        "the second moment along y, ∫y² dm = (ixx + izz - iyy)/2 = 0.000625 kg·m², "
         "is more than the 0.0001 kg·m² any 1 kg inside its collision cylinder"
     )
     assert "\n" not in finding.message and "Bhatia–Davis" in finding.help
@@ -254,7 +264,7 @@ def test_an_off_centre_com_tightens_the_bound_but_only_warns(lint):
     assert finding.expected["sides"] == pytest.approx([0.018, 0.002])  # towards -y, +y
     assert finding.expected["max_with_rounding"] > mass * 0.01**2  # the COM anywhere
     assert finding.severity == Severity.WARNING
-    assert "a centre of mass off its declared place (0.018 m and 0.002 m" in finding.message
+    assert "a centre of mass off its declared place (0.018 m and 0.002 m" in finding.detail
     mirrored = wheel + inertial(mass, 0.0012, 0.00225, 0.0012, xyz="0 -0.008 0")
     (finding,) = lint(moving(mirrored), "IN023")
     assert finding.expected["axis"] == pytest.approx([0.0, 1.0, 0.0])

@@ -25,13 +25,14 @@ def test_zero_and_negative_sizes_are_errors(lint):
         findings = lint(moving(collision(geometry) + INERTIAL), "IN026")
         assert len(findings) == 1, geometry
         assert findings[0].severity == Severity.ERROR
-        assert "zero or negative" in findings[0].message
+        assert "zero or negative" in findings[0].detail
 
 
 def test_zero_mesh_scale_is_degenerate(lint, tmp_path):
     (tmp_path / "part.stl").write_text("solid s\nendsolid s\n")
     findings = lint(moving(collision(mesh("part.stl", scale="1 0 1")) + INERTIAL), "IN026")
-    assert len(findings) == 1 and "zero factor" in findings[0].message
+    assert len(findings) == 1 and "zero factor" in findings[0].detail
+    assert findings[0].message == "link `arm`: its collision mesh `part.stl` is degenerate"
 
 
 def test_empty_collision_mesh_is_an_error(lint, tmp_path):
@@ -64,7 +65,7 @@ def test_thinner_than_an_atom_is_degenerate(lint):
     """Below 1e-10 m (physics/numbers.py): no solid; Drake's 1e-7 m contact spheres pass."""
     findings = lint(moving(collision(cylinder(0.1, "1e-11")) + INERTIAL), "IN026")
     (finding,) = findings
-    assert "a dimension of 1e-11 m is below 1e-10 m, the size of an atom" in finding.message
+    assert "a dimension of 1e-11 m is below 1e-10 m, the size of an atom" in finding.detail
     for geometry in (sphere("1e-7"), box("1e-10", 1, 1)):
         assert lint(moving(collision(geometry) + INERTIAL), "IN026") == [], geometry
 
@@ -76,7 +77,7 @@ def test_a_mesh_thinner_than_an_atom_is_empty(lint, tmp_path):
     for scale in ("1e-11 1 1", "1 1e-11 1e-9"):
         body = collision(mesh("speck.stl", scale=scale)) + INERTIAL
         (finding,) = lint(moving(body), "IN026")
-        assert "it is 1e-11 m thin, thinner than an atom (1e-10 m): no solid" in finding.message
+        assert "it is 1e-11 m thin, thinner than an atom (1e-10 m): no solid" in finding.detail
 
 
 def test_a_mesh_whose_moments_overflow_is_degenerate(lint, tmp_path):
@@ -87,7 +88,7 @@ def test_a_mesh_whose_moments_overflow_is_degenerate(lint, tmp_path):
     (finding,) = lint(
         moving(collision(mesh("huge.stl", scale="1e30 1e30 1e30")) + INERTIAL), "IN026"
     )
-    assert "its volume or moments overflow double precision" in finding.message
+    assert "its volume or moments overflow double precision" in finding.detail
 
 
 @pytest.mark.parametrize(
@@ -110,4 +111,13 @@ def test_a_zero_size_virtual_link_stays_an_error_on_a_heavy_body(lint):
     weld = '<joint name="imu_fix" type="fixed"><parent link="arm"/><child link="imu"/></joint>'
     findings = lint(moving(INERTIAL + collision(box(0.1, 0.1, 0.1)), weld + frame), "IN026")
     assert [(f.link, f.severity) for f in findings] == [("imu", Severity.ERROR)]
-    assert "it adds" not in findings[0].message
+    assert "it adds" not in findings[0].message + (findings[0].detail or "")
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    (finding,) = lint(moving(collision(box(0.1, 0, 0.1)) + INERTIAL), "IN026")
+    assert finding.message == "link `arm`: its collision box (0.1 × 0 × 0.1 m) is degenerate"
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        "its collision box (0.1 × 0 × 0.1 m): a dimension is zero or negative"
+    )

@@ -106,9 +106,14 @@ def test_cycle(lint):
 
 def test_everything_in_a_cycle_has_no_root(lint):
     text = robot(link("a"), link("b"), joint("a", "b", name="ab"), joint("b", "a", name="ba"))
-    messages = [f.message for f in lint(text, "IN040")]
-    assert any(m.startswith("no root link") for m in messages)
-    assert any("form a cycle: `a` → `b` → `a`" in m or "`b` → `a` → `b`" in m for m in messages)
+    findings = lint(text, "IN040")
+    assert any(f.message.startswith("no root link") for f in findings)
+    cycle = next(f for f in findings if f.message.startswith("joints"))
+    assert cycle.message in (
+        "joints `ab` and `ba` form a cycle",
+        "joints `ba` and `ab` form a cycle",
+    )
+    assert "`a` → `b` → `a`" in cycle.detail or "`b` → `a` → `b`" in cycle.detail
 
 
 @pytest.mark.parametrize(
@@ -139,3 +144,23 @@ def test_extra_joint_types_option(lint):
 def test_no_links(lint):
     findings = lint('<robot name="r"></robot>', "IN040")
     assert len(findings) == 1 and "has no <link>" in findings[0].message
+    assert "No link elements found in urdf file" in findings[0].detail
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    chain = [link(name) for name in "abcde"]
+    chain += [joint(a, b, name=a + b) for a, b in zip("abcde", "bcdea", strict=True)]
+    findings = lint(robot(link("root"), *chain), "IN040")
+    (cycle,) = [f for f in findings if f.message.startswith("joints")]
+    assert cycle.message == "joints `ea`, `de`, `cd` and 2 more form a cycle"
+    assert cycle.detail == "the cycle: `b` → `c` → `d` → `e` → `a` → `b`"
+    text = robot(
+        link("a"), link("b"), '<joint name="j" type="revolut"><parent link="a"/>'
+        '<child link="b"/></joint>',
+    )  # fmt: skip
+    (finding,) = lint(text, "IN040")
+    assert len(finding.message) <= 100
+    assert finding.detail == (
+        'urdfdom refuses the file ("Joint [j] has no known type [revolut]"), and with it ROS '
+        "and Gazebo"
+    )

@@ -31,7 +31,12 @@ def test_ratio_beyond_default_warns(lint):
     assert finding.severity == Severity.WARNING
     # no geometry to tell which mass is wrong: the ratio is the joint's, no link is blamed
     assert finding.joint == "tip_joint" and finding.link is None
-    assert "`tip` weighs 0.005 kg, 1/4000 of `body` at 20 kg (beyond 1/1000)" in finding.message
+    assert finding.message == "joint `tip_joint`: `tip` weighs 0.005 kg, 1/4000 of `body` at 20 kg"
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith(
+        "`tip` weighs 0.005 kg, 1/4000 of `body` at 20 kg (beyond 1/1000): the joint's equations "
+        "are ill-conditioned"
+    )
     assert finding.expected["ratio"] == 4000.0
 
 
@@ -47,7 +52,7 @@ def test_welded_links_count_as_one_body(lint):
     # 0.5 + 19.5 kg welded: the tip compares with 20 kg
     findings = lint(chain(0.5, 0.005, welded=19.5), "IN042")
     assert len(findings) == 1
-    assert "`body` (with 1 welded link) at 20 kg" in findings[0].message
+    assert "`body` (with 1 welded link) at 20 kg" in findings[0].detail
 
 
 def test_massless_side_is_skipped(lint):
@@ -84,7 +89,8 @@ def test_a_mass_no_material_gives_is_named_on_its_link(lint):
     finding = findings[0]
     assert finding.link == "body" and finding.joint == "tip_joint"
     assert "`tip` weighs 0.0216 kg, 1/125000 of `body` at 2700 kg" in finding.message
-    assert "`body` is the likely slip: its 2700 kg is 2.7e+06 kg/m³" in finding.message
+    assert finding.message.endswith(" (likely `body`'s mass)")
+    assert "`body` is the likely slip: its 2700 kg is 2.7e+06 kg/m³" in finding.detail
     assert "check `body`'s mass" in finding.help
 
 
@@ -127,4 +133,4 @@ def test_a_negligible_welded_frame_does_not_hide_the_slipped_mass(lint):
     )
     (finding,) = lint(text, "IN042")
     assert finding.link == "body"
-    assert "`body` is the likely slip" in finding.message
+    assert "`body` is the likely slip" in finding.detail

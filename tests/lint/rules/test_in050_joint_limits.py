@@ -40,7 +40,8 @@ def test_continuous_and_fixed_need_no_limit(lint):
 def test_missing_limit_is_an_error(lint, kind, quoted):
     findings = lint(robot(kind, ""), "IN050")
     assert len(findings) == 1
-    assert findings[0].severity == Severity.ERROR and quoted in findings[0].message
+    assert findings[0].severity == Severity.ERROR and quoted in findings[0].detail
+    assert findings[0].message == f"joint `j`: {kind} joint has no <limit>"
     assert findings[0].joint == "j" and findings[0].link == "arm"
 
 
@@ -52,7 +53,7 @@ def test_missing_effort_or_velocity_is_an_error(lint, kind, missing):
     limit = "<limit " + " ".join(f'{k}="{v}"' for k, v in attributes.items()) + "/>"
     findings = lint(robot(kind, limit), "IN050")
     assert len(findings) == 1 and findings[0].severity == Severity.ERROR
-    assert f'"joint limit: no {missing}"' in findings[0].message
+    assert f'"joint limit: no {missing}"' in findings[0].detail
 
 
 def test_lower_above_upper_is_an_error(lint):
@@ -60,7 +61,7 @@ def test_lower_above_upper_is_an_error(lint):
     findings = lint(robot("prismatic", limit), "IN050")
     assert len(findings) == 1 and findings[0].severity == Severity.ERROR
     assert "lower = 1 m is above upper = -1 m" in findings[0].message
-    assert "no limits" in findings[0].message
+    assert "no limits" in findings[0].detail
 
 
 def test_negative_effort_is_an_error(lint):
@@ -93,7 +94,8 @@ def test_allow_zero_option(lint):
 def test_missing_lower_and_upper_warn(lint):
     findings = lint(robot("revolute", '<limit effort="10" velocity="2"/>'), "IN050")
     assert len(findings) == 1 and findings[0].severity == Severity.WARNING
-    assert "no lower and upper: both default to 0" in findings[0].message
+    assert "no lower and upper" in findings[0].message
+    assert findings[0].detail == "lower and upper: both default to 0 in urdfdom"
     findings = lint(robot("revolute", '<limit lower="-1" effort="10" velocity="2"/>'), "IN050")
     assert len(findings) == 1 and "moves in [-1, 0] rad" in findings[0].message
 
@@ -101,3 +103,14 @@ def test_missing_lower_and_upper_warn(lint):
 def test_non_numeric_values_are_left_to_in004(lint):
     limit = '<limit lower="a" upper="1" effort="x" velocity="2"/>'
     assert lint(robot("revolute", limit), "IN050") == []
+
+
+def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
+    limit = '<limit lower="-1" upper="1" effort="0" velocity="0"/>'
+    (finding,) = lint(robot("revolute", limit), "IN050")
+    assert finding.message == (
+        "joint `j`: effort = 0 N·m and velocity = 0 rad/s: nothing can drive it"
+    )
+    assert len(finding.message) <= 100
+    assert finding.detail.startswith("Gazebo clamps the joint's force to ±effort")
+    assert "MoveIt reads 0 as unlimited" in finding.detail

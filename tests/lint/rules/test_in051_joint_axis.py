@@ -30,7 +30,8 @@ def test_unit_or_absent_axes_are_quiet(lint, axis):
 def test_zero_axis_is_an_error(lint, kind):
     findings = lint(robot("0 0 0", kind), "IN051")
     assert len(findings) == 1 and findings[0].severity == Severity.ERROR
-    assert "has no direction" in findings[0].message and "axis too small" in findings[0].message
+    assert findings[0].message == "joint `j`: axis `0 0 0` has no direction"
+    assert "axis too small" in findings[0].detail
 
 
 def test_non_unit_axis_warns_with_the_unit_vector(lint):
@@ -38,7 +39,9 @@ def test_non_unit_axis_warns_with_the_unit_vector(lint):
     assert len(findings) == 1
     finding = findings[0]
     assert finding.severity == Severity.WARNING and finding.joint == "j"
-    assert "has length 1.414, not 1" in finding.message and "PyBullet" in finding.message
+    assert finding.message == "joint `j`: axis `0 1 1` has length 1.414, not 1"
+    assert len(finding.message) <= 100
+    assert "PyBullet" in finding.detail and "1.414 times as far" in finding.detail
     assert finding.help == 'write the unit vector: <axis xyz="0 0.707107 0.707107"/>'
     assert finding.expected["axis"] == pytest.approx([0, 0.5**0.5, 0.5**0.5])
 
