@@ -93,12 +93,24 @@ class Capsule:
 
 
 @dataclass(frozen=True)
+class Ellipsoid:
+    """An ellipsoid with semi-axes ``radii`` along x, y, z (MJCF's ``ellipsoid``)."""
+
+    radii: Vector
+    source: Source
+
+
+@dataclass(frozen=True)
 class Mesh:
     """
     A ``<mesh filename scale>``. ``path`` is the resolved file, or ``None`` when the URI did not
     resolve (``problem`` then says why). ``rule`` names the package resolution rule that found
     it (:data:`~inertia_kit.description.package_lookup.RULES`); ``searched`` lists the places looked
     at before (all of them when nothing was found).
+
+    ``inertia`` is how the format's engine weighs the mesh when it infers mass properties from
+    it (MJCF's ``<mesh inertia>``: ``legacy``, ``exact``, ``convex`` or ``shell``); ``None``:
+    the solid the surface encloses (URDF).
     """
 
     filename: str
@@ -108,6 +120,7 @@ class Mesh:
     problem: str | None = None
     rule: str | None = None
     searched: tuple[str, ...] = ()
+    inertia: str | None = None
 
 
 @dataclass(frozen=True)
@@ -123,18 +136,28 @@ class Unknown:
     absent: bool = False
 
 
-Geometry = Box | Cylinder | Sphere | Capsule | Mesh | Unknown
+Geometry = Box | Cylinder | Sphere | Capsule | Ellipsoid | Mesh | Unknown
 
 
 @dataclass(frozen=True)
 class Shape:
-    """A ``<visual>`` or ``<collision>``: a placed geometry."""
+    """
+    A ``<visual>`` or ``<collision>``: a placed geometry. An MJCF ``<geom>`` is a ``collision``
+    when MuJoCo counts it into the mass properties it infers (its ``group`` in the compiler's
+    ``inertiagrouprange``, a positive ``mass`` or ``density``), else a ``visual``; ``density``
+    (kg/m³, or kg/m² with ``shell``), ``mass`` and ``group`` are as the geom says, with its
+    default classes (``None`` in URDF, which has none of them).
+    """
 
     kind: str  # visual | collision
     name: str | None
     origin: Origin
     geometry: Geometry
     source: Source
+    density: Number = None
+    mass: Number = None
+    shell: bool = False
+    group: int | None = None
 
 
 @dataclass(frozen=True)
@@ -255,6 +278,30 @@ class Extension:
 
 
 @dataclass(frozen=True)
+class Inference:
+    """
+    How the format's engine makes mass properties of its own at load (MJCF's ``<compiler>``;
+    URDF has none: ``Robot.inference`` is ``None``). ``from_geometry``: ``missing`` (a body
+    without ``<inertial>`` gets its geoms': ``inertiafromgeom="auto"``), ``always`` (every
+    body, the written values ignored: ``true``) or ``never`` (``false``); ``groups`` the geom
+    groups counted (``inertiagrouprange``); ``min_mass`` and ``min_inertia`` the floors
+    (``boundmass``, ``boundinertia``); ``balance`` whether impossible moments are raised to the
+    triangle inequality (``balanceinertia``); ``total_mass`` the mass every body is scaled to
+    (``settotalmass``, ``None`` when not set); ``fuse_static`` whether bodies without joints
+    join their parents (``fusestatic``).
+    """
+
+    from_geometry: str = "missing"
+    groups: tuple[int, int] = (0, 5)
+    min_mass: float = 0.0
+    min_inertia: float = 0.0
+    balance: bool = False
+    total_mass: float | None = None
+    fuse_static: bool = False
+    source: Source | None = None
+
+
+@dataclass(frozen=True)
 class Robot:
     """
     A robot description as loaded: links and joints in document order (names may repeat in a
@@ -276,6 +323,10 @@ class Robot:
     # (real path, digest of the bytes read) of every file read: what edits are computed on
     # (description.reads)
     reads: tuple[tuple[str, str | None], ...] = ()
+    #: the format read: ``urdf`` (URDF or xacro) or ``mjcf``
+    format: str = "urdf"
+    #: how the format's engine infers mass properties nobody wrote (``None``: it does not)
+    inference: Inference | None = None
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

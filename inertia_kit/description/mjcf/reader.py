@@ -1,0 +1,501 @@
+"""
+An MJCF model into the robot model, as MuJoCo's compiler reads it: the assembled tree
+(:mod:`.includes`), ``<default>`` classes (:mod:`.defaults`), the ``<compiler>`` (:mod:`.compiler`),
+``<frame>``\\s, every orientation form (:mod:`.orientation`), ``fromto``, mesh assets with their
+``scale``, ``refpos``/``refquat`` and ``inertia`` mode.
+
+A ``<body>`` is a link; its parent joint stands for the body's ``<joint>``\\s (the first one's
+type and name: ``hinge`` is ``revolute``, or ``continuous`` when unlimited, ``slide`` is
+``prismatic``, ``ball`` ``spherical``, ``free`` ``floating``) or, without any, for the weld
+to its parent (``fixed``). ``<worldbody>`` is the link ``world``. Bodies are in MuJoCo's order
+(its body ids, ``world`` first).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+from lxml import etree
+
+from inertia_kit.description import model
+from inertia_kit.description.mjcf.compiler import Compiler, read_compiler
+from inertia_kit.description.mjcf.defaults import MAIN, Defaults, local
+from inertia_kit.description.mjcf.includes import Assembled, assemble
+from inertia_kit.description.mjcf.orientation import FORMS, OrientationError, rotation
+from inertia_kit.errors import InputError
+from inertia_kit.physics.frames import matrix_rpy, transform
+from inertia_kit.physics.numbers import usable
+
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_JOINT_TYPES = {"free": "floating", "ball": "spherical", "slide": "prismatic", "hinge": "revolute"}
+_FROMTO_TYPES = ("capsule", "cylinder", "box", "ellipsoid")
+
+
+def is_mjcf(data: bytes) -> bool:
+    """Whether the text's root element is ``<mujoco>`` (read from its first element)."""
+    match = re.search(rb"<\s*([A-Za-z_][\w.:-]*)", _skip_prolog(data))
+    return match is not None and match.group(1).split(b":")[-1] == b"mujoco"
+
+
+def _skip_prolog(data: bytes) -> bytes:
+    """The text after its declaration, comments and doctype: the first element comes next."""
+    text = data[:65536]
+    while True:
+        stripped = text.lstrip()
+        if stripped.startswith(b"<?"):
+            end = stripped.find(b"?>")
+        elif stripped.startswith(b"<!--"):
+            end = stripped.find(b"-->")
+        elif stripped.startswith(b"<!"):
+            end = stripped.find(b">")
+        else:
+            return stripped
+        if end < 0:
+            return b""
+        text = stripped[end + 2 :]
+
+
+def load_mjcf(path: str | Path) -> model.Robot:
+    """
+    Load an MJCF model (root ``<mujoco>``) with the files it includes.
+
+    Raises
+    ------
+    InputError
+      For anything MuJoCo would refuse to read as XML: a missing or unreadable file, malformed
+      XML, a missing include, an unknown default class, an orientation given twice.
+    """
+    return _Reader(Path(path)).robot()
+
+
+class _Reader:
+    def __init__(self, path: Path):
+        self.path = path
+        self.assembled: Assembled = assemble(path)
+        self.root = self.assembled.root
+        self.source_of = self.assembled.source_of
+        self.defaults = Defaults(self.root, self.source_of)
+        self.compiler: Compiler = read_compiler(self.root, self.source_of)
+        self.invalid: list[model.Invalid] = []
+        self.links: list[model.Link] = []
+        self.joints: list[model.Joint] = []
+        self.meshes = self._mesh_assets()
+        self.models = {
+            element.get("name", ""): self.path.parent / element.get("file", "")
+            for asset in self.root
+            if local(asset) == "asset"
+            for element in asset
+            if local(element) == "model"
+        }
+
+    # --- numbers ------------------------------------------------------------------------
+
+    def numbers(
+        self, element: etree._Element, attribute: str, text: str, count: int | None, scale=False
+    ) -> tuple[float, ...] | model.Invalid:
+        parts = text.split()
+        values = tuple(float(p) if _NUMBER.fullmatch(p) else math.nan for p in parts)
+        if (count is not None and len(values) != count) or not all(
+            usable(v, scale) for v in values
+        ):
+            invalid = model.Invalid(text, attribute, self.source_of(element))
+            self.invalid.append(invalid)
+            return invalid
+        return values
+
+    def value(
+        self, element: etree._Element, attribute: str, childclass: str, count: int | None = None
+    ) -> tuple[tuple[float, ...] | model.Invalid | None, etree._Element | None]:
+        """An attribute's numbers with its default classes, and where they are written."""
+        found = self.defaults.lookup(element, attribute, childclass)
+        if found is None:
+            return None, None
+        text, where = found
+        return self.numbers(where, attribute, text, count), where
+
+    def text(self, element: etree._Element, attribute: str, childclass: str, default=None):
+        found = self.defaults.lookup(element, attribute, childclass)
+        return default if found is None else found[0]
+
+    # --- poses --------------------------------------------------------------------------
+
+    def pose(self, element: etree._Element, childclass: str | None = None) -> np.ndarray:
+        """The 4×4 pose ``pos`` and the orientation of ``element`` give (with classes when
+        ``childclass`` is given: geoms and sites take them from defaults)."""
+        matrix = np.eye(4)
+        position = self._attribute(element, "pos", childclass, 3)
+        if isinstance(position, tuple):
+            matrix[:3, 3] = position
+        forms = [f for f in FORMS if self._has(element, f, childclass)]
+        if len(forms) > 1 and sum(element.get(f) is not None for f in forms) > 1:
+            source = self.source_of(element)
+            raise InputError(
+                f"orientation given twice ({', '.join(forms)}): MuJoCo refuses it",
+                source.path,
+                source.line,
+                source.column,
+            )
+        own = [f for f in forms if element.get(f) is not None]
+        form = own[0] if own else (forms[0] if forms else None)
+        if form is not None:
+            values = self._attribute(element, form, childclass, None)
+            if isinstance(values, tuple):
+                try:
+                    matrix[:3, :3] = rotation(
+                        form,
+                        values,
+                        degrees=self.compiler.degrees,
+                        eulerseq=self.compiler.eulerseq,
+                    )
+                except OrientationError as error:
+                    source = self.source_of(element)
+                    raise InputError(str(error), source.path, source.line, source.column) from None
+        return matrix
+
+    def _has(self, element, attribute, childclass) -> bool:
+        if childclass is None:
+            return element.get(attribute) is not None
+        return self.defaults.lookup(element, attribute, childclass) is not None
+
+    def _attribute(self, element, attribute, childclass, count):
+        if childclass is None:
+            text = element.get(attribute)
+            return None if text is None else self.numbers(element, attribute, text, count)
+        return self.value(element, attribute, childclass, count)[0]
+
+    def origin(self, matrix: np.ndarray, element: etree._Element) -> model.Origin:
+        xyz = tuple(float(v) for v in matrix[:3, 3])
+        rpy = tuple(float(v) for v in matrix_rpy(matrix[:3, :3]))
+        return model.Origin(xyz, rpy, self.source_of(element))  # type: ignore[arg-type]
+
+    # --- the tree -----------------------------------------------------------------------
+
+    def robot(self) -> model.Robot:
+        worlds = [c for c in self.root if local(c) == "worldbody"]
+        shapes: list[model.Shape] = []
+        bodies: list[tuple[etree._Element, np.ndarray, str]] = []
+        for world in worlds:
+            for element, frame, childclass in self.members(world, np.eye(4), MAIN):
+                if local(element) == "geom":
+                    shapes.append(self.shape(element, frame, childclass))
+                elif local(element) in ("body", "attach"):
+                    bodies.append((element, frame, childclass))
+        source = self.source_of(worlds[0]) if worlds else self.source_of(self.root)
+        self.links.append(_link("world", None, shapes, source))
+        for element, frame, childclass in bodies:
+            self.child(element, "world", frame, childclass)
+        self.invalid.sort(key=lambda i: (i.source.path, i.source.line or 0, i.source.column or 0))
+        return model.Robot(
+            name=self.root.get("model"),
+            links=tuple(self.links),
+            joints=tuple(self.joints),
+            materials=(),
+            source=self.source_of(self.root),
+            files=tuple(self.assembled.files),
+            invalid=tuple(self.invalid),
+            fragment=not worlds,
+            reads=tuple(self.assembled.reads.items()),
+            format="mjcf",
+            inference=self.compiler.inference,
+        )
+
+    def members(
+        self, element: etree._Element, frame: np.ndarray, childclass: str
+    ) -> Iterator[tuple[etree._Element, np.ndarray, str]]:
+        """The children of a body (or the world), through ``<frame>``\\s: each with the pose
+        of the frames around it and the childclass in force."""
+        for child in element:
+            tag = local(child)
+            if tag == "frame":
+                inner = frame @ self.pose(child)
+                classes = child.get("childclass", childclass)
+                yield from self.members(child, inner, self.defaults.check(classes, child))
+            elif tag is not None:
+                yield child, frame, childclass
+
+    def body(self, element: etree._Element, parent: str, frame: np.ndarray, childclass: str):
+        number = len(self.links)
+        name = element.get("name") or f"body {number}"
+        pose = frame @ self.pose(element)
+        inner = self.defaults.check(element.get("childclass", childclass), element)
+        inertial = None
+        shapes: list[model.Shape] = []
+        moves: list[etree._Element] = []
+        children: list[tuple[etree._Element, np.ndarray, str]] = []
+        for member, at, classes in self.members(element, np.eye(4), inner):
+            tag = local(member)
+            if tag == "inertial" and inertial is None:
+                inertial = self.inertial(member, at)
+            elif tag == "geom":
+                shapes.append(self.shape(member, at, classes))
+            elif tag in ("joint", "freejoint"):
+                moves.append((member, classes))
+            elif tag in ("body", "attach"):
+                children.append((member, at, classes))
+        source = self.source_of(element)
+        self.links.append(_link(name, inertial, shapes, source))
+        self.joints.append(self.joint(name, parent, pose, moves, element))
+        for child, at, classes in children:
+            self.child(child, name, at, classes)
+
+    def child(self, element: etree._Element, parent: str, frame: np.ndarray, childclass: str):
+        if local(element) == "body":
+            self.body(element, parent, frame, childclass)
+        else:
+            self.attach(element, parent, frame)
+
+    def attach(self, element: etree._Element, parent: str, frame: np.ndarray) -> None:
+        """
+        ``<attach model body prefix>``: the subtree of ``body`` in the ``<model>`` asset
+        ``model`` (read with its own compiler, classes and assets), its names prefixed, hung
+        from ``parent`` at the attach frame (the body keeps its pose relative to it).
+        """
+        source = self.source_of(element)
+        wanted, prefix = element.get("body"), element.get("prefix", "")
+        file = self.models.get(element.get("model", ""))
+        if file is None or wanted is None:
+            raise InputError(
+                f"<attach>: no <model> asset named {element.get('model')!r} with a body",
+                source.path,
+                source.line,
+                source.column,
+            )
+        other = _Reader(file).robot()
+        if other.link(wanted) is None:
+            raise InputError(
+                f"<attach>: no body {wanted!r} in {file}", source.path, source.line, source.column
+            )
+        keep = {wanted}
+        for joint in other.joints:  # in body order: a parent comes before its children
+            if joint.parent in keep:
+                keep.add(joint.child or "")
+        self.invalid.extend(other.invalid)
+        self.assembled.files.extend(f for f in other.files if f not in self.assembled.files)
+        self.assembled.reads.update(other.reads)
+        renamed = {name: prefix + name for name in keep}
+        for link in other.links:
+            if link.name in keep:
+                self.links.append(dataclasses.replace(link, name=renamed[link.name]))
+        for joint in other.joints:
+            if joint.child not in keep:
+                continue
+            changes = {"name": prefix + joint.name, "child": renamed[joint.child]}
+            if joint.child == wanted:
+                pose = frame @ self.pose(element) @ _matrix(joint.origin)
+                changes.update(parent=parent, origin=self.origin(pose, element))
+            else:
+                changes["parent"] = renamed[joint.parent]
+            self.joints.append(dataclasses.replace(joint, **changes))
+
+    # --- elements -----------------------------------------------------------------------
+
+    def joint(self, body: str, parent: str, pose: np.ndarray, moves, element) -> model.Joint:
+        origin = self.origin(pose, element)
+        if not moves:
+            return model.Joint(
+                f"{body} (weld)",
+                "fixed",
+                parent,
+                body,
+                origin,
+                None,
+                None,
+                None,
+                None,
+                self.source_of(element),
+            )
+        first, classes = moves[0]
+        if local(first) == "freejoint":
+            kind = "floating"
+        else:
+            written = self.text(first, "type", classes, "hinge")
+            kind = _JOINT_TYPES.get(written, written)
+            if kind == "revolute" and not self._limited(first, classes):
+                kind = "continuous"
+        axis = None
+        if kind in ("revolute", "continuous", "prismatic"):
+            found = self.value(first, "axis", classes, 3)[0]
+            axis = found if found is not None else (0.0, 0.0, 1.0)
+        return model.Joint(
+            first.get("name") or f"{body} ({kind})",
+            kind,
+            parent,
+            body,
+            origin,
+            axis,
+            None,
+            None,
+            None,
+            self.source_of(first),
+        )
+
+    def _limited(self, joint: etree._Element, classes: str) -> bool:
+        limited = self.text(joint, "limited", classes, "auto")
+        if limited == "auto":
+            return self.compiler.autolimits and self.text(joint, "range", classes) is not None
+        return limited == "true"
+
+    def inertial(self, element: etree._Element, frame: np.ndarray) -> model.Inertial:
+        matrix = frame @ self.pose(element)
+        mass = self._attribute(element, "mass", None, 1)
+        mass = mass[0] if isinstance(mass, tuple) else mass
+        tensor: dict[str, model.Number] = dict.fromkeys(model.TENSOR, None)
+        full = element.get("fullinertia")
+        diagonal = element.get("diaginertia")
+        if full is not None:
+            values = self.numbers(element, "fullinertia", full, 6)
+            if isinstance(values, tuple):
+                tensor = dict(zip(("ixx", "iyy", "izz", "ixy", "ixz", "iyz"), values, strict=True))
+            else:
+                tensor = dict.fromkeys(model.TENSOR, values)
+        elif diagonal is not None:
+            values = self.numbers(element, "diaginertia", diagonal, 3, scale=True)
+            if isinstance(values, tuple):
+                tensor = {"ixx": values[0], "iyy": values[1], "izz": values[2]}
+                tensor.update(ixy=0.0, ixz=0.0, iyz=0.0)
+            else:
+                tensor = dict.fromkeys(model.TENSOR, values)
+        source = self.source_of(element)
+        return model.Inertial(
+            origin=self.origin(matrix, element),
+            mass=mass,
+            source=source,
+            mass_source=source,
+            inertia_source=source,
+            **tensor,
+        )
+
+    def shape(self, element: etree._Element, frame: np.ndarray, classes: str) -> model.Shape:
+        source = self.source_of(element)
+        kind = self.text(element, "type", classes, "sphere")
+        size, _ = self.value(element, "size", classes)
+        fromto, _ = self.value(element, "fromto", classes, 6)
+        pose = frame @ self.pose(element, classes)
+        half_length = None
+        if isinstance(fromto, tuple) and kind in _FROMTO_TYPES:
+            start, end = np.array(fromto[:3]), np.array(fromto[3:])
+            axis = end - start
+            pose = frame.copy()
+            pose[:3, 3] = frame[:3, :3] @ ((start + end) / 2) + frame[:3, 3]
+            pose[:3, :3] = frame[:3, :3] @ rotation("zaxis", tuple(axis), degrees=False)
+            half_length = float(np.linalg.norm(axis)) / 2
+        size = size if isinstance(size, tuple) else ()
+        mesh_name = self.text(element, "mesh", classes)
+        if kind == "mesh" and mesh_name in self.meshes:
+            geometry, reference = self.meshes[mesh_name]
+            pose = pose @ reference
+        elif kind == "mesh":
+            geometry = model.Unknown(f"mesh {mesh_name!r}" if mesh_name else "mesh", source)
+        elif mesh_name is not None:  # a primitive MuJoCo fits to the mesh: not read yet
+            geometry = model.Unknown(f"{kind} fitted to a mesh", source)
+        else:
+            geometry = self.primitive(kind, size, half_length, source)
+        density, _ = self.value(element, "density", classes, 1)
+        mass, _ = self.value(element, "mass", classes, 1)
+        group, _ = self.value(element, "group", classes, 1)
+        density_value = density[0] if isinstance(density, tuple) else 1000.0
+        mass_value = mass[0] if isinstance(mass, tuple) else None
+        group_value = int(group[0]) if isinstance(group, tuple) else 0
+        low, high = self.compiler.inference.groups
+        weighs = (
+            low <= group_value <= high
+            and not isinstance(geometry, model.Unknown)
+            and (mass_value > 0 if mass_value is not None else density_value > 0)
+        )
+        return model.Shape(
+            "collision" if weighs else "visual",
+            element.get("name"),
+            self.origin(pose, element),
+            geometry,
+            source,
+            density=density_value,
+            mass=mass_value,
+            shell=self.text(element, "shellinertia", classes, "false") == "true",
+            group=group_value,
+        )
+
+    @staticmethod
+    def primitive(kind, size, half_length, source) -> model.Geometry:
+        """A primitive from MuJoCo's ``size`` (radii and half-lengths) or ``fromto``."""
+
+        def get(index: int) -> float | None:
+            return size[index] if len(size) > index else None
+
+        if kind == "sphere":
+            return model.Sphere(get(0), source)
+        if kind == "capsule":
+            half = half_length if half_length is not None else get(1)
+            return model.Capsule(get(0), None if half is None else 2 * half, source)
+        if kind == "cylinder":
+            half = half_length if half_length is not None else get(1)
+            return model.Cylinder(get(0), None if half is None else 2 * half, source)
+        if kind == "box":
+            half = half_length if half_length is not None else get(2)
+            if get(0) is None or get(1) is None or half is None:
+                return model.Box(None, source)
+            return model.Box((2 * get(0), 2 * get(1), 2 * half), source)
+        if kind == "ellipsoid":
+            half = half_length if half_length is not None else get(2)
+            if get(0) is None or get(1) is None or half is None:
+                return model.Ellipsoid(None, source)
+            return model.Ellipsoid((get(0), get(1), half), source)
+        return model.Unknown(kind, source)
+
+    def _mesh_assets(self) -> dict[str, tuple[model.Mesh, np.ndarray]]:
+        """Mesh assets by name: the model's mesh and the pose of its file's frame in the
+        geom's (``refpos``/``refquat``: vertices are read relative to that frame)."""
+        folder = self.compiler.mesh_folder(self.path.parent)
+        meshes = {}
+        for asset in (c for c in self.root if local(c) == "asset"):
+            for element in (c for c in asset if local(c) == "mesh"):
+                classes = MAIN
+                name_file = self.text(element, "file", classes)
+                source = self.source_of(element)
+                name = element.get("name") or (Path(name_file).stem if name_file else None)
+                if name is None:
+                    continue
+                scale, _ = self.value(element, "scale", classes, 3)
+                mode = self.text(element, "inertia", classes, "legacy")
+                path = None
+                problem = "the mesh's vertices are written in the model, not read yet"
+                if name_file is not None:
+                    candidate = Path(name_file)
+                    candidate = candidate if candidate.is_absolute() else folder / name_file
+                    path = str(candidate) if candidate.is_file() else None
+                    problem = None if path else f"no such file: {candidate}"
+                mesh = model.Mesh(
+                    name_file or name,
+                    path,
+                    scale if scale is not None else (1.0, 1.0, 1.0),
+                    source,
+                    problem=problem,
+                    inertia=mode,
+                )
+                reference = np.eye(4)
+                refpos, _ = self.value(element, "refpos", classes, 3)
+                refquat, _ = self.value(element, "refquat", classes, 4)
+                if isinstance(refpos, tuple):
+                    reference[:3, 3] = refpos
+                if isinstance(refquat, tuple):
+                    reference[:3, :3] = rotation("quat", refquat, degrees=False)
+                meshes[name] = (mesh, np.linalg.inv(reference))
+        return meshes
+
+
+def _matrix(origin: model.Origin) -> np.ndarray:
+    return transform(origin.xyz, origin.rpy)
+
+
+def _link(name, inertial, shapes, source) -> model.Link:
+    return model.Link(
+        name,
+        inertial,
+        tuple(s for s in shapes if s.kind == "visual"),
+        tuple(s for s in shapes if s.kind == "collision"),
+        source,
+    )

@@ -1,0 +1,63 @@
+"""
+MJCF for the tests: models compiled by the real MuJoCo (its values are what the reader must
+give), also without their mesh files (the vendored Menagerie holds the XML only), and small
+models written inline.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+#: the XML files (and licences) of a MuJoCo Menagerie snapshot: tests/data/menagerie/SOURCE.md
+MENAGERIE = Path(__file__).resolve().parent.parent / "data" / "menagerie"
+
+
+def menagerie_models() -> list[Path]:
+    """Every whole model of the snapshot (root <mujoco> with a <worldbody>), sorted."""
+    return sorted(
+        path
+        for path in MENAGERIE.glob("*/*.xml")
+        if b"<worldbody" in path.read_bytes() and b"<mujoco" in path.read_bytes()
+    )
+
+
+def compiled(path: Path, *, without_meshes: bool = False):
+    """
+    ``mujoco.MjModel`` of the model at ``path``. ``without_meshes``: its mesh geoms made small
+    spheres and its meshes, textures and height fields removed first (the files are not
+    there), and every body that would infer its mass properties given a stand-in
+    ``<inertial>``: the bodies that wrote one compile to their own values.
+    """
+    import mujoco
+
+    spec = mujoco.MjSpec.from_file(str(path))
+    if without_meshes:
+        for geom in spec.geoms:
+            if geom.meshname or geom.type == mujoco.mjtGeom.mjGEOM_HFIELD:
+                geom.type = mujoco.mjtGeom.mjGEOM_SPHERE
+                geom.size = np.array([0.01, 0.0, 0.0])
+                geom.meshname = ""
+                geom.hfieldname = ""
+        for asset in [*spec.meshes, *spec.textures, *spec.hfields]:
+            spec.delete(asset)
+        for material in spec.materials:
+            material.textures = [""] * len(material.textures)
+        for body in spec.bodies[1:]:
+            if not body.explicitinertial:
+                body.explicitinertial = True
+                body.mass = 1.0
+                body.inertia = np.ones(3)
+                body.ipos = np.zeros(3)
+                body.iquat = np.array([1.0, 0, 0, 0])
+    return spec.compile()
+
+
+def body_mass_properties(mjmodel, body: int):
+    """``(mass, com, principal moments sorted)`` of body ``body`` as MuJoCo compiled it."""
+    return (
+        float(mjmodel.body_mass[body]),
+        np.array(mjmodel.body_ipos[body]),
+        np.sort(np.array(mjmodel.body_inertia[body])),
+    )
