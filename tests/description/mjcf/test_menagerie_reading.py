@@ -39,7 +39,7 @@ def test_a_model_reads_as_mujoco_compiles_it(path):
     robot = load_mjcf(path)
     mjmodel = compiled(path, without_meshes=True)
     assert robot.format == "mjcf"
-    assert [link.name for link in robot.links][0] == "world"
+    assert robot.links[0].name == "world"
     assert len(robot.links) == mjmodel.nbody
     for body, link in enumerate(robot.links[1:], start=1):
         name = mujoco.mj_id2name(mjmodel, mujoco.mjtObj.mjOBJ_BODY, body)
