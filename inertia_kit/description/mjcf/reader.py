@@ -379,7 +379,7 @@ class _Reader:
         half_length = None
         if isinstance(fromto, tuple) and kind in _FROMTO_TYPES:
             start, end = np.array(fromto[:3]), np.array(fromto[3:])
-            axis = end - start
+            axis = start - end  # MuJoCo's z points from `to` to `from` (mjCGeom::Compile)
             pose = frame.copy()
             pose[:3, 3] = frame[:3, :3] @ ((start + end) / 2) + frame[:3, 3]
             pose[:3, :3] = frame[:3, :3] @ rotation("zaxis", tuple(axis), degrees=False)

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from kit.mjcf import MENAGERIE, body_mass_properties, compiled, menagerie_models
 
+from inertia_kit.description import model
 from inertia_kit.description.mjcf.reader import load_mjcf
 from inertia_kit.physics.frames import rpy_matrix, transform
 
@@ -27,6 +28,59 @@ MODELS = [p for p in menagerie_models() if p.relative_to(MENAGERIE).as_posix() n
 
 def _relative(a: np.ndarray, b: np.ndarray, scale: float) -> float:
     return float(np.max(np.abs(np.asarray(a) - np.asarray(b)))) / scale
+
+
+def _mujoco_size(geometry) -> tuple[str, np.ndarray] | None:
+    """A primitive of the model as MuJoCo's type and ``size`` (radii, half-lengths)."""
+    if isinstance(geometry, model.Sphere):
+        return "SPHERE", np.array([geometry.radius, 0, 0])
+    if isinstance(geometry, model.Capsule):
+        return "CAPSULE", np.array([geometry.radius, geometry.length / 2, 0])
+    if isinstance(geometry, model.Cylinder):
+        return "CYLINDER", np.array([geometry.radius, geometry.length / 2, 0])
+    if isinstance(geometry, model.Box):
+        return "BOX", np.array(geometry.size) / 2
+    if isinstance(geometry, model.Ellipsoid):
+        return "ELLIPSOID", np.array(geometry.radii)
+    return None
+
+
+def _same_primitives(link, mjmodel, body: int) -> None:
+    """The body's geoms: as many as MuJoCo's, each primitive one with MuJoCo's type, size and
+    pose (mesh geoms are placed by MuJoCo at their mesh's centroid: not compared here)."""
+    shapes = [*link.visuals, *link.collisions]
+    ids = [g for g in range(mjmodel.ngeom) if mjmodel.geom_bodyid[g] == body]
+    assert len(shapes) == len(ids), link.name
+    remaining = list(ids)
+    for shape in shapes:
+        primitive = _mujoco_size(shape.geometry)
+        if primitive is None:
+            continue
+        kind, size = primitive
+        pose = transform(shape.origin.xyz, shape.origin.rpy)
+        for g in remaining:
+            rotation = np.zeros(9)
+            mujoco.mju_quat2Mat(rotation, mjmodel.geom_quat[g])
+            same = (
+                mjmodel.geom_type[g] == getattr(mujoco.mjtGeom, f"mjGEOM_{kind}")
+                and np.allclose(size[size > 0], mjmodel.geom_size[g][size > 0], rtol=1e-9)
+                and np.allclose(pose[:3, 3], mjmodel.geom_pos[g], rtol=1e-9, atol=1e-12)
+                and _same_axes(kind, pose[:3, :3], rotation.reshape(3, 3))
+            )
+            if same:
+                remaining.remove(g)
+                break
+        else:
+            raise AssertionError(f"{link.name}: {shape.source} is not MuJoCo's geom")
+
+
+def _same_axes(kind: str, ours: np.ndarray, theirs: np.ndarray) -> bool:
+    """The same rotation (a sphere's needs none; a capsule's or cylinder's only its axis)."""
+    if kind == "SPHERE":
+        return True
+    if kind in ("CAPSULE", "CYLINDER"):
+        return bool(np.allclose(ours[:, 2], theirs[:, 2], atol=1e-9))
+    return bool(np.allclose(ours, theirs, atol=1e-9))
 
 
 def test_the_snapshot_is_there():
@@ -52,6 +106,7 @@ def test_a_model_reads_as_mujoco_compiles_it(path):
         mujoco.mju_quat2Mat(rotation, mjmodel.body_quat[body])
         expected[:3, :3] = rotation.reshape(3, 3)
         assert _relative(pose, expected, max(1.0, np.abs(expected).max())) < 1e-9, link.name
+        _same_primitives(link, mjmodel, body)
         inertial = link.inertial
         if inertial is None or robot.inference.from_geometry == "always":
             continue
