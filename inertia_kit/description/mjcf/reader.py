@@ -341,6 +341,16 @@ class _Reader:
         return limited == "true"
 
     def inertial(self, element: etree._Element, frame: np.ndarray) -> model.Inertial:
+        turned = [f for f in FORMS if element.get(f) is not None]
+        if element.get("fullinertia") is not None and turned:
+            source = self.source_of(element)
+            raise InputError(
+                f"<inertial> with fullinertia and {turned[0]}: MuJoCo refuses an orientation "
+                "with a full tensor",
+                source.path,
+                source.line,
+                source.column,
+            )
         matrix = frame @ self.pose(element)
         mass = self._attribute(element, "mass", None, 1)
         mass = mass[0] if isinstance(mass, tuple) else mass
@@ -468,22 +478,34 @@ class _Reader:
                     candidate = candidate if candidate.is_absolute() else folder / name_file
                     path = str(candidate) if candidate.is_file() else None
                     problem = None if path else f"no such file: {candidate}"
+                written = scale if isinstance(scale, tuple) else (1.0, 1.0, 1.0)
+                refpos, _ = self.value(element, "refpos", classes, 3)
+                refquat, _ = self.value(element, "refquat", classes, 4)
+                turn = np.eye(3)
+                if isinstance(refquat, tuple):
+                    turn = rotation("quat", refquat, degrees=False)
+                # MuJoCo reads a vertex v as scale ⊙ Rᵀ(v - refpos): the same as the file scaled
+                # by R·diag(scale)·Rᵀ, then turned by Rᵀ and moved, when that is a scale
+                turned = turn @ np.diag(written) @ turn.T
+                if np.abs(turned - np.diag(np.diag(turned))).max() > 1e-12 * np.abs(turned).max():
+                    problem = "a refquat that turns a non-uniform scale is not read yet"
+                    path = None
+                    factors = (1.0, 1.0, 1.0)
+                else:
+                    factors = tuple(float(f) for f in np.diag(turned))
+                placement = np.eye(4)
+                placement[:3, :3] = turn.T
+                if isinstance(refpos, tuple):
+                    placement[:3, 3] = -(np.diag(written) @ turn.T @ np.array(refpos))
                 mesh = model.Mesh(
                     name_file or name,
                     path,
-                    scale if scale is not None else (1.0, 1.0, 1.0),
+                    factors,  # type: ignore[arg-type]
                     source,
                     problem=problem,
                     inertia=mode,
                 )
-                reference = np.eye(4)
-                refpos, _ = self.value(element, "refpos", classes, 3)
-                refquat, _ = self.value(element, "refquat", classes, 4)
-                if isinstance(refpos, tuple):
-                    reference[:3, 3] = refpos
-                if isinstance(refquat, tuple):
-                    reference[:3, :3] = rotation("quat", refquat, degrees=False)
-                meshes[name] = (mesh, np.linalg.inv(reference))
+                meshes[name] = (mesh, placement)
         return meshes
 
 

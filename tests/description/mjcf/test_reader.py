@@ -1,0 +1,274 @@
+"""
+The MJCF reader on models written here, each read as the real MuJoCo compiles it: every
+orientation form under the compiler's angle and eulerseq, frames, default classes and
+childclass, includes, mesh reference frames, and the errors MuJoCo would also refuse.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from kit.mjcf import body_mass_properties
+
+from inertia_kit.description import model
+from inertia_kit.description.mjcf.reader import is_mjcf, load_mjcf
+from inertia_kit.errors import InputError
+from inertia_kit.physics.frames import rpy_matrix, transform
+
+mujoco = pytest.importorskip("mujoco")
+
+
+def write(folder, name: str, text: str):
+    path = folder / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def both(path):
+    """Our robot and MuJoCo's compiled model of ``path``."""
+    return load_mjcf(path), mujoco.MjModel.from_xml_path(str(path))
+
+
+def pose_of(robot, name: str) -> np.ndarray:
+    origin = robot.parent_joint(name).origin
+    return transform(origin.xyz, origin.rpy)
+
+
+def mujoco_pose(mjmodel, name: str) -> np.ndarray:
+    body = mujoco.mj_name2id(mjmodel, mujoco.mjtObj.mjOBJ_BODY, name)
+    matrix = np.eye(4)
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, mjmodel.body_quat[body])
+    matrix[:3, :3] = rotation.reshape(3, 3)
+    matrix[:3, 3] = mjmodel.body_pos[body]
+    return matrix
+
+
+def assert_inertial_is_mujocos(robot, mjmodel, name: str) -> None:
+    inertial = robot.link(name).inertial
+    body = mujoco.mj_name2id(mjmodel, mujoco.mjtObj.mjOBJ_BODY, name)
+    mass, com, moments = body_mass_properties(mjmodel, body)
+    turn = rpy_matrix(inertial.origin.rpy)
+    tensor = np.array(
+        [
+            [inertial.ixx, inertial.ixy, inertial.ixz],
+            [inertial.ixy, inertial.iyy, inertial.iyz],
+            [inertial.ixz, inertial.iyz, inertial.izz],
+        ]
+    )
+    assert inertial.mass == pytest.approx(mass, rel=1e-12)
+    np.testing.assert_allclose(inertial.origin.xyz, com, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(
+        np.sort(np.linalg.eigvalsh(turn @ tensor @ turn.T)), moments, rtol=1e-10
+    )
+
+
+INERTIAL = (
+    '<inertial pos="0.01 0.02 0.03" mass="2" fullinertia="0.03 0.02 0.025 0.001 -0.002 0.003"'
+)
+TURNED = '<inertial pos="0.01 0.02 0.03" mass="2" diaginertia="0.03 0.02 0.025"'
+
+
+@pytest.mark.parametrize(
+    ("compiler", "orientation"),
+    [
+        ("", 'quat="1 2 3 4"'),
+        ("", 'euler="10 20 30"'),
+        ('angle="radian"', 'euler="0.1 0.2 0.3"'),
+        ('eulerseq="zyx"', 'euler="10 20 30"'),
+        ('eulerseq="XYZ"', 'euler="10 -20 30"'),
+        ('eulerseq="zXy"', 'euler="40 20 -30"'),
+        ("", 'axisangle="1 1 0 45"'),
+        ('angle="radian"', 'axisangle="0 0 2 1.5"'),
+        ("", 'xyaxes="1 1 0 -1 1 0.2"'),
+        ("", 'zaxis="0.2 -1 0.4"'),
+        ("", 'zaxis="0 0 -1"'),
+    ],
+)
+def test_every_orientation_form_is_mujocos(tmp_path, compiler, orientation):
+    path = write(
+        tmp_path,
+        "m.xml",
+        f"""<mujoco><compiler {compiler}/><worldbody>
+          <body name="a" pos="0.1 0.2 0.3" {orientation}>
+            <joint type="hinge"/>
+            {TURNED} {orientation}/>
+            <geom type="box" size="0.1 0.2 0.3" pos="0.05 0 0" {orientation}/>
+          </body></worldbody></mujoco>""",
+    )
+    robot, mjmodel = both(path)
+    np.testing.assert_allclose(pose_of(robot, "a"), mujoco_pose(mjmodel, "a"), atol=1e-12)
+    assert_inertial_is_mujocos(robot, mjmodel, "a")
+    (shape,) = robot.link("a").collisions
+    placed = transform(shape.origin.xyz, shape.origin.rpy)
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, mjmodel.geom_quat[0])
+    np.testing.assert_allclose(placed[:3, :3], rotation.reshape(3, 3), atol=1e-12)
+    np.testing.assert_allclose(placed[:3, 3], mjmodel.geom_pos[0], atol=1e-12)
+
+
+def test_frames_and_default_classes_are_mujocos(tmp_path):
+    path = write(
+        tmp_path,
+        "m.xml",
+        """<mujoco>
+          <default>
+            <geom density="500"/>
+            <joint type="slide" axis="1 0 0"/>
+            <default class="arm"><geom type="capsule" size="0.02 0.1" group="1"/>
+              <default class="light"><geom density="100"/></default>
+            </default>
+            <default class="visual"><geom group="2" density="0"/></default>
+          </default>
+          <worldbody>
+            <frame pos="0 0 1" euler="0 0 90" childclass="arm">
+              <body name="a" pos="1 0 0">
+                <joint/>
+                <geom/>
+                <geom class="light" pos="0 0 0.2"/>
+                <geom class="visual" type="sphere" size="0.05"/>
+                <frame euler="90 0 0"><body name="b" pos="0 0 0.5"><geom/></body></frame>
+              </body>
+            </frame>
+          </worldbody></mujoco>""",
+    )
+    robot, mjmodel = both(path)
+    for name in ("a", "b"):
+        np.testing.assert_allclose(pose_of(robot, name), mujoco_pose(mjmodel, name), atol=1e-12)
+    link = robot.link("a")
+    assert robot.parent_joint("a").type == "prismatic"
+    assert robot.parent_joint("b").type == "fixed"
+    assert [(s.density, s.group, type(s.geometry).__name__) for s in link.collisions] == [
+        (500.0, 1, "Capsule"),
+        (100.0, 1, "Capsule"),
+    ]
+    (visual,) = link.visuals
+    assert (visual.density, visual.group, visual.geometry.radius) == (0.0, 2, 0.05)
+    assert [g.geometry.length for g in link.collisions] == [0.2, 0.2]
+
+
+def test_includes_splice_files_in_place_and_keep_their_lines(tmp_path):
+    write(
+        tmp_path,
+        "parts/arm.xml",
+        '<mujoco>\n<body name="arm">\n<include file="parts/hand.xml"/>\n</body>\n</mujoco>',
+    )
+    write(
+        tmp_path,
+        "parts/hand.xml",
+        '<mujoco>\n\n<body name="hand" pos="0 0 1">\n' + INERTIAL + "/>\n</body>\n</mujoco>",
+    )
+    path = write(
+        tmp_path,
+        "robot.xml",
+        '<mujoco><worldbody>\n<include file="parts/arm.xml"/>\n</worldbody></mujoco>',
+    )
+    robot, mjmodel = both(path)
+    assert [link.name for link in robot.links] == ["world", "arm", "hand"]
+    hand = robot.link("hand")
+    assert (hand.source.path, hand.source.line) == (str(tmp_path / "parts/hand.xml"), 3)
+    assert hand.inertial.source.line == 4
+    assert len(robot.files) == 3 and len(robot.reads) == 3
+    assert_inertial_is_mujocos(robot, mjmodel, "hand")
+
+
+def test_an_include_that_includes_itself_is_refused_where_it_is(tmp_path):
+    write(tmp_path, "a.xml", '<mujoco>\n<include file="b.xml"/>\n</mujoco>')
+    write(tmp_path, "b.xml", '<mujoco>\n\n<include file="a.xml"/>\n</mujoco>')
+    path = write(tmp_path, "m.xml", '<mujoco><include file="a.xml"/></mujoco>')
+    with pytest.raises(InputError, match="includes itself") as error:
+        load_mjcf(path)
+    assert (error.value.path, error.value.line) == (str(tmp_path / "b.xml"), 3)
+
+
+@pytest.mark.parametrize(
+    ("text", "message", "line"),
+    [
+        ('<mujoco>\n<include file="nowhere.xml"/></mujoco>', "no such file", 2),
+        (
+            '<mujoco><worldbody>\n<body><geom class="nope"/></body></worldbody></mujoco>',
+            "unknown default class 'nope'",
+            2,
+        ),
+        (
+            '<mujoco><worldbody>\n<body quat="1 0 0 0" euler="0 0 0"/></worldbody></mujoco>',
+            "orientation given twice",
+            2,
+        ),
+        ('<mujoco><worldbody>\n<body quat="0 0 0 0"/></worldbody></mujoco>', "zero length", 2),
+        ("<robot/>", "not an MJCF model", 1),
+        (
+            '<mujoco><worldbody><body>\n<inertial pos="0 0 0" mass="1" euler="0 0 1" '
+            'fullinertia="1 1 1 0 0 0"/></body></worldbody></mujoco>',
+            "MuJoCo refuses an orientation with a full tensor",
+            2,
+        ),
+        ("<mujoco><worldbody>", "not well-formed", 1),
+    ],
+)
+def test_what_mujoco_refuses_is_an_input_error_with_its_place(tmp_path, text, message, line):
+    path = write(tmp_path, "m.xml", text)
+    with pytest.raises(InputError, match=message) as error:
+        load_mjcf(path)
+    assert error.value.line == line
+
+
+def test_a_number_that_is_none_is_recorded_not_raised(tmp_path):
+    path = write(
+        tmp_path,
+        "m.xml",
+        '<mujoco><worldbody><body name="a">\n<inertial pos="0 0 0" mass="heavy" '
+        'diaginertia="1 1 1"/></body></worldbody></mujoco>',
+    )
+    robot = load_mjcf(path)
+    (invalid,) = robot.invalid
+    assert (invalid.text, invalid.attribute, invalid.source.line) == ("heavy", "mass", 2)
+    assert robot.link("a").inertial.mass is invalid
+
+
+def test_a_mesh_is_placed_with_its_reference_frame_and_scale(tmp_path):
+    import trimesh
+
+    box = trimesh.creation.box((0.2, 0.1, 0.4))
+    box.apply_translation((0.3, -0.1, 0.2))
+    (tmp_path / "assets").mkdir()
+    box.export(tmp_path / "assets" / "part.stl")
+    path = write(
+        tmp_path,
+        "m.xml",
+        """<mujoco><compiler meshdir="assets"/>
+          <asset><mesh file="part.stl" scale="2 1 1" refpos="0.1 0 0" refquat="1 0 0 1"
+                       inertia="exact"/></asset>
+          <worldbody><body name="a"><geom type="mesh" mesh="part" pos="0 0 1" euler="0 30 0"/>
+          </body></worldbody></mujoco>""",
+    )
+    robot, mjmodel = both(path)
+    (shape,) = robot.link("a").collisions
+    assert isinstance(shape.geometry, model.Mesh)
+    assert shape.geometry.inertia == "exact"
+    # the file's x, scaled by 2, is the geom's y after the reference turn: the file is read
+    # scaled by (1, 2, 1) and turned
+    np.testing.assert_allclose(shape.geometry.scale, (1.0, 2.0, 1.0), atol=1e-12)
+    centroid = np.array([*(np.array(shape.geometry.scale) * (0.3, -0.1, 0.2)), 1.0])
+    placed = transform(shape.origin.xyz, shape.origin.rpy) @ centroid
+    np.testing.assert_allclose(placed[:3], mjmodel.geom_pos[0], atol=1e-9)
+
+
+def test_a_file_without_a_worldbody_is_a_fragment(tmp_path):
+    path = write(tmp_path, "actuators.xml", "<mujoco><actuator/></mujoco>")
+    assert load_mjcf(path).fragment
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        (b'<?xml version="1.0"?>\n<!-- a robot -->\n<mujoco model="x"/>', True),
+        (b"<mujoco>", True),
+        (b"<robot name='r'/>", False),
+        (b"<!-- <mujoco> -->\n<robot/>", False),
+        (b"\xef\xbb\xbf<mujoco/>", True),
+    ],
+)
+def test_mjcf_is_known_by_its_root(text, expected):
+    assert is_mjcf(text) is expected
