@@ -93,6 +93,9 @@ def describe_geometry(geometry: model.Geometry, style: Style = MESSAGE) -> str:
         return style.mesh(geometry)
     if isinstance(geometry, model.Box):
         return style.box.format(_vector(geometry.size, style))
+    if isinstance(geometry, model.Ellipsoid):
+        # its semi-axes, as a box's sides: "ellipsoid (0.1 × 0.2 × 0.3 m)"
+        return "ellipsoid" + style.box.format(_vector(geometry.radii, style))[3:]
     names = _LENGTHS.get(type(geometry))
     if names is None:
         return style.unknown(geometry)  # type: ignore[arg-type]

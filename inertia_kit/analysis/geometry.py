@@ -150,6 +150,7 @@ SIZES: dict[type, tuple[str, ...]] = {
     model.Cylinder: ("radius", "length"),
     model.Sphere: ("radius",),
     model.Capsule: ("radius", "length"),
+    model.Ellipsoid: ("radii",),
 }
 
 
@@ -256,6 +257,10 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
     elif isinstance(geometry, model.Capsule):
         dims = (geometry.radius, geometry.length)
         make = lambda d: Part.capsule(*d, pose)  # noqa: E731
+    elif isinstance(geometry, model.Ellipsoid):
+        radii = geometry.radii
+        dims = radii if isinstance(radii, tuple) else None
+        make = lambda d: Part.ellipsoid(d, pose)  # noqa: E731
     else:  # Sphere
         dims = (geometry.radius,)
         make = lambda d: Part.sphere(d[0], pose)  # noqa: E731

@@ -183,6 +183,8 @@ def _shape_signature(shape: model.Shape) -> tuple | None:
             return ("capsule", round(float(g.radius), 6), round(float(g.length), 6))
         if isinstance(g, model.Sphere):
             return ("sphere", round(float(g.radius), 6))
+        if isinstance(g, model.Ellipsoid):
+            return ("ellipsoid", *sorted(round(float(abs(v)), 6) for v in g.radii))
         if isinstance(g, model.Mesh):
             stem = re.split(r"[/\\]", g.filename)[-1].rsplit(".", 1)[0]
             words = tokens(stem)

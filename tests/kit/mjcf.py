@@ -27,15 +27,18 @@ def compiled(path: Path, *, without_meshes: bool = False):
     """
     ``mujoco.MjModel`` of the model at ``path``. ``without_meshes``: its mesh geoms made small
     spheres and its meshes, textures and height fields removed first (the files are not
-    there), and every body that would infer its mass properties given a stand-in
-    ``<inertial>``: the bodies that wrote one compile to their own values.
+    there), and every body that would infer its mass properties from a mesh given a stand-in
+    ``<inertial>``: the bodies that wrote one, and those of primitives only, compile to their
+    own values.
     """
     import mujoco
 
     spec = mujoco.MjSpec.from_file(str(path))
     if without_meshes:
+        weighed_meshes = set()
         for geom in spec.geoms:
             if geom.meshname or geom.type == mujoco.mjtGeom.mjGEOM_HFIELD:
+                weighed_meshes.add(geom.parent.name)
                 geom.type = mujoco.mjtGeom.mjGEOM_SPHERE
                 geom.size = np.array([0.01, 0.0, 0.0])
                 geom.meshname = ""
@@ -45,7 +48,7 @@ def compiled(path: Path, *, without_meshes: bool = False):
         for material in spec.materials:
             material.textures = [""] * len(material.textures)
         for body in spec.bodies[1:]:
-            if not body.explicitinertial:
+            if not body.explicitinertial and body.name in weighed_meshes:
                 body.explicitinertial = True
                 body.mass = 1.0
                 body.inertia = np.ones(3)

@@ -1,0 +1,112 @@
+"""
+A body's mass properties as MuJoCo compiles them (analysis.inferred), against the real
+MuJoCo: inferred from primitive geoms (each type, ``mass`` or ``density``, group range,
+several geoms), ``inertiafromgeom`` true and false, the bounds and ``balanceinertia``, and the
+compiler's refusals.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from kit.mjcf import body_mass_properties
+
+from inertia_kit.analysis.declared import declared
+from inertia_kit.analysis.inferred import compiled, weigh_primitive
+from inertia_kit.description.mjcf.reader import load_mjcf
+
+mujoco = pytest.importorskip("mujoco")
+
+
+def model_file(tmp_path, body: str, compiler: str = "") -> object:
+    path = tmp_path / "m.xml"
+    path.write_text(
+        f'<mujoco><compiler {compiler}/><worldbody><body name="b" pos="0.1 0 0" euler="0 0 20">'
+        f'<joint type="hinge"/>{body}</body></worldbody></mujoco>'
+    )
+    return path
+
+
+def ours(path):
+    robot = load_mjcf(path)
+    return compiled(robot, declared, weigh_primitive)["b"]
+
+
+def assert_as_mujoco(path, result) -> None:
+    mjmodel = mujoco.MjModel.from_xml_path(str(path))
+    mass, com, moments = body_mass_properties(mjmodel, 1)
+    properties = result.mass_properties
+    assert result.refusal is None
+    assert properties.mass == pytest.approx(mass, rel=1e-12)
+    np.testing.assert_allclose(properties.com, com, rtol=1e-10, atol=1e-14)
+    np.testing.assert_allclose(properties.principal_moments, moments, rtol=1e-9)
+
+
+@pytest.mark.parametrize(
+    "geoms",
+    [
+        '<geom type="sphere" size="0.1"/>',
+        '<geom type="capsule" size="0.05 0.2" pos="0 0.1 0" euler="30 0 0"/>',
+        '<geom type="cylinder" size="0.05 0.2" density="2700"/>',
+        '<geom type="box" size="0.1 0.2 0.05" mass="3" pos="0.2 0 0"/>',
+        '<geom type="ellipsoid" size="0.1 0.2 0.05" euler="10 20 30"/>',
+        '<geom type="capsule" size="0.02" fromto="0 0 0 0.3 0.1 0"/>',
+        '<geom type="box" size="0.1 0.1 0.1"/><geom type="sphere" size="0.05" pos="0 0 0.3"/>',
+        '<geom type="box" size="0.1 0.1 0.1"/><geom type="sphere" size="0.3" group="4" '
+        'density="0"/>',
+        '<geom type="box" size="0.1 0.1 0.1"/><geom type="sphere" size="0.3" group="3"/>',
+    ],
+)
+def test_inferred_from_primitives_as_mujoco(tmp_path, geoms):
+    path = model_file(tmp_path, geoms, 'inertiagrouprange="0 2"' if 'group="3"' in geoms else "")
+    result = ours(path)
+    assert result.inferred
+    assert_as_mujoco(path, result)
+
+
+def test_inertiafromgeom_true_ignores_the_inertial(tmp_path):
+    body = '<inertial pos="0 0 0" mass="9" diaginertia="1 1 1"/><geom type="box" size=".1 .2 .3"/>'
+    path = model_file(tmp_path, body, 'inertiafromgeom="true"')
+    result = ours(path)
+    assert result.inferred and result.mass_properties.mass != 9
+    assert_as_mujoco(path, result)
+
+
+def test_the_bounds_raise_and_balance_averages(tmp_path):
+    body = '<inertial pos="0 0 0" mass="0.001" diaginertia="1e-9 1e-3 5e-3"/>'
+    path = model_file(tmp_path, body, 'boundmass="0.01" boundinertia="1e-6" balanceinertia="true"')
+    result = ours(path)
+    assert (result.raised, result.balanced) == (("mass", "inertia"), True)
+    assert_as_mujoco(path, result)
+
+
+@pytest.mark.parametrize(
+    ("body", "compiler", "refusal"),
+    [
+        ('<inertial pos="0 0 0" mass="1" diaginertia="1 1 3"/>', "", "A + B >= C"),
+        (
+            '<geom type="box" size=".1 .1 .1" density="0"/><geom type="sphere" size=".1" '
+            'density="0"/>',
+            "",
+            "moving bodies",
+        ),
+        ('<geom type="box" size=".1 .1 .1" density="0"/>', "", "moving bodies"),
+    ],
+)
+def test_what_the_compiler_refuses(tmp_path, body, compiler, refusal):
+    path = model_file(tmp_path, body, compiler)
+    result = ours(path)
+    assert refusal in result.refusal
+    with pytest.raises(ValueError, match=refusal.replace("+", r"\+")):
+        mujoco.MjModel.from_xml_path(str(path))
+
+
+def test_a_welded_child_that_weighs_lets_a_weightless_body_move(tmp_path):
+    child = '<body name="c"><geom type="sphere" size="0.1"/></body>'
+    path = model_file(tmp_path, child)
+    assert ours(path).refusal is None
+    assert mujoco.MjModel.from_xml_path(str(path)).body_mass[1] == 0
+    path = model_file(tmp_path, child.replace("<geom", '<joint type="hinge"/><geom'))
+    assert "moving bodies" in ours(path).refusal
+    with pytest.raises(ValueError, match="moving bodies"):
+        mujoco.MjModel.from_xml_path(str(path))
