@@ -115,6 +115,19 @@ def option_values(rule: ModuleType, configured: Mapping[str, Any]) -> dict[str, 
     return {option.name: configured.get(option.name, option.default) for option in options(rule)}
 
 
+#: the formats a rule judges when it does not say (``DESCRIPTION_FORMATS``)
+ALL_FORMATS = ("urdf", "mjcf")
+
+
+def formats(rule: ModuleType) -> tuple[str, ...]:
+    """
+    The description formats a rule judges (``DESCRIPTION_FORMATS``; every one when it does
+    not say): a rule about what only URDF says or only URDF's readers do (``<limit>``, KDL's
+    root, a second ``<inertial>``) stays silent on an MJCF model.
+    """
+    return tuple(getattr(rule, "DESCRIPTION_FORMATS", ALL_FORMATS))
+
+
 def engine(rule: ModuleType) -> str | None:
     """The engine an engine rule (IN07x) speaks for (``ENGINE``); ``None`` for other rules."""
     return getattr(rule, "ENGINE", None)

@@ -132,7 +132,12 @@ def run_rules(
     findings: dict[tuple, Finding] = {}
     # rules of scope "suppressions" (IN090) judge the comments after the others: lint.unused
     enabled = selection.enabled(catalog.RULES if rules is None else rules)
-    enabled = [rule for rule in enabled if rule.SCOPE in ("link", "robot")]
+    form = analysis.robot.format
+    enabled = [
+        rule
+        for rule in enabled
+        if rule.SCOPE in ("link", "robot") and form in catalog.formats(rule)
+    ]
     # code -> the codes whose findings on the same link it replaces (IN06x explains an IN020)
     supersedes = {rule.CODE: catalog.supersedes(rule) for rule in enabled}
     for rule in enabled:

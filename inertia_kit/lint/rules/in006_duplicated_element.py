@@ -17,6 +17,8 @@ CODE = "IN006"
 NAME = "duplicated-element"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+# a second element where URDF allows one: MJCF's readers refuse what MuJoCo refuses
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "a second `<inertial>`, `<mass>`, `<inertia>`, `<origin>` or `<geometry>`, or a second shape "
     "in a `<geometry>`: the engines read the first and ignore it, MuJoCo refuses the file"

@@ -26,6 +26,8 @@ CODE = "IN024"
 NAME = "visual-collision-mismatch"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+# URDF's visual and collision elements; an MJCF geom is both
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "the same shape drawn and collided at different poses, or visual and collision geometry "
     "differing in size or placement beyond simplification"

@@ -17,6 +17,8 @@ CODE = "IN025"
 NAME = "missing-collision"
 SEVERITY = Severity.WARNING
 SCOPE = "link"
+# URDF's collision elements; an MJCF geom is both
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = "a link with mass and visual geometry has no `<collision>`"
 OPTIONS = (
     Option(

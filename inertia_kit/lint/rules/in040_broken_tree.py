@@ -16,6 +16,8 @@ CODE = "IN040"
 NAME = "broken-tree"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+# URDF's joints name their links; MJCF nests its bodies
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "duplicate names, joints naming unknown links, several roots, cycles, a link with two "
     "parents, a joint without parent/child or of an unknown type"

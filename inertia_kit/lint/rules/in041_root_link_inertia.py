@@ -14,6 +14,8 @@ CODE = "IN041"
 NAME = "root-link-inertia"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+# KDL reads URDF only
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = "the root link carries an `<inertial>`: KDL (robot_state_publisher, MoveIt) ignores it"
 OPTIONS = (Option("single_link", bool, False, "also flag robots without joints"),)
 

@@ -15,6 +15,8 @@ CODE = "IN050"
 NAME = "joint-limits"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+# URDF's <limit>; MJCF's ranges are optional and in the compiler's angle unit
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "a revolute/prismatic joint without `<limit>`, a limit without effort or velocity, "
     "lower > upper, or effort/velocity ≤ 0"

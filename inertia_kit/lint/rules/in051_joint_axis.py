@@ -15,6 +15,8 @@ CODE = "IN051"
 NAME = "joint-axis"
 SEVERITY = Severity.ERROR
 SCOPE = "robot"
+# URDF's <axis>; MuJoCo normalises an MJCF joint's axis
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = "a moving joint's `<axis>` is zero (error) or not of unit length (warning)"
 OPTIONS = (
     Option("tolerance", float, 1e-3, "the allowed difference between the axis length and 1"),

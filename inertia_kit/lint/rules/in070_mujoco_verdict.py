@@ -12,6 +12,8 @@ CODE = "IN070"
 NAME = "mujoco-verdict"
 SEVERITY = Severity.ERROR  # a refusal; a silent change is a warning
 SCOPE = "robot"
+# MuJoCo's URDF import; an MJCF model is judged as MuJoCo compiles it
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "MuJoCo refuses the model (with its own message) or silently changes a link: `--engine mujoco`"
 )

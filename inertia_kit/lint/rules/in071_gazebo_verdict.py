@@ -13,6 +13,8 @@ NAME = "gazebo-verdict"
 ENGINE = "gazebo"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+# Gazebo reads URDF and SDFormat
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "Gazebo (sdformat's URDF converter) drops a massless link with its joint and subtree, "
     "or rejects a lumped body's invalid inertia"

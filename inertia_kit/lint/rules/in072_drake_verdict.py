@@ -13,6 +13,8 @@ NAME = "drake-verdict"
 ENGINE = "drake"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+# Drake's URDF parser
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "Drake replaces an invalid tensor by a water-density sphere, refuses what its parser cannot "
     "read (numbers, shapes, meshes, collision meshes that are not .obj/.vtk/.gltf), and fails at "

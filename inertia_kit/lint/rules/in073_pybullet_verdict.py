@@ -14,6 +14,8 @@ NAME = "pybullet-verdict"
 ENGINE = "pybullet"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+# PyBullet's URDF loader
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "PyBullet gives a link without <inertial> 1 kg, and recomputes every tensor from the "
     "collision shapes' bounding box unless URDF_USE_INERTIA_FROM_FILE"

@@ -13,6 +13,8 @@ NAME = "kdl-verdict"
 ENGINE = "kdl"
 SEVERITY = Severity.WARNING
 SCOPE = "robot"
+# KDL reads URDF only
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "KDL ignores the root link's inertia, and turns floating and planar joints into fixed ones"
 )
