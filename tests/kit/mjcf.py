@@ -23,7 +23,7 @@ def menagerie_models() -> list[Path]:
     )
 
 
-def compiled(path: Path, *, without_meshes: bool = False):
+def compiled_model(path: Path, *, without_meshes: bool = False):
     """
     ``mujoco.MjModel`` of the model at ``path``. ``without_meshes``: its mesh geoms made small
     spheres and its meshes, textures and height fields removed first (the files are not

@@ -1,6 +1,7 @@
 """
-Rules judge the formats they know (``DESCRIPTION_FORMATS``): what only URDF says or only URDF's readers do
-stays silent on an MJCF model, and a rule that says nothing judges every format.
+Rules judge the formats they know (``DESCRIPTION_FORMATS``): what only URDF says or only
+URDF's readers do stays silent on an MJCF model, and a rule that says nothing judges every
+format.
 """
 
 from __future__ import annotations

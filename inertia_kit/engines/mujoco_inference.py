@@ -1,10 +1,10 @@
 """
-What a format's engine makes of a body's mass properties when it loads the description
-(``Robot.inference``; MJCF's ``<compiler>``, as MuJoCo's ``mjCBody::Compile`` and
-``InertiaFromGeom`` do it): the written ``<inertial>``, or the sum of the body's geoms in the
-compiler's group range (each at its own ``mass`` or ``density``, meshes by their ``inertia``
-mode: no union, overlaps count twice), then ``boundmass``/``boundinertia`` and
-``balanceinertia``, or the error the compiler stops with. URDF infers nothing: ``None``.
+What MuJoCo's compiler makes of each body's mass properties in an MJCF model (the model's
+``Robot.inference``, its ``<compiler>``; as ``mjCBody::Compile`` and ``InertiaFromGeom`` do it):
+the written ``<inertial>``, or the sum of the body's geoms in the compiler's group range (each
+at its own ``mass`` or ``density``, meshes by their ``inertia`` mode: no union, overlaps count
+twice), then ``boundmass``/``boundinertia`` and ``balanceinertia``, or the error the compiler
+stops with. (A URDF's import is :mod:`.mujoco_compiler`'s.)
 """
 
 from __future__ import annotations
@@ -14,15 +14,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from inertia_kit.analysis.geometry import Solid
+from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
+from inertia_kit.engines.mujoco_compiler import GEOM_DENSITY
+from inertia_kit.engines.mujoco_meshes import DEFAULT_MESH_INERTIA, mesh_unit
 from inertia_kit.physics.mass import MassProperties
 
 #: MuJoCo's mjMINVAL: the smallest mass and moment a moving body may have
 MIN_VALUE = 1e-15
 
-#: a shape's mass properties as the engine weighs it, in the link frame; ``None`` when it has
-#: none to give (a missing mesh file, an unknown shape)
-GeomWeigher = Callable[[model.Shape], "MassProperties | None"]
+#: a geom's mass properties as MuJoCo weighs it, in the link frame; ``None`` when it has none
+#: we can compute (a missing mesh file, an unknown shape)
+GeomWeigher = Callable[[Solid], "MassProperties | None"]
 
 
 @dataclass(frozen=True)
@@ -58,23 +62,20 @@ def infers(link: model.Link, inference: model.Inference) -> bool:
     return inference.from_geometry == "missing" and link.inertial is None
 
 
-def compiled(
-    robot: model.Robot,
-    written: Callable[[model.Link], MassProperties | None],
-    weigh: GeomWeigher,
-) -> dict[str, Compiled]:
+def compiled(analysis: RobotAnalysis, weigh: GeomWeigher | None = None) -> dict[str, Compiled]:
     """
-    Every body's mass properties as compiled, by name (``None`` for a robot whose format
-    infers nothing). ``written`` gives a link's ``<inertial>`` as mass properties in the link
-    frame (``None`` when absent or unusable); ``weigh`` each geom's. A moving body (one with a
-    joint) must weigh something, unless a welded child does (``mjCModel``'s check).
+    Every body's mass properties as compiled, by name (empty for a robot whose format infers
+    nothing: URDF). ``weigh`` gives each geom's (default :func:`weigh_geom`). A moving body
+    (one with a joint) must weigh something, unless a welded child does (``mjCModel``'s
+    check).
     """
+    robot = analysis.robot
     inference = robot.inference
     if inference is None:
         return {}
     bodies = {
-        link.name: _compiled(link, inference, written(link), weigh)
-        for link in robot.links
+        link.name: _compiled(link, inference, weigh or weigh_geom)
+        for link in analysis.links
         if link.name != model.WORLD
     }
     welded_children: dict[str, list[str]] = {}
@@ -100,22 +101,17 @@ def _weightless(body: Compiled) -> bool:
     return properties.mass < MIN_VALUE or properties.principal_moments.min() < MIN_VALUE
 
 
-def _compiled(
-    link: model.Link,
-    inference: model.Inference,
-    written: MassProperties | None,
-    weigh: GeomWeigher,
-) -> Compiled:
-    if link.name == model.WORLD:
-        return Compiled(None, False)
-    inferred = infers(link, inference)
+def _compiled(link: LinkAnalysis, inference: model.Inference, weigh: GeomWeigher) -> Compiled:
+    inferred = infers(link.link, inference)
     if not inferred:
-        properties = written if link.inertial is not None else MassProperties(0.0)
+        properties = link.declared if link.link.inertial is not None else MassProperties(0.0)
         if properties is None:
             return Compiled(None, False)
         return _bounded(properties, inference, False)
-    shapes = [s for s in (*link.visuals, *link.collisions) if counted(s, inference)]
-    weighed = [(shape, weigh(shape)) for shape in shapes]
+    solids = [
+        s for s in (*link.visual.solids, *link.collision.solids) if counted(s.shape, inference)
+    ]
+    weighed = [(solid.shape, weigh(solid)) for solid in solids]
     unknown = tuple(shape for shape, properties in weighed if properties is None)
     if unknown:
         return Compiled(None, True, unknown=unknown)
@@ -154,39 +150,27 @@ def _bounded(properties: MassProperties, inference: model.Inference, inferred: b
     return Compiled(MassProperties(mass, properties.com, tensor), inferred, tuple(raised), balanced)
 
 
-def weigh_primitive(shape: model.Shape) -> MassProperties | None:
+def weigh_geom(solid: Solid) -> MassProperties | None:
     """
-    A primitive geom as MuJoCo weighs it (``mjCGeom::Compile``): its ``mass``, else
-    ``density`` × volume, solid, placed by its origin; ``None`` for what is not a solid
-    primitive with usable sizes.
+    A geom as MuJoCo weighs it (``mjCGeom::Compile``): its ``mass``, else ``density`` × its
+    volume, placed in the link frame; a mesh by its ``inertia`` mode (``legacy``: the
+    tetrahedra's absolute volumes, :mod:`.mujoco_meshes`; ``exact``: the solid). ``None`` for
+    what we cannot weigh yet (a shell, a ``convex`` or ``shell`` mesh) or what has no solid.
     """
-    from inertia_kit.physics import primitives
-    from inertia_kit.physics.frames import transform
-
-    geometry = shape.geometry
-    if shape.shell or not isinstance(shape.origin.xyz, tuple):
+    shape = solid.shape
+    unit = solid.unit
+    if unit is None or shape.shell:
         return None
-    try:
-        unit = _unit_primitive(geometry, primitives)
-    except (TypeError, ValueError):
-        return None
-    if unit is None:
-        return None
-    density = shape.density if isinstance(shape.density, float) else 1000.0
+    if solid.mesh is not None:
+        mode = getattr(shape.geometry, "inertia", None) or DEFAULT_MESH_INERTIA
+        if mode == "legacy":
+            unit = mesh_unit(solid)
+        elif mode != "exact":
+            return None
+        if unit is None:
+            return None
+    density = shape.density if isinstance(shape.density, float) else GEOM_DENSITY
     mass = shape.mass if isinstance(shape.mass, float) else density * unit.mass
-    weighed = unit.with_mass(mass) if unit.mass > 0 and mass > 0 else MassProperties(0.0)
-    return weighed.transformed(transform(shape.origin.xyz, shape.origin.rpy))
-
-
-def _unit_primitive(geometry: model.Geometry, primitives) -> MassProperties | None:
-    if isinstance(geometry, model.Sphere):
-        return primitives.sphere(geometry.radius, density=1.0)
-    if isinstance(geometry, model.Capsule):
-        return primitives.capsule(geometry.radius, geometry.length, density=1.0)
-    if isinstance(geometry, model.Cylinder):
-        return primitives.cylinder(geometry.radius, geometry.length, density=1.0)
-    if isinstance(geometry, model.Box):
-        return primitives.box(geometry.size, density=1.0)
-    if isinstance(geometry, model.Ellipsoid):
-        return primitives.ellipsoid(geometry.radii, density=1.0)
-    return None
+    if not (unit.mass > 0 and mass > 0):
+        return MassProperties(0.0)
+    return unit.with_mass(mass)
