@@ -158,6 +158,9 @@ class Shape:
     mass: Number = None
     shell: bool = False
     group: int | None = None
+    #: whether it takes part in contacts (MJCF: ``contype`` or ``conaffinity`` not 0); ``None``
+    #: where the element says it (URDF's collision and visual)
+    collides: bool | None = None
 
 
 @dataclass(frozen=True)
@@ -178,6 +181,9 @@ class Inertial:
     source: Source
     mass_source: Source | None = None
     inertia_source: Source | None = None
+    #: how the tensor is written where the format has several ways (MJCF: ``diaginertia`` or
+    #: ``fullinertia``); ``None``: the format's one way (URDF's six attributes)
+    tensor_form: str | None = None
 
     TENSOR = TENSOR
 

@@ -77,8 +77,13 @@ def _event(prediction: Prediction, first: Prediction | None) -> Event:
 def predict(robot: RobotAnalysis) -> list[Prediction]:
     """
     The refusals in the order MuJoCo meets them, then the silent changes. Robots whose tree
-    MuJoCo's importer cannot build (IN040) get no prediction.
+    MuJoCo's importer cannot build (IN040) get no prediction; an MJCF model's are its
+    compiler's (:mod:`.mujoco_inference`).
     """
+    if robot.robot.format == "mjcf":
+        from inertia_kit.engines.mujoco_inference import predictions
+
+        return predictions(robot)
     compiled = compile_robot(robot)
     if compiled is None:
         return []

@@ -18,11 +18,15 @@ from inertia_kit.analysis.geometry import Solid
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.description import model
 from inertia_kit.engines.mujoco_compiler import GEOM_DENSITY
+from inertia_kit.engines.mujoco_files import Prediction, change, refusal
 from inertia_kit.engines.mujoco_meshes import DEFAULT_MESH_INERTIA, mesh_unit
+from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
 
 #: MuJoCo's mjMINVAL: the smallest mass and moment a moving body may have
 MIN_VALUE = 1e-15
+#: MuJoCo's mjEPS: the smallest principal moment a ``fullinertia`` may have
+EPS = 1e-14
 
 #: a geom's mass properties as MuJoCo weighs it, in the link frame; ``None`` when it has none
 #: we can compute (a missing mesh file, an unknown shape)
@@ -88,8 +92,7 @@ def compiled(analysis: RobotAnalysis, weigh: GeomWeigher | None = None) -> dict[
             continue
         if any(not _weightless(bodies[c]) for c in welded_children.get(joint.child, ())):
             continue
-        refusal = "mass and inertia of moving bodies must be larger than mjMINVAL"
-        bodies[joint.child] = Compiled(None, body.inferred, body.raised, body.balanced, refusal)
+        bodies[joint.child] = Compiled(None, body.inferred, body.raised, body.balanced, MINVAL)
     return bodies
 
 
@@ -104,13 +107,16 @@ def _weightless(body: Compiled) -> bool:
 def _compiled(link: LinkAnalysis, inference: model.Inference, weigh: GeomWeigher) -> Compiled:
     inferred = infers(link.link, inference)
     if not inferred:
-        properties = link.declared if link.link.inertial is not None else MassProperties(0.0)
+        inertial = link.link.inertial
+        properties = link.declared if inertial is not None else MassProperties(0.0)
         if properties is None:
             return Compiled(None, False)
+        full = inertial is not None and inertial.tensor_form == "fullinertia"
+        if full and properties.principal_moments.min() < EPS:
+            message = "error 'inertia must have positive eigenvalues' in fullinertia"
+            return Compiled(None, False, refusal=message)
         return _bounded(properties, inference, False)
-    solids = [
-        s for s in (*link.visual.solids, *link.collision.solids) if counted(s.shape, inference)
-    ]
+    solids = _counted_solids(link, inference)
     weighed = [(solid.shape, weigh(solid)) for solid in solids]
     unknown = tuple(shape for shape, properties in weighed if properties is None)
     if unknown:
@@ -119,6 +125,12 @@ def _compiled(link: LinkAnalysis, inference: model.Inference, weigh: GeomWeigher
     parts = [p for _, p in weighed if p is not None and p.mass > 0]
     total = sum(parts[1:], parts[0]) if parts else MassProperties(0.0)
     return _bounded(total, inference, True)
+
+
+def _counted_solids(link: LinkAnalysis, inference: model.Inference) -> list[Solid]:
+    """The link's geoms the compiler counts (its group range), as solids."""
+    solids = (*link.visual.solids, *link.collision.solids)
+    return [solid for solid in solids if counted(solid.shape, inference)]
 
 
 def _bounded(properties: MassProperties, inference: model.Inference, inferred: bool) -> Compiled:
@@ -132,8 +144,8 @@ def _bounded(properties: MassProperties, inference: model.Inference, inferred: b
         moments = np.maximum(moments, inference.min_inertia)
         raised.append("inertia")
     if mass < 0 or np.any(moments < 0):
-        refusal = "mass and inertia cannot be negative"
-        return Compiled(None, inferred, tuple(raised), refusal=refusal)
+        message = "mass and inertia cannot be negative"
+        return Compiled(None, inferred, tuple(raised), refusal=message)
     a, b, c = moments
     balanced = False
     if a + b < c or a + c < b or b + c < a:
@@ -174,3 +186,180 @@ def weigh_geom(solid: Solid) -> MassProperties | None:
     if not (unit.mass > 0 and mass > 0):
         return MassProperties(0.0)
     return unit.with_mass(mass)
+
+
+# --- what MuJoCo does with the model, as predictions --------------------------------------------
+
+#: a legacy mesh's volume beyond the solid's by more than this share is told (MuJoCo's own
+#: documentation warns of the over-count for non-convex meshes)
+LEGACY_EXCESS = 0.01
+
+
+def predictions(analysis: RobotAnalysis) -> list[Prediction]:
+    """
+    What MuJoCo's compiler does with an MJCF model: the refusals in the order it meets them
+    (body by body, then the check on moving bodies), then the silent changes (bounds raising a
+    body, ``balanceinertia`` averaging its moments, ``inertiafromgeom="true"`` ignoring a
+    written ``<inertial>``, a legacy mesh counting more volume than it encloses, a geom without
+    contacts weighed with the colliding ones).
+    """
+    bodies = compiled(analysis)
+    by_name = {link.name: link for link in analysis.links}
+    refusals, changes = [], []
+    order = sorted(bodies, key=lambda name: bodies[name].refusal == MINVAL)
+    for name in order:
+        body, link = bodies[name], by_name[name]
+        if body.refusal is not None:
+            refusals.append(_refusal(link, body))
+        else:
+            changes.extend(_changes(link, body, analysis.robot.inference))
+    return refusals + changes
+
+
+MINVAL = "mass and inertia of moving bodies must be larger than mjMINVAL"
+
+_REFUSALS = {
+    "error 'inertia must have positive eigenvalues' in fullinertia": (
+        "body",
+        "a principal moment of its fullinertia below mjEPS",
+        "its fullinertia has a principal moment below mjEPS = 1e-14 kg·m²",
+    ),
+    "mass and inertia cannot be negative": (
+        "body",
+        "a negative mass or moment",
+        "its mass or a principal moment is negative",
+    ),
+    "inertia must satisfy A + B >= C; use 'balanceinertia' to fix": (
+        "body",
+        "principal moments break A + B ≥ C",
+        "its principal moments break A + B ≥ C (MuJoCo allows no tolerance) and the "
+        "compiler's balanceinertia is off",
+    ),
+    MINVAL: (
+        "minval",
+        "a moving body without mass or inertia",
+        "it moves and its mass or a principal moment is below mjMINVAL = 1e-15, and no body "
+        "welded to it weighs something",
+    ),
+}
+
+
+def _refusal(link: LinkAnalysis, body: Compiled) -> Prediction:
+    assert body.refusal is not None
+    stage, claim, detail = _REFUSALS[body.refusal]
+    inertial = link.link.inertial
+    if body.inferred:
+        detail += " (inferred from its geoms)"
+    source = link.link.source if inertial is None else inertial.source
+    return refusal(
+        stage,
+        link.name,
+        body.refusal,
+        claim,
+        f"MuJoCo's compiler refuses body `{link.name}`: {detail}",
+        source,
+        {"name": link.name},
+    )
+
+
+def _changes(link: LinkAnalysis, body: Compiled, inference: model.Inference) -> list[Prediction]:
+    found = []
+    inertial = link.link.inertial
+    where = link.link.source if inertial is None else inertial.source
+    compiler = inference.source or where
+    properties = body.mass_properties
+    if "mass" in body.raised and properties is not None:
+        found.append(
+            change(
+                "bound",
+                link.name,
+                f"raises its mass to boundmass, {fmt(properties.mass)} kg",
+                f"the compiler's boundmass = {fmt(inference.min_mass)} kg is more than its mass",
+                compiler,
+            )
+        )
+    if "inertia" in body.raised:
+        found.append(
+            change(
+                "bound",
+                link.name,
+                f"raises its moments to boundinertia, {fmt(inference.min_inertia)} kg·m²",
+                "the compiler's boundinertia is more than a principal moment",
+                compiler,
+            )
+        )
+    if body.balanced and properties is not None:
+        mean = properties.principal_moments.mean()
+        found.append(
+            change(
+                "balance",
+                link.name,
+                f"replaces its moments by their mean, {fmt(mean)} kg·m² (balanceinertia)",
+                "its principal moments break A + B ≥ C and the compiler's balanceinertia "
+                "makes all three their mean: an isotropic tensor nobody wrote",
+                compiler,
+            )
+        )
+    if inference.from_geometry == "always" and inertial is not None:
+        found.append(
+            change(
+                "inertiafromgeom",
+                link.name,
+                "ignores its <inertial> for its geoms' (inertiafromgeom)",
+                "the compiler's inertiafromgeom=\"true\" makes every body's mass properties "
+                "from its geoms, whatever its <inertial> says",
+                inertial.source,
+            )
+        )
+    if body.inferred:
+        found.extend(_inferred_changes(link, inference))
+    return found
+
+
+def _inferred_changes(link: LinkAnalysis, inference: model.Inference) -> list[Prediction]:
+    found = []
+    solids = _counted_solids(link, inference)
+    for solid in solids:
+        mode = getattr(solid.shape.geometry, "inertia", None)
+        if solid.mesh is None or mode != "legacy" or solid.unit is None:
+            continue
+        legacy = mesh_unit(solid)
+        if legacy is None or not solid.unit.mass > 0:
+            continue
+        excess = legacy.mass / solid.unit.mass - 1
+        if excess > LEGACY_EXCESS:
+            name = getattr(solid.shape.geometry, "filename", "")
+            found.append(
+                change(
+                    "legacy",
+                    link.name,
+                    f"weighs mesh `{name}` {_percent(excess)} heavier than it encloses",
+                    f"its inertia is inferred from its geoms and the mesh's inertia mode is "
+                    f"legacy (MuJoCo 4's default), which counts {fmt(legacy.mass)} m³ for the "
+                    f"{fmt(solid.unit.mass)} m³ the non-convex mesh encloses",
+                    solid.shape.source,
+                    excess=excess,
+                )
+            )
+    weighing = [s for s in solids if (weigh_geom(s) or MassProperties(0.0)).mass > 0]
+    colliding = [s for s in weighing if s.shape.collides]
+    for solid in weighing:
+        if colliding and solid.shape.collides is False:
+            found.append(
+                change(
+                    "visual",
+                    link.name,
+                    "weighs a geom without contacts with its colliding ones",
+                    f"its inertia is inferred from its geoms, and geom at {solid.shape.source} "
+                    "(contype and conaffinity 0: a visual) has a density and is in the "
+                    "compiler's inertiagrouprange, so the part is counted twice",
+                    solid.shape.source,
+                )
+            )
+    return found
+
+
+def _percent(share: float) -> str:
+    """``6.4 %``, ``210 %``: two significant digits, no exponent."""
+    percent = 100 * share
+    return f"{percent:.2g} %" if percent < 100 else f"{round(percent)} %"

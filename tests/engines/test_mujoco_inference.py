@@ -141,3 +141,66 @@ def test_the_menagerie_bodies_inferred_from_primitives_are_mujocos():
                 np.testing.assert_allclose(properties.principal_moments, moments, rtol=1e-9)
                 np.testing.assert_allclose(properties.com, com, rtol=1e-9, atol=1e-12)
     assert compared == MENAGERIE_PRIMITIVE_BODIES
+
+
+def _events(path):
+    from inertia_kit.engines import mujoco as engine
+
+    return engine.events(analyse(load_mjcf(path)))
+
+
+def test_the_silent_changes_of_the_compiler_are_told(tmp_path):
+    body = (
+        '<inertial pos="0 0 0" mass="0.001" diaginertia="1e-9 1e-3 5e-3"/>'
+        '<geom type="box" size="0.1 0.1 0.1"/>'
+    )
+    path = model_file(tmp_path, body, 'boundmass="0.01" boundinertia="1e-6" balanceinertia="true"')
+    stages = [event.kind for event in _events(path)]
+    assert stages == ["bound", "bound", "balance"]
+    path = model_file(tmp_path, body, 'inertiafromgeom="true"')
+    (event,) = _events(path)
+    assert event.kind == "inertiafromgeom"
+    assert (
+        event.message == "link `b`: MuJoCo ignores its <inertial> for its geoms' (inertiafromgeom)"
+    )
+
+
+def test_a_refusal_is_told_with_mujocos_own_message(tmp_path):
+    path = model_file(tmp_path, '<inertial pos="0 0 0" mass="1" diaginertia="1 1 3"/>')
+    (event,) = _events(path)
+    assert event.kind == "body"
+    with pytest.raises(ValueError) as error:
+        mujoco.MjModel.from_xml_path(str(path))
+    assert event.engine_message in str(error.value)
+
+
+def test_a_legacy_non_convex_mesh_is_told_with_the_volume_mujoco_counts(tmp_path):
+    import trimesh
+
+    bar = trimesh.creation.box((0.3, 0.1, 0.1))
+    bar.apply_translation((0.1, 0, 0))
+    other = trimesh.creation.box((0.1, 0.3, 0.1))
+    other.apply_translation((0, 0.1, 0))
+    shape = trimesh.boolean.union([bar, other], engine="manifold")
+    shape.export(tmp_path / "l.stl")
+    path = tmp_path / "m.xml"
+    path.write_text(
+        '<mujoco><asset><mesh file="l.stl"/></asset><worldbody><body name="b">'
+        '<joint type="hinge"/><geom type="mesh" mesh="l"/></body></worldbody></mujoco>'
+    )
+    (event,) = _events(path)
+    assert event.kind == "legacy"
+    mass = mujoco.MjModel.from_xml_path(str(path)).body_mass[1]
+    assert mass / 1000 == pytest.approx(shape.volume * (1 + event.facts["excess"]), rel=1e-6)
+    assert "heavier than it encloses" in event.message
+
+
+def test_a_visual_geom_weighed_with_the_colliding_ones_is_told(tmp_path):
+    body = (
+        '<geom type="box" size="0.1 0.1 0.1"/>'
+        '<geom type="box" size="0.1 0.1 0.1" contype="0" conaffinity="0" group="2"/>'
+    )
+    (event,) = _events(model_file(tmp_path, body))
+    assert event.kind == "visual"
+    body = body.replace('group="2"', 'group="2" density="0"')
+    assert _events(model_file(tmp_path, body)) == []

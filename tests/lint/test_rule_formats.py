@@ -11,7 +11,7 @@ from inertia_kit.lint import catalog
 from inertia_kit.lint.runner import Selection, lint_robot
 
 URDF_ONLY = {"IN006", "IN024", "IN025", "IN040", "IN041", "IN050", "IN051"}
-URDF_ENGINES = {"IN070", "IN071", "IN072", "IN073", "IN074"}
+URDF_ENGINES = {"IN071", "IN072", "IN073", "IN074"}
 
 
 def test_the_catalog_says_which_rules_judge_only_urdf():

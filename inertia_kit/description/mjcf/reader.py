@@ -370,6 +370,8 @@ class _Reader:
                 tensor.update(ixy=0.0, ixz=0.0, iyz=0.0)
             else:
                 tensor = dict.fromkeys(model.TENSOR, values)
+        if full is None and diagonal is None:  # MuJoCo's default: a point mass
+            tensor = dict.fromkeys(model.TENSOR, 0.0)
         source = self.source_of(element)
         return model.Inertial(
             origin=self.origin(matrix, element),
@@ -377,6 +379,7 @@ class _Reader:
             source=source,
             mass_source=source,
             inertia_source=source,
+            tensor_form="fullinertia" if full is not None else "diaginertia",  # or MuJoCo's 0
             **tensor,
         )
 
@@ -427,6 +430,10 @@ class _Reader:
             mass=mass_value,
             shell=self.text(element, "shellinertia", classes, "false") == "true",
             group=group_value,
+            collides=any(
+                self.text(element, name, classes, "1").strip() not in ("0", "")
+                for name in ("contype", "conaffinity")
+            ),
         )
 
     @staticmethod

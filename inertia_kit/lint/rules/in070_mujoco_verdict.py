@@ -1,4 +1,4 @@
-"""IN070 mujoco-verdict: what MuJoCo's URDF import and compiler do with each link."""
+"""IN070 mujoco-verdict: what MuJoCo's compiler (and its URDF import) do with each link."""
 
 from __future__ import annotations
 
@@ -12,8 +12,6 @@ CODE = "IN070"
 NAME = "mujoco-verdict"
 SEVERITY = Severity.ERROR  # a refusal; a silent change is a warning
 SCOPE = "robot"
-# MuJoCo's URDF import; an MJCF model is judged as MuJoCo compiles it
-DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "MuJoCo refuses the model (with its own message) or silently changes a link: `--engine mujoco`"
 )
@@ -37,9 +35,28 @@ HELP = {
 }
 
 
+#: what to do about what MuJoCo's compiler does with a body of an MJCF model
+HELP_MJCF = {
+    "body": "write a physically possible tensor about the centre of mass in the body's "
+    "<inertial> (`inertia-fill --fix invalid` computes one from the geoms)",
+    "minval": "give the moving body an <inertial> with positive mass and moments, or geoms "
+    "with a density",
+    "bound": "write the body's real mass and tensor; the compiler's bounds are for dummies",
+    "balance": "write the body's real tensor (the geoms' at the right density) instead of "
+    "leaving balanceinertia to invent one",
+    "inertiafromgeom": 'drop inertiafromgeom="true" from <compiler> if the <inertial> '
+    "elements are right, or delete them if the geoms are",
+    "legacy": 'set inertia="exact" on the <mesh> (or "convex" if it is meant as its hull), '
+    "or write the body's <inertial>",
+    "visual": 'give the visual geom density="0" (or its class), or take its group out of '
+    "inertiagrouprange",
+}
+
+
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     # imported here: the engine model loads only when its engine is chosen (start-up)
     from inertia_kit.engines import mujoco
 
+    helps = HELP_MJCF if robot.robot.format == "mjcf" else HELP
     for event in mujoco.events(robot):
-        yield ctx.engine_finding(event, HELP[event.kind])
+        yield ctx.engine_finding(event, helps[event.kind])
