@@ -165,27 +165,49 @@ def _bounded(properties: MassProperties, inference: model.Inference, inferred: b
 def weigh_geom(solid: Solid) -> MassProperties | None:
     """
     A geom as MuJoCo weighs it (``mjCGeom::Compile``): its ``mass``, else ``density`` × its
-    volume, placed in the link frame; a mesh by its ``inertia`` mode (``legacy``: the
-    tetrahedra's absolute volumes, :mod:`.mujoco_meshes`; ``exact``: the solid). ``None`` for
-    what we cannot weigh yet (a shell, a ``convex`` or ``shell`` mesh) or what has no solid.
+    volume (its area for a shell), placed in the link frame; a mesh by its ``inertia`` mode
+    (:mod:`.mujoco_meshes`), a ``shellinertia`` primitive by MuJoCo's shell formulas. ``None``
+    for what has no solid, or a mesh MuJoCo refuses.
     """
     shape = solid.shape
     unit = solid.unit
-    if unit is None or shape.shell:
+    if unit is None:
         return None
     if solid.mesh is not None:
         mode = getattr(shape.geometry, "inertia", None) or DEFAULT_MESH_INERTIA
-        if mode == "legacy":
-            unit = mesh_unit(solid)
-        elif mode != "exact":
-            return None
-        if unit is None:
-            return None
+        unit = unit if mode == "exact" and not shape.shell else mesh_unit(solid, mode)
+    elif shape.shell:
+        unit = _shell_unit(shape)
+    if unit is None:
+        return None
     density = shape.density if isinstance(shape.density, float) else GEOM_DENSITY
     mass = shape.mass if isinstance(shape.mass, float) else density * unit.mass
     if not (unit.mass > 0 and mass > 0):
         return MassProperties(0.0)
     return unit.with_mass(mass)
+
+
+def _shell_unit(shape: model.Shape) -> MassProperties | None:
+    """A ``shellinertia`` primitive at 1 kg/m², in the link frame (``mass`` is its area)."""
+    from inertia_kit.physics.frames import transform
+    from inertia_kit.physics.mujoco_primitive_inertia import primitive_mass_properties
+
+    geometry = shape.geometry
+    sizes: dict[type, tuple[str, object]] = {
+        model.Sphere: ("sphere", lambda g: (g.radius,)),
+        model.Capsule: ("capsule", lambda g: (g.radius, g.length / 2)),
+        model.Cylinder: ("cylinder", lambda g: (g.radius, g.length / 2)),
+        model.Box: ("box", lambda g: tuple(v / 2 for v in g.size)),
+        model.Ellipsoid: ("ellipsoid", lambda g: tuple(g.radii)),
+    }
+    kind, size_of = sizes.get(type(geometry), (None, None))
+    if kind is None or not isinstance(shape.origin.xyz, tuple):
+        return None
+    try:
+        value = primitive_mass_properties(kind, size_of(geometry), shell=True, density=1.0)
+    except (TypeError, ValueError):
+        return None
+    return value.transformed(transform(shape.origin.xyz, shape.origin.rpy))
 
 
 # --- what MuJoCo does with the model, as predictions --------------------------------------------
