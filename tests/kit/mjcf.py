@@ -64,3 +64,31 @@ def body_mass_properties(mjmodel, body: int):
         np.array(mjmodel.body_ipos[body]),
         np.sort(np.array(mjmodel.body_inertia[body])),
     )
+
+
+def written_mass_properties(inertial):
+    """``(mass, com, principal moments sorted)`` of a model ``<inertial>``, in its body's frame."""
+    from inertia_kit.physics.frames import rpy_matrix
+
+    turn = rpy_matrix(inertial.origin.rpy)
+    tensor = np.array(
+        [
+            [inertial.ixx, inertial.ixy, inertial.ixz],
+            [inertial.ixy, inertial.iyy, inertial.iyz],
+            [inertial.ixz, inertial.iyz, inertial.izz],
+        ]
+    )
+    moments = np.sort(np.linalg.eigvalsh(turn @ tensor @ turn.T))
+    return inertial.mass, np.array(inertial.origin.xyz), moments
+
+
+def body_pose(mjmodel, body: int) -> np.ndarray:
+    """The 4×4 pose of body ``body`` in its parent's frame, as MuJoCo compiled it."""
+    import mujoco
+
+    matrix = np.eye(4)
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, mjmodel.body_quat[body])
+    matrix[:3, :3] = rotation.reshape(3, 3)
+    matrix[:3, 3] = mjmodel.body_pos[body]
+    return matrix

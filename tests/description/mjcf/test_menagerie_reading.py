@@ -10,11 +10,18 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from kit.mjcf import MENAGERIE, body_mass_properties, compiled_model, menagerie_models
+from kit.mjcf import (
+    MENAGERIE,
+    body_mass_properties,
+    body_pose,
+    compiled_model,
+    menagerie_models,
+    written_mass_properties,
+)
 
 from inertia_kit.description import model
 from inertia_kit.description.mjcf.reader import load_mjcf
-from inertia_kit.physics.frames import rpy_matrix, transform
+from inertia_kit.physics.frames import transform
 
 mujoco = pytest.importorskip("mujoco")
 
@@ -100,26 +107,14 @@ def test_a_model_reads_as_mujoco_compiles_it(path):
         assert link.name == (name or f"body {body}")
         joint = robot.parent_joint(link.name)
         pose = transform(joint.origin.xyz, joint.origin.rpy)
-        expected = np.eye(4)
-        expected[:3, 3] = mjmodel.body_pos[body]
-        rotation = np.zeros(9)
-        mujoco.mju_quat2Mat(rotation, mjmodel.body_quat[body])
-        expected[:3, :3] = rotation.reshape(3, 3)
+        expected = body_pose(mjmodel, body)
         assert _relative(pose, expected, max(1.0, np.abs(expected).max())) < 1e-9, link.name
         _same_primitives(link, mjmodel, body)
         inertial = link.inertial
         if inertial is None or robot.inference.from_geometry == "always":
             continue  # tests/engines/test_mujoco_inference.py
         mass, com, moments = body_mass_properties(mjmodel, body)
-        turn = rpy_matrix(inertial.origin.rpy)
-        tensor = np.array(
-            [
-                [inertial.ixx, inertial.ixy, inertial.ixz],
-                [inertial.ixy, inertial.iyy, inertial.iyz],
-                [inertial.ixz, inertial.iyz, inertial.izz],
-            ]
-        )
-        ours = np.sort(np.linalg.eigvalsh(turn @ tensor @ turn.T))
+        _, _, ours = written_mass_properties(inertial)
         assert abs(inertial.mass - mass) <= 1e-9 * mass, link.name
         assert _relative(ours, moments, max(moments.max(), 1e-300)) < 1e-9, link.name
         assert _relative(inertial.origin.xyz, com, max(1e-3, np.linalg.norm(com))) < 1e-9
