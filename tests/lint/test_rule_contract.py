@@ -26,7 +26,16 @@ from inertia_kit.lint.findings import FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
 
 REQUIRED = ("CODE", "NAME", "SEVERITY", "SCOPE", "SUMMARY", "check")
-OPTIONAL = ("OPTIONS", "ENGINE", "SUPERSEDES", "FIX", "TEXT_FIX", "SPOILS_GEOMETRY", "WEIGHED")
+OPTIONAL = (
+    "OPTIONS",
+    "ENGINE",
+    "DESCRIPTION_FORMATS",
+    "SUPERSEDES",
+    "FIX",
+    "TEXT_FIX",
+    "SPOILS_GEOMETRY",
+    "WEIGHED",
+)
 CONTRACT = (*REQUIRED, *OPTIONAL)
 CONSTANT = re.compile(r"[A-Z][A-Z0-9_]*")
 
@@ -115,6 +124,11 @@ def violations(rule: ModuleType) -> list[str]:
         problems += _options(rule)
     if hasattr(rule, "ENGINE") and rule.ENGINE not in ENGINES:
         problems.append(f"ENGINE: {rule.ENGINE!r} is none of {', '.join(ENGINES)}")
+    if hasattr(rule, "DESCRIPTION_FORMATS"):
+        formats = rule.DESCRIPTION_FORMATS
+        known = set(catalog.ALL_FORMATS)
+        if not isinstance(formats, tuple) or not formats or not set(formats) < known:
+            problems.append(f"DESCRIPTION_FORMATS: {formats!r} is no tuple of some formats")
     if hasattr(rule, "SUPERSEDES"):
         known = set(catalog.names()) - {code}
         superseded = rule.SUPERSEDES

@@ -40,6 +40,10 @@ A rule may have:
     Makes it an engine rule (IN07x) speaking for one engine of
     :data:`inertia_kit.engines.vocabulary.ENGINES`: it runs only when that engine is chosen
     (``--engine``, ``engines = [...]``), never by ``select``.
+``DESCRIPTION_FORMATS: tuple[str, ...]``
+    The description formats it judges (of :data:`inertia_kit.lint.catalog.ALL_FORMATS`), for a
+    rule about what only one format says or only its readers do (URDF's ``<limit>``, KDL's
+    root): it stays silent on a model of another format. Every format when absent.
 ``SUPERSEDES: tuple[str, ...]``
     Codes of other rules whose findings on the same link a finding of this rule replaces: an
     explanation (IN063, a unit slip) replaces the symptoms it explains (IN020, far from the
