@@ -158,10 +158,20 @@ def run_rules(
     replaced = {
         (code, f.link) for f in findings.values() if f.link for code in supersedes.get(f.code, ())
     }
-    kept = [findings[key] for key in sorted(findings)]
+    kept = [_worded(findings[key], form) for key in sorted(findings)]
     if superseded is not None:
         superseded.extend(f for f in kept if (f.code, f.link) in replaced)
     return [f for f in kept if (f.code, f.link) not in replaced]
+
+
+def _worded(finding: Finding, form: str) -> Finding:
+    """
+    A finding in its format's words: the rules write URDF's ``link `x`: ...``; an MJCF model
+    has bodies, so its findings read ``body `x`: ...``.
+    """
+    if form == "mjcf" and finding.message.startswith("link `"):
+        return dataclasses.replace(finding, message="body `" + finding.message[len("link `") :])
+    return finding
 
 
 def _order(finding: Finding) -> tuple:

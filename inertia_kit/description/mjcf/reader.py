@@ -411,14 +411,15 @@ class _Reader:
         density, _ = self.value(element, "density", classes, 1)
         mass, _ = self.value(element, "mass", classes, 1)
         group, _ = self.value(element, "group", classes, 1)
-        density_value = density[0] if isinstance(density, tuple) else 1000.0
+        # None when nothing sets it: MuJoCo then weighs the geom at 1000 kg/m³
+        density_value = density[0] if isinstance(density, tuple) else None
         mass_value = mass[0] if isinstance(mass, tuple) else None
         group_value = int(group[0]) if isinstance(group, tuple) else 0
         low, high = self.compiler.inference.groups
         weighs = (
             low <= group_value <= high
             and not isinstance(geometry, model.Unknown)
-            and (mass_value > 0 if mass_value is not None else density_value > 0)
+            and (mass_value if mass_value is not None else (density_value or 1000.0)) > 0
         )
         return model.Shape(
             "collision" if weighs else "visual",

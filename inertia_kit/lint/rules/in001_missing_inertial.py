@@ -97,6 +97,9 @@ def _geometry_values(geometry: Geometry) -> tuple[str, dict | None]:
 
 
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    if robot.robot.format == "mjcf":
+        yield from _inferred(robot, ctx)
+        return
     floating_base = bool(ctx.option("floating_base"))
     done: set[str] = set()
     for link in robot.links:
@@ -321,3 +324,42 @@ def _help(top: LinkAnalysis, site: LinkAnalysis, collision: bool) -> str:
             "itself: MuJoCo, PyBullet's useFixedBase, Drake's WeldFrames; Gazebo does not)"
         )
     return text
+
+
+def _inferred(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    """
+    MJCF: a body without ``<inertial>`` is not missing anything, MuJoCo infers its mass
+    properties from its geoms. Told (info) when the density it weighs them at is MuJoCo's
+    default, which nobody chose; a refusal or a geom we cannot weigh is IN070's.
+    """
+    from inertia_kit.engines.mujoco_inference import compiled, counted, infers
+
+    inference = robot.robot.inference
+    if inference is None or inference.from_geometry != "missing":
+        return
+    bodies = compiled(robot)
+    for link in robot.links:
+        body = bodies.get(link.name)
+        if body is None or not infers(link.link, inference) or body.mass_properties is None:
+            continue
+        shapes = [s for s in (*link.link.visuals, *link.link.collisions) if counted(s, inference)]
+        weighed = [s for s in shapes if s.mass is None and s.density is None]
+        mass = body.mass_properties.mass
+        if not weighed or not mass > 0:
+            continue
+        yield ctx.finding(
+            f"link `{link.name}`: no <inertial>; MuJoCo infers {fmt(mass, 4)} kg at the "
+            f"default {fmt(DENSITY)} kg/m³",
+            link.link.source,
+            link=link.name,
+            severity=Severity.INFO,
+            detail=(
+                f"MuJoCo makes the body's mass properties from its geoms "
+                f'(inertiafromgeom="auto"): {len(weighed)} of its {len(shapes)} counted geoms '
+                f"give no density or mass, so MuJoCo weighs them at its default "
+                f"{fmt(DENSITY)} kg/m³ (water; aluminium is 2700, steel 7850, ABS 1050)"
+            ),
+            help="write the body's <inertial> (its CAD values), or give its geoms the "
+            "material's density (`density=` on the geom or its default class)",
+            fixable=False,
+        )

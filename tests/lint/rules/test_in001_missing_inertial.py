@@ -9,6 +9,7 @@ from kit.moments import box_moments
 from kit.urdf import LIMIT, box, collision, cylinder, inertial, joint, link, robot, visual
 
 from inertia_kit.cli.lint import lint_command
+from inertia_kit.lint.findings import Severity
 from inertia_kit.physics.formatting import fmt
 
 BOX = collision(box(0.1, 0.1, 0.3))
@@ -317,3 +318,44 @@ def test_the_message_is_one_short_line_and_the_detail_has_the_basis(lint):
     for finding in findings:
         assert len(finding.message) <= 100, finding.message
         assert "Gazebo" in finding.detail and "1000 kg/m³" in finding.detail
+
+
+# --- MJCF: a body without <inertial> is inferred, not missing -------------------------------
+
+
+def _mjcf_findings(tmp_path, body: str):
+    from inertia_kit.description.mjcf.reader import load_mjcf
+    from inertia_kit.lint.runner import Selection, lint_robot
+
+    path = tmp_path / "m.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="arm" pos="0 0 1"><joint type="hinge"/>'
+        f"{body}</body></worldbody></mujoco>"
+    )
+    return path, [
+        f for f in lint_robot(load_mjcf(path), Selection(("IN001",))) if f.code == "IN001"
+    ]
+
+
+def test_an_mjcf_body_weighed_at_the_default_density_is_told_what_mujoco_infers(tmp_path):
+    mujoco = pytest.importorskip("mujoco")
+    path, (finding,) = _mjcf_findings(tmp_path, '<geom type="box" size="0.1 0.05 0.2"/>')
+    mass = mujoco.MjModel.from_xml_path(str(path)).body_mass[1]
+    assert finding.severity is Severity.INFO
+    assert finding.message == (
+        f"body `arm`: no <inertial>; MuJoCo infers {fmt(mass, 4)} kg at the default 1000 kg/m³"
+    )
+    assert "inertiafromgeom" in finding.detail
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        '<geom type="box" size="0.1 0.05 0.2" density="2700"/>',
+        '<geom type="box" size="0.1 0.05 0.2" mass="3"/>',
+        '<inertial pos="0 0 0" mass="1" diaginertia="0.01 0.01 0.01"/>'
+        '<geom type="box" size="0.1 0.05 0.2"/>',
+    ],
+)
+def test_an_mjcf_body_whose_mass_someone_chose_is_quiet(tmp_path, body):
+    assert _mjcf_findings(tmp_path, body)[1] == []
