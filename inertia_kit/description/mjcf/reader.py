@@ -419,7 +419,7 @@ class _Reader:
         weighs = (
             low <= group_value <= high
             and not isinstance(geometry, model.Unknown)
-            and (mass_value if mass_value is not None else (density_value or 1000.0)) > 0
+            and (mass_value if mass_value is not None else _or_default(density_value)) > 0
         )
         return model.Shape(
             "collision" if weighs else "visual",
@@ -515,6 +515,11 @@ class _Reader:
                 )
                 meshes[name] = (mesh, placement)
         return meshes
+
+
+def _or_default(density: float | None) -> float:
+    """A geom's density, MuJoCo's 1000 kg/m³ when nothing sets it."""
+    return 1000.0 if density is None else density
 
 
 def _matrix(origin: model.Origin) -> np.ndarray:
