@@ -10,7 +10,7 @@ from inertia_kit.description.mjcf.reader import load_mjcf
 from inertia_kit.lint import catalog
 from inertia_kit.lint.runner import Selection, lint_robot
 
-URDF_ONLY = {"IN006", "IN024", "IN025", "IN040", "IN041", "IN050", "IN051"}
+URDF_ONLY = {"IN005", "IN006", "IN024", "IN025", "IN040", "IN041", "IN050", "IN051"}
 URDF_ENGINES = {"IN071", "IN072", "IN073", "IN074"}
 
 

@@ -14,6 +14,9 @@ CODE = "IN005"
 NAME = "incomplete-geometry"
 SEVERITY = Severity.ERROR
 SCOPE = "link"
+# URDF's shapes and what its readers refuse; an MJCF geom we do not read yet (a primitive
+# MuJoCo fits to a mesh) is no fault of the file
+DESCRIPTION_FORMATS = ("urdf",)
 SUMMARY = (
     "a `<visual>`/`<collision>` without `<geometry>`, with an empty or unknown one, or a shape "
     "without its size (`<sphere/>`, `<box/>`, a `<cylinder>` without `length`)"
