@@ -19,6 +19,7 @@ from lxml import etree
 
 from inertia_kit.description import model
 from inertia_kit.description.builder import Builder
+from inertia_kit.description.mjcf.detect import is_mjcf
 from inertia_kit.description.reads import digest, key
 from inertia_kit.description.safexml import read_bounded
 from inertia_kit.description.xmlparse import check_text, element_locator, parse_xml
@@ -98,6 +99,10 @@ def load(
     path = Path(path)
     data = read_bounded(path)
     check_text(data, path)
+    if is_mjcf(_narrow(data)):
+        from inertia_kit.description.mjcf.reader import load_mjcf
+
+        return load_mjcf(path)
     resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
 
     xacro = is_xacro(data)

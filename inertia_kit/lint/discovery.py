@@ -1,7 +1,8 @@
 """
-Which files a run lints: the files given, and the robot files (``*.urdf``, ``*.xacro``) of the
-folders given, each once; what the walk leaves out (``exclude``, ``.gitignore``, colcon's
-folders) is :mod:`.exclusion`.
+Which files a run lints: the files given, and the robot files of the folders given (``*.urdf``,
+``*.xacro``, and ``*.xml`` whose root element is ``<mujoco>``: an MJCF model, not a
+``package.xml`` or a launch file), each once; what the walk leaves out (``exclude``,
+``.gitignore``, colcon's folders) is :mod:`.exclusion`.
 """
 
 from __future__ import annotations
@@ -17,9 +18,33 @@ from inertia_kit.lint.exclusion import IGNORE_MARKERS, Exclusion, exclusion
 from inertia_kit.lint.stand_in import is_stand_in
 
 #: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
-#: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too)
-ROBOT_FILE = r"(?i)\.(urdf|xacro)$"
+#: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too); of
+#: the ``.xml`` files, only MJCF models (:func:`is_robot_file`)
+ROBOT_FILE = r"(?i)\.(urdf|xacro|xml)$"
 _ROBOT_FILE = re.compile(ROBOT_FILE)
+_XML = re.compile(r"(?i)\.xml$")
+#: enough of a file's start to find its root element past a long licence comment
+_HEAD = 65536
+
+
+def is_robot_file(path: str | Path) -> bool:
+    """
+    Whether the walk lints a file by its name and, for ``.xml``, its root element: an MJCF
+    model (``<mujoco>``) is a robot file, other XML (``package.xml``, launch files, URDF saved
+    as ``.xml``) is not. A file that cannot be read is not one.
+    """
+    name = os.path.basename(path)
+    if not _ROBOT_FILE.search(name):
+        return False
+    if not _XML.search(name):
+        return True
+    from inertia_kit.description.mjcf.detect import is_mjcf
+
+    try:
+        with open(path, "rb") as file:
+            return is_mjcf(file.read(_HEAD))
+    except OSError:
+        return False
 
 
 @dataclass
@@ -64,16 +89,20 @@ def _is_dir(path: Path) -> bool:
 
 def expand_paths(paths: Iterable[str | Path], discovery: Discovery | None = None) -> Iterator[Path]:
     """
-    Files as given (with ``force-exclude``, unless excluded); folders searched for ``*.urdf``,
-    ``*.xacro`` (``*.urdf.xacro`` too; case ignored, :data:`ROBOT_FILE`), in sorted order,
-    leaving out what :mod:`.exclusion` excludes. Each file once.
+    Files as given (with ``force-exclude``, unless excluded or an ``.xml`` file that is no MJCF
+    model); folders searched for ``*.urdf``, ``*.xacro`` (``*.urdf.xacro`` too; case ignored,
+    :data:`ROBOT_FILE`) and MJCF ``*.xml`` (:func:`is_robot_file`), in sorted order, leaving out
+    what :mod:`.exclusion` excludes. Each file once.
     """
     discovery = Discovery() if discovery is None else discovery
     seen: set[str] = set()
     for entry in paths:
         path = Path(entry)
         rules = discovery.for_path(path)
-        if rules.excludes_given(path):
+        if rules.excludes_given(path) or (
+            rules.force_exclude and _XML.search(path.name) and not is_robot_file(path)
+        ):
+            # a hook hands over every *.xml of a commit: only MJCF models are robot files
             continue
         found = _robot_files(path, rules) if _is_dir(path) else [path]
         for file in found:
@@ -127,5 +156,6 @@ def _robot_files(folder: Path, rules: Exclusion) -> list[Path]:
             if _ROBOT_FILE.search(name)
             and not is_stand_in(name)  # another run's robot read from stdin
             and not rules.excluded(Path(top, name), folder=False)
+            and is_robot_file(Path(top, name))
         )
     return sorted(f for f in files if os.path.isfile(f))

@@ -81,6 +81,9 @@ class RobotFixes:
     notes: list[str] = field(default_factory=list)
 
 
+_UNWRITTEN = "{} models are read and linted; their fixes are not written yet: nothing changed"
+
+
 def plan_fixes(
     analysis: RobotAnalysis,
     findings: Sequence[Finding],
@@ -102,6 +105,9 @@ def plan_fixes(
     those in ``vouched`` (a finding on them is suppressed: their author keeps their values);
     ``safe_only``: only safe fixes (``inertia-lint --fix`` without ``--unsafe-fixes``).
     """
+    if analysis.robot.format != "urdf":
+        # the placement below writes URDF/xacro elements: never into another format's file
+        return RobotFixes(notes=[_UNWRITTEN.format(analysis.robot.format.upper())])
     wants: dict[str, list[FixRule]] = {}
     spoils: dict[str, str] = {}
     for finding in findings:

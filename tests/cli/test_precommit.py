@@ -67,12 +67,14 @@ def test_manifest_is_valid_for_pre_commit():
         ("robot.xacro", True),
         ("robot.urdf.xacro", True),
         ("urdf/ROBOT.URDF", True),
-        ("robot.xml", False),
+        # every .xml: the command lints the MJCF models among them, passing over the rest
+        # (tests/lint/test_discovery.py: a hook hands over every xml file ...)
+        ("robot.xml", True),
         ("robot.urdf.bak", False),
-        ("package.xml", False),
+        ("package.xml", True),
     ],
 )
-def test_hook_takes_urdf_and_xacro_files(tmp_path, name, taken):
+def test_hook_takes_urdf_xacro_and_xml_files(tmp_path, name, taken):
     """As pre-commit filters: the `files` regex and the identify tags (`types`)."""
     from identify import identify
 
@@ -199,6 +201,36 @@ def test_hook_fails_a_bad_urdf(hook_repo, tmp_path):
     assert "urdf/bad.urdf:9:7: IN002 [error] link `arm`: mass = 0 kg is not positive" in output
     assert "good.urdf.xacro" not in output
     assert "Found 1 error in 1 of 2 files." in output
+
+
+MJCF_BAD = """<mujoco model="arm">
+  <worldbody>
+    <body name="arm">
+      <joint axis="0 0 1"/>
+      <inertial pos="0 0 0" mass="0" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+@pytest.mark.slow
+def test_hook_lints_the_mjcf_models_among_the_xml_files(hook_repo, tmp_path):
+    project = _project(
+        tmp_path / "mjcf",
+        {
+            "pyproject.toml": CONFIG,
+            "package.xml": "<package format='3'><name>arm</name></package>",
+            "launch/arm.launch.xml": "<launch/>",
+            "mjcf/arm.xml": MJCF_BAD,
+        },
+    )
+    done = _run_hook(hook_repo, project)
+    output = done.stdout + done.stderr
+    assert done.returncode == 1, output
+    assert "mjcf/arm.xml:5:7: IN002 [error] body `arm`: mass = 0 kg is not positive" in output
+    assert "package.xml" not in output and "launch" not in output
+    assert "Found 1 error in 1 file." in output
 
 
 @pytest.mark.slow

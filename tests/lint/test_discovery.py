@@ -116,3 +116,26 @@ def test_a_folder_a_thousand_deep_is_walked_with_its_ignore_files(tmp_path):
         assert [path.name for path in expand_paths([tmp_path])] == ["kept.urdf"]
     finally:
         remove_tree(tmp_path / "a")  # pytest's clean-up recurses
+
+
+MJCF = '<?xml version="1.0"?>\n<!-- a licence -->\n<mujoco model="m"><worldbody/></mujoco>\n'
+
+
+def test_a_folder_gives_the_xml_files_that_are_mjcf_models_only(tmp_path):
+    (tmp_path / "arm.xml").write_text(MJCF)
+    (tmp_path / "SCENE.XML").write_text(MJCF)
+    (tmp_path / "package.xml").write_text("<package format='3'><name>p</name></package>")
+    (tmp_path / "robot.xml").write_text("<robot name='r'/>")  # URDF saved as .xml: not picked
+    (tmp_path / "launch.xml").write_text("<launch/>")
+    (tmp_path / "empty.xml").write_bytes(b"")
+    assert [path.name for path in expand_paths([tmp_path])] == ["SCENE.XML", "arm.xml"]
+
+
+def test_a_hook_hands_over_every_xml_file_and_only_the_mjcf_models_are_linted(tmp_path):
+    (tmp_path / "arm.xml").write_text(MJCF)
+    (tmp_path / "package.xml").write_text("<package/>")
+    given = [tmp_path / "arm.xml", tmp_path / "package.xml"]
+    hooked = Discovery(force_exclude=True)
+    assert [path.name for path in expand_paths(given, hooked)] == ["arm.xml"]
+    # asked for by name without --force-exclude, a file is read (and refused if no robot)
+    assert [path.name for path in expand_paths(given)] == ["arm.xml", "package.xml"]

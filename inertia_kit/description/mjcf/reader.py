@@ -36,30 +36,6 @@ _JOINT_TYPES = {"free": "floating", "ball": "spherical", "slide": "prismatic", "
 _FROMTO_TYPES = ("capsule", "cylinder", "box", "ellipsoid")
 
 
-def is_mjcf(data: bytes) -> bool:
-    """Whether the text's root element is ``<mujoco>`` (read from its first element)."""
-    match = re.search(rb"<\s*([A-Za-z_][\w.:-]*)", _skip_prolog(data))
-    return match is not None and match.group(1).split(b":")[-1] == b"mujoco"
-
-
-def _skip_prolog(data: bytes) -> bytes:
-    """The text after its declaration, comments and doctype: the first element comes next."""
-    text = data[:65536]
-    while True:
-        stripped = text.lstrip()
-        if stripped.startswith(b"<?"):
-            end = stripped.find(b"?>")
-        elif stripped.startswith(b"<!--"):
-            end = stripped.find(b"-->")
-        elif stripped.startswith(b"<!"):
-            end = stripped.find(b">")
-        else:
-            return stripped
-        if end < 0:
-            return b""
-        text = stripped[end + 2 :]
-
-
 def load_mjcf(path: str | Path) -> model.Robot:
     """
     Load an MJCF model (root ``<mujoco>``) with the files it includes.
@@ -468,6 +444,13 @@ class _Reader:
         """Mesh assets by name: the model's mesh and the pose of its file's frame in the
         geom's (``refpos``/``refquat``: vertices are read relative to that frame)."""
         folder = self.compiler.mesh_folder(self.path.parent)
+        self.mesh_rule = (
+            "meshdir"
+            if self.compiler.meshdir is not None
+            else "assetdir"
+            if self.compiler.assetdir is not None
+            else "model folder"
+        )
         meshes = {}
         for asset in (c for c in self.root if local(c) == "asset"):
             for element in (c for c in asset if local(c) == "mesh"):
@@ -481,11 +464,14 @@ class _Reader:
                 mode = self.text(element, "inertia", classes, "legacy")
                 path = None
                 problem = "the mesh's vertices are written in the model, not read yet"
+                rule, searched = None, ()
                 if name_file is not None:
                     candidate = Path(name_file)
                     candidate = candidate if candidate.is_absolute() else folder / name_file
                     path = str(candidate) if candidate.is_file() else None
                     problem = None if path else f"no such file: {candidate}"
+                    rule = "absolute path" if Path(name_file).is_absolute() else self.mesh_rule
+                    searched = () if path else (str(candidate),)
                 written = scale if isinstance(scale, tuple) else (1.0, 1.0, 1.0)
                 refpos, _ = self.value(element, "refpos", classes, 3)
                 refquat, _ = self.value(element, "refquat", classes, 4)
@@ -511,6 +497,8 @@ class _Reader:
                     factors,  # type: ignore[arg-type]
                     source,
                     problem=problem,
+                    rule=rule if path else None,
+                    searched=searched,
                     inertia=mode,
                 )
                 meshes[name] = (mesh, placement)

@@ -11,7 +11,8 @@ import pytest
 from kit.mjcf import body_mass_properties, body_pose, written_mass_properties
 
 from inertia_kit.description import model
-from inertia_kit.description.mjcf.reader import is_mjcf, load_mjcf
+from inertia_kit.description.mjcf.detect import is_mjcf
+from inertia_kit.description.mjcf.reader import load_mjcf
 from inertia_kit.errors import InputError
 from inertia_kit.physics.frames import transform
 
