@@ -191,6 +191,22 @@ def _not_numeric(geometry: model.Geometry) -> str:
 _OVERFLOW = "its volume or moments overflow double precision: the shape is far too large"
 
 
+def _weighed(mesh: model.Mesh, solid: MeshSolid) -> MassProperties:
+    """
+    A mesh's unit mass properties in its own frame: as its format's engine weighs it when the
+    format says how (MJCF's ``<mesh inertia>``: MuJoCo's ``legacy`` over-counts a non-convex
+    mesh, ``convex`` takes its hull), else (URDF, and a ``shell``, which weighs the surface's
+    area) the solid it encloses; that solid too when MuJoCo refuses the mesh (IN070 says so).
+    """
+    if mesh.inertia is not None and mesh.inertia != "shell" and mesh.path is not None:
+        from inertia_kit.physics.mujoco_mesh_inertia import file_mass_properties
+
+        weighed = file_mass_properties(mesh.path, mesh.inertia, mesh.scale)
+        if weighed is not None:
+            return weighed
+    return solid.mass_properties(density=1.0)
+
+
 def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_loader) -> Solid:
     """Evaluate one placed shape as a solid at unit density, in the link frame."""
     from inertia_kit.errors import MeshError
@@ -234,7 +250,7 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
                 return Solid(shape, None, None, problem=(kind, error.message))
             if pose is None:
                 return unplaced
-            unit = solid.mass_properties(density=1.0).transformed(pose)
+            unit = _weighed(geometry, solid).transformed(pose)
             corners = box_corners(solid.bounds) @ pose[:3, :3].T + pose[:3, 3]
         if _overflows(unit) or not np.isfinite(corners).all():
             return Solid(shape, None, None, problem=("degenerate", _OVERFLOW))
@@ -280,14 +296,23 @@ def evaluate_shape(shape: model.Shape, load_mesh: MeshLoader = default_mesh_load
 
 
 def evaluate_geometry(
-    shapes: tuple[model.Shape, ...], kind: str | None, load_mesh: MeshLoader = default_mesh_loader
+    shapes: tuple[model.Shape, ...],
+    kind: str | None,
+    load_mesh: MeshLoader = default_mesh_loader,
+    *,
+    summed: bool = False,
 ) -> Geometry:
-    """The solids of ``shapes`` and, when all are usable, their union at unit density."""
+    """
+    The solids of ``shapes`` and, when all are usable, their union at unit density, or their
+    sum when ``summed`` (as MuJoCo weighs an MJCF body's geoms: overlaps count twice).
+    """
     solids = tuple(evaluate_shape(shape, load_mesh) for shape in shapes)
     if not solids or any(s.unit is None for s in solids):
         return Geometry(kind, solids, None)
     if len(solids) == 1:
         return Geometry(kind, solids, solids[0].unit)
+    if summed:
+        return Geometry(kind, solids, sum(s.unit for s in solids))  # type: ignore[misc]
     parts = [s.part for s in solids if s.part is not None]
     meshes = [s.unit for s in solids if s.part is None]
     overlap = 0.0

@@ -73,13 +73,20 @@ class LinkAnalysis:
         tensor = written_tensor(self.link)
         return None if tensor is None else principal_moments(tensor)
 
+    @property
+    def _summed(self) -> bool:
+        # MuJoCo adds its geoms' values, overlaps and all: its model is compared with that
+        return self.robot is not None and self.robot.robot.format == "mjcf"
+
     @functools.cached_property
     def collision(self) -> Geometry:
-        return evaluate_geometry(self.link.collisions, "collision", self._load_mesh)
+        return evaluate_geometry(
+            self.link.collisions, "collision", self._load_mesh, summed=self._summed
+        )
 
     @functools.cached_property
     def visual(self) -> Geometry:
-        return evaluate_geometry(self.link.visuals, "visual", self._load_mesh)
+        return evaluate_geometry(self.link.visuals, "visual", self._load_mesh, summed=self._summed)
 
     def mesh_kind_solids(self, kinds: tuple[str, ...] = ("visual", "collision")) -> Iterator[Solid]:
         """

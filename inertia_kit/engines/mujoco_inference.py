@@ -175,7 +175,8 @@ def weigh_geom(solid: Solid) -> MassProperties | None:
         return None
     if solid.mesh is not None:
         mode = getattr(shape.geometry, "inertia", None) or DEFAULT_MESH_INERTIA
-        unit = unit if mode == "exact" and not shape.shell else mesh_unit(solid, mode)
+        # the analysis weighs an MJCF mesh in its mode already, but for its area (shell)
+        unit = mesh_unit(solid, mode) if mode == "shell" or shape.shell else unit
     elif shape.shell:
         unit = _shell_unit(shape)
     if unit is None:
@@ -345,10 +346,11 @@ def _inferred_changes(link: LinkAnalysis, inference: model.Inference) -> list[Pr
         mode = getattr(solid.shape.geometry, "inertia", None)
         if solid.mesh is None or mode != "legacy" or solid.unit is None:
             continue
-        legacy = mesh_unit(solid)
-        if legacy is None or not solid.unit.mass > 0:
+        legacy = solid.unit  # the analysis weighs an MJCF mesh in its mode
+        enclosed = solid.mesh.mass_properties(density=1.0).mass
+        if not enclosed > 0:
             continue
-        excess = legacy.mass / solid.unit.mass - 1
+        excess = legacy.mass / enclosed - 1
         if excess > LEGACY_EXCESS:
             name = getattr(solid.shape.geometry, "filename", "")
             found.append(
@@ -358,7 +360,7 @@ def _inferred_changes(link: LinkAnalysis, inference: model.Inference) -> list[Pr
                     f"weighs mesh `{name}` {_percent(excess)} heavier than it encloses",
                     f"its inertia is inferred from its geoms and the mesh's inertia mode is "
                     f"legacy (MuJoCo 4's default), which counts {fmt(legacy.mass)} m³ for the "
-                    f"{fmt(solid.unit.mass)} m³ the non-convex mesh encloses",
+                    f"{fmt(enclosed)} m³ the non-convex mesh encloses",
                     solid.shape.source,
                     excess=excess,
                 )

@@ -18,45 +18,13 @@ more: the L of two 0.1 m bars has 5.32e-3 m³ instead of 5.0e-3 (+6 %); issue 20
 
 from __future__ import annotations
 
-import numpy as np
-from numpy.typing import NDArray
-
 from inertia_kit.analysis.geometry import Solid
-from inertia_kit.errors import MeshError
 from inertia_kit.physics.frames import transform
 from inertia_kit.physics.mass import MassProperties
-from inertia_kit.physics.mesh_formats import read_triangles
-from inertia_kit.physics.mujoco_mesh_inertia import mesh_mass_properties
+from inertia_kit.physics.mujoco_mesh_inertia import file_mass_properties
 
 #: MuJoCo 4.0's default ``<mesh inertia>``, and the only one a URDF gets
 DEFAULT_MESH_INERTIA = "legacy"
-
-
-def indexed(triangles: NDArray) -> tuple[NDArray, NDArray]:
-    """
-    ``(vertices, faces)`` of a triangle soup (n, 3, 3), vertices shared by their exact float32
-    bits as MuJoCo's STL decoder shares them (so that ``exact``'s winding check sees the
-    mesh's edges).
-    """
-    flat = np.asarray(triangles, dtype=np.float64).reshape(-1, 3)
-    keys = np.ascontiguousarray(flat.astype(np.float32)).view(np.uint32).reshape(-1, 3)
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    return flat[first], inverse.reshape(-1, 3)
-
-
-def mode_unit(triangles: NDArray, mode: str, scale=(1.0, 1.0, 1.0)) -> MassProperties | None:
-    """
-    What MuJoCo's mesh inertia ``mode`` gives the file's ``triangles`` (n, 3, 3) at ``scale``
-    at 1 kg/m³ (kg/m² for ``shell``), in the mesh's frame: ``mass`` is its volume (area);
-    ``None`` for a mesh MuJoCo refuses (no volume, inconsistent winding for ``exact``).
-    """
-    vertices, faces = indexed(triangles)
-    try:
-        with np.errstate(all="ignore"):
-            value = mesh_mass_properties(vertices, faces, mode, density=1.0, scale=scale)
-    except ValueError:
-        return None
-    return value if np.isfinite(value.mass) and value.mass > 0 else None
 
 
 def mesh_unit(solid: Solid, mode: str = DEFAULT_MESH_INERTIA) -> MassProperties | None:
@@ -69,9 +37,5 @@ def mesh_unit(solid: Solid, mode: str = DEFAULT_MESH_INERTIA) -> MassProperties 
     origin = solid.shape.origin
     if mesh is None or not isinstance(origin.xyz, tuple) or not isinstance(origin.rpy, tuple):
         return None
-    try:
-        triangles, unit = read_triangles(mesh.path)
-    except (MeshError, OSError, ValueError):
-        return None
-    value = mode_unit(triangles, mode, unit * np.asarray(mesh.scale, dtype=np.float64))
+    value = file_mass_properties(mesh.path, mode, mesh.scale)
     return None if value is None else value.transformed(transform(origin.xyz, origin.rpy))

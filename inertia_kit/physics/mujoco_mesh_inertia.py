@@ -30,6 +30,7 @@ What a mesh's numbers depend on that is not obvious:
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -70,6 +71,67 @@ def mujoco_vertices(vertices: ArrayLike, scale: ArrayLike = (1.0, 1.0, 1.0)) -> 
     vertices : (n, 3) float64
     """
     return _vertices(vertices).astype(np.float32).astype(np.float64) * _scale(scale)
+
+
+def shared_vertices(triangles: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """
+    ``(vertices, faces)`` of a triangle soup (n, 3, 3), vertices shared by their exact float32
+    bits as MuJoCo's STL decoder shares them (so that ``exact``'s winding check sees the
+    mesh's edges).
+    """
+    flat = np.asarray(triangles, dtype=np.float64).reshape(-1, 3)
+    keys = np.ascontiguousarray(flat.astype(np.float32)).view(np.uint32).reshape(-1, 3)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    return flat[first], inverse.reshape(-1, 3)
+
+
+def soup_mass_properties(
+    triangles: ArrayLike, mode: str, scale: ArrayLike = (1.0, 1.0, 1.0)
+) -> MassProperties | None:
+    """
+    What MuJoCo's mesh inertia ``mode`` gives ``triangles`` (n, 3, 3) at ``scale`` at 1 kg/m³
+    (kg/m² for ``shell``), in the mesh's frame: ``mass`` is its volume (area); ``None`` for a
+    mesh MuJoCo refuses (no volume, inconsistent winding for ``exact``).
+    """
+    vertices, faces = shared_vertices(triangles)
+    try:
+        with np.errstate(all="ignore"):
+            value = mesh_mass_properties(vertices, faces, mode, density=1.0, scale=scale)
+    except ValueError:
+        return None
+    return value if np.isfinite(value.mass) and value.mass > 0 else None
+
+
+def file_mass_properties(
+    path: str, mode: str, scale: ArrayLike = (1.0, 1.0, 1.0)
+) -> MassProperties | None:
+    """
+    :func:`soup_mass_properties` of a mesh file's triangles (in metres: the file's unit
+    applied), ``None`` when they cannot be read; kept per file state, mode and scale, since
+    every rule that weighs a mesh as MuJoCo does asks again.
+    """
+    import os
+
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return None
+    factors = tuple(float(f) for f in np.broadcast_to(np.asarray(scale, dtype=np.float64), 3))
+    return _file_mass_properties(path, stat.st_mtime_ns, stat.st_size, mode, factors)
+
+
+@functools.lru_cache(maxsize=512)
+def _file_mass_properties(
+    path: str, _mtime: int, _size: int, mode: str, scale: tuple[float, ...]
+) -> MassProperties | None:
+    from inertia_kit.errors import MeshError
+    from inertia_kit.physics.mesh_formats import read_triangles
+
+    try:
+        triangles, unit = read_triangles(path)
+    except (MeshError, OSError, ValueError):
+        return None
+    return soup_mass_properties(triangles, mode, unit * np.asarray(scale))
 
 
 def mesh_mass_properties(

@@ -12,9 +12,10 @@ import trimesh
 from kit.meshes import binary_stl, box_triangles
 from kit.urdf import collision, joint, link, mesh, robot
 
-from inertia_kit.engines.mujoco_meshes import DEFAULT_MESH_INERTIA, mode_unit
+from inertia_kit.engines.mujoco_meshes import DEFAULT_MESH_INERTIA
 from inertia_kit.lint.runner import Selection, lint_file
 from inertia_kit.physics.meshes import mesh as exact_mesh
+from inertia_kit.physics.mujoco_mesh_inertia import soup_mass_properties as mode_unit
 
 mujoco = pytest.importorskip("mujoco")
 

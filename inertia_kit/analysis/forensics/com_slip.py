@@ -214,6 +214,34 @@ def diagnose_com(
     return ComDiagnosis(declared, chosen, (), distance)
 
 
+def inside_readings(link: LinkAnalysis) -> list[ComReading]:
+    """
+    The sign, axis and unit readings of a link's declared centre of mass that land inside its
+    geometry's hull (fraction below 1) but beyond :data:`BAND`, best first: slips that would
+    put the point back inside, though not near enough to the centroid to be named (IN021
+    says them; a reading within the band is IN067's).
+    """
+    from inertia_kit.analysis.declared import declared_com
+
+    com = declared_com(link.link)
+    usable = [g for g in link.bases if g.unit is not None and g.hull is not None]
+    if com is None or not usable or not np.isfinite(com).all() or not com.any():
+        return []
+    size = _size(usable)
+    found = sorted(
+        (
+            ComReading(rank, words, kind, point, least_fraction(usable, point))
+            for rank, words, kind, point in readings(com, (), size)
+        ),
+        key=lambda r: (r.rank, r.fraction),
+    )
+    kept: list[ComReading] = []
+    for reading in found:  # the simplest of readings that give one point (see SAME_POINT)
+        if all(np.linalg.norm(reading.point - k.point) > SAME_POINT * size for k in kept):
+            kept.append(reading)
+    return sorted((r for r in kept if BAND < r.fraction < 1), key=lambda r: (r.fraction, r.rank))
+
+
 _LINKS: weakref.WeakKeyDictionary[LinkAnalysis, ComDiagnosis | None] = weakref.WeakKeyDictionary()
 
 

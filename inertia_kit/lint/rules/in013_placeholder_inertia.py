@@ -55,6 +55,14 @@ OPTIONS = (
         2.0,
         "how far apart two links' geometries must be before identical values on them are flagged",
     ),
+    Option(
+        "error_factor",
+        float,
+        10.0,
+        "an error for an isotropic placeholder this many times off its collision geometry's "
+        "moment about some axis",
+        minimum=1.0,
+    ),
 )
 
 ISOTROPIC_RTOL = 1e-6  # ixx = iyy = izz to this relative precision counts as equal
@@ -158,6 +166,7 @@ def _written(values: tuple[float, ...]) -> NDArray[np.float64]:
 def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     anisotropy = float(ctx.option("anisotropy"))
     copy_factor = float(ctx.option("copy_factor"))
+    error_factor = float(ctx.option("error_factor"))
     flagged: set[str] = set()
     copies: dict[tuple[float, ...], list[LinkAnalysis]] = {}
     for link in robot.links:
@@ -197,6 +206,19 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             if ratio < 1
             else f"is near-isotropic but gives 1/{fmt(ratio, 3)} of that"
         )
+        off = float(np.max(np.abs(np.log(values[0] / principal))))
+        severe = link.geometry.kind == "collision" and off > math.log(error_factor)
+        notes = ""
+        if severe:
+            notes += (
+                f"; {fmt(math.exp(off), 3)} times off about one axis, beyond any real part "
+                "(0.6 to 1.7 times its solid's)"
+            )
+        if robot.robot.format == "mjcf":
+            notes += (
+                "; in an MJCF file also what MuJoCo's balanceinertia makes of a tensor that "
+                "breaks the triangle inequality (a URDF compiled and saved as MJCF keeps it)"
+            )
         yield ctx.finding(
             f"link `{link.name}`: ixx = iyy = izz = {fmt(values[0], 4)} kg·m² is an isotropic "
             "placeholder",
@@ -204,7 +226,8 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             link=link.name,
             expected={"mass": declared.mass, **written.fields},
             detail=f"with no products of inertia; its {link.geometry.describe()} {why}: with the "
-            f"declared {fmt(declared.mass)} kg it gives {written.text()}",
+            f"declared {fmt(declared.mass)} kg it gives {written.text()}{notes}",
+            severity=Severity.ERROR if severe else None,
             help="replace the placeholder with the part's tensor about its centre of mass (from "
             "CAD, or `inertia-fill --fix invalid` from the geometry)",
         )

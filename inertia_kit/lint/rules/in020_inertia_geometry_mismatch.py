@@ -41,6 +41,13 @@ OPTIONS = (
         "flag a moment less than 1/factor_below of the geometry's",
         minimum=1.0,
     ),
+    Option(
+        "error_below",
+        float,
+        100.0,
+        "an error for a moment less than 1/error_below of its collision geometry's",
+        minimum=1.0,
+    ),
 )
 
 # A slip that forensics recognises (analysis.forensics: about another point, other axes, a
@@ -159,6 +166,15 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"beyond what {fmt(declared.mass)} kg inside the link's geometry can have, "
                 f"but {firmness.why_not()} (IN023)"
             )
+    error_below = float(ctx.option("error_below"))
+    if severity is None and geometry.kind == "collision" and ratio * error_below < 1:
+        # no real part comes near: their moments are 0.6 to 1.7 times their solid's, and a
+        # moment this small about a heavy part's axis makes the engine spin it at will
+        severity = Severity.ERROR
+        notes.append(
+            f"no real part's moment is below 1/{fmt(error_below)} of its solid's (they are "
+            "0.6 to 1.7 times it): a placeholder, a unit or a slip of digits"
+        )
     tensor = expected.cleaned().inertia
     inertial = link.link.inertial
     assert inertial is not None

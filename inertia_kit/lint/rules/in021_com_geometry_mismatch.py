@@ -7,7 +7,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.com_offset import judged_com, offset_fraction
-from inertia_kit.analysis.forensics.com_slip import diagnose_link_com
+from inertia_kit.analysis.forensics.com_slip import diagnose_link_com, inside_readings
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.options import Option
@@ -46,6 +46,19 @@ def _alike(link: LinkAnalysis) -> str:
     return f"; with {words} it would be inside alike, so which slip it was is not known"
 
 
+def _back_inside(link: LinkAnalysis) -> str:
+    """The slips that would put an outside centre of mass back inside its geometry, but not
+    near its centroid (IN067 names a slip only then), for the detail: ``""`` when none."""
+    found = inside_readings(link)[:2]
+    if not found:
+        return ""
+    said = " or ".join(f"with {r.words} ({fmt(100 * r.fraction, 2)}% to the edge)" for r in found)
+    return (
+        f"; {said} it would lie inside, though too far from the centroid to say it was that "
+        "slip (real parts' centres of mass lie within 54% of the way)"
+    )
+
+
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     com = judged_com(link, float(ctx.option("min_mass_share")))
     inertial = link.link.inertial
@@ -68,7 +81,7 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 source,
                 link=link.name,
                 detail=f"the centre of mass {_xyz(com)} m lies at least {fmt(outside, 3)} m "
-                f"outside its {shapes}: no mass inside the geometry has it",
+                f"outside its {shapes}: no mass inside the geometry has it{_back_inside(link)}",
                 expected=None if centroid is None else {"xyz": [float(v) for v in centroid]},
                 help="the centre of mass is in the link frame (check the sign, the axes and the "
                 "unit of <inertial><origin xyz>), or the geometry is misplaced" + _alike(link),

@@ -39,6 +39,9 @@ def _kinds(link: LinkAnalysis) -> tuple[str, ...]:
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     tolerance = float(ctx.option("tolerance"))
+    if link.robot is not None and link.robot.robot.format == "mjcf":
+        yield from _weighed_by_mujoco(link, ctx, tolerance)
+        return
     for solid in link.mesh_kind_solids(tuple(_kinds(link))):
         kind = solid.shape.kind
         mesh = solid.mesh
@@ -89,3 +92,58 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 help="re-export the mesh with consistent outward normals (Blender: "
                 "Recalculate Outside; `trimesh.repair.fix_normals`)",
             )
+
+
+def _weighed_by_mujoco(link: LinkAnalysis, ctx: RuleContext, tolerance: float) -> Iterator[Finding]:
+    """
+    An MJCF mesh matters only where MuJoCo weighs it: a counted geom of a body whose mass
+    properties it infers, in the ``legacy`` or ``exact`` mode, which add up the triangles as
+    they are (``convex`` weighs the hull, and MuJoCo collides with the hull whatever the mode).
+    An open mesh there gives MuJoCo another volume than the part's.
+    """
+    from inertia_kit.engines.mujoco_inference import infers
+
+    inference = link.robot.robot.inference if link.robot is not None else None
+    if (
+        inference is None
+        or not infers(link.link, inference)
+        or link.robot is None
+        or link.robot.welded_to_world(link.name)  # static: its mass moves nothing
+    ):
+        return
+    for solid in link.collision.solids:
+        mesh, element = solid.mesh, solid.shape.geometry
+        if mesh is None or solid.unit is None or mesh.method != "convex-hull":
+            continue
+        assert isinstance(element, model.Mesh)
+        mode = element.inertia or "legacy"
+        hull = float(mesh.volume)
+        if mode not in ("legacy", "exact") or not hull > 0:
+            continue
+        error = abs(solid.unit.mass - hull) / hull
+        if error <= tolerance:
+            continue
+        name = Path(element.filename).name
+        yield ctx.finding(
+            mesh_message(
+                link.link,
+                "counted",
+                element.filename,
+                f"is open: MuJoCo weighs {fmt(100 * error, 3)}% off its hull",
+            ),
+            element.source,
+            link=link.name,
+            detail=f"mesh `{name}` is not closed ({mesh.triangle_count} triangles) and MuJoCo "
+            f"infers the body's mass properties from it in its `{mode}` inertia mode, which "
+            f"adds up the triangles as they are: {fmt(solid.unit.mass, 4)} m³, where its "
+            f"convex hull holds {fmt(hull, 4)} m³",
+            expected={
+                "method": mesh.method,
+                "mode": mode,
+                "volume": solid.unit.mass,
+                "hull_volume": hull,
+                "volume_error": error,
+            },
+            help='close the mesh, or weigh its hull (`inertia="convex"` on the <mesh>), or '
+            "write the body's <inertial> (its CAD values)",
+        )

@@ -1,0 +1,129 @@
+"""
+The rules' MJCF meanings (issue 22, item 3): the geometry a body is judged against is what
+MuJoCo would weigh (its counted geoms added up, each mesh in its inertia mode), an open mesh
+matters only where MuJoCo weighs it, and a tensor far below its geometry's or an isotropic
+placeholder far off it is an error, saying what MuJoCo's balanceinertia has to do with it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+from kit.meshes import box_triangles, write_binary_stl
+from kit.mjcf import body_mass_properties
+
+from inertia_kit.analysis.links import analyse
+from inertia_kit.description.mjcf.reader import load_mjcf
+from inertia_kit.lint.findings import Severity
+from inertia_kit.lint.runner import Selection, lint_robot
+
+mujoco = pytest.importorskip("mujoco")
+
+
+def write_model(tmp_path, body: str, *, asset: str = "", welded: bool = False):
+    joint = "" if welded else '<joint type="hinge"/>'
+    path = tmp_path / "m.xml"
+    path.write_text(
+        f"<mujoco><asset>{asset}</asset><worldbody>"
+        f'<body name="b" pos="0.1 0 0" euler="0 0 20">{joint}{body}</body>'
+        "</worldbody></mujoco>"
+    )
+    return path
+
+
+def findings(path, code: str):
+    return [f for f in lint_robot(load_mjcf(path), Selection((code,))) if f.code == code]
+
+
+def l_shape(tmp_path):
+    bar = trimesh.creation.box((0.3, 0.1, 0.1))
+    bar.apply_translation((0.1, 0, 0))
+    other = trimesh.creation.box((0.1, 0.3, 0.1))
+    other.apply_translation((0, 0.1, 0))
+    trimesh.boolean.union([bar, other], engine="manifold").export(tmp_path / "l.stl")
+    return '<mesh file="l.stl"/>'
+
+
+def open_box(tmp_path):
+    triangles = box_triangles((0.2, 0.1, 0.05), low=(-0.1, -0.05, -0.025))[:-2]  # a face gone
+    write_binary_stl(tmp_path / "open.stl", triangles)
+    return '<mesh file="open.stl"/>'
+
+
+@pytest.mark.parametrize(
+    ("geoms", "asset"),
+    [
+        # overlapping primitives: MuJoCo adds them, the overlap counted twice
+        (
+            '<geom type="box" size="0.1 0.1 0.1"/><geom type="sphere" size="0.08" pos="0.1 0 0"/>',
+            "",
+        ),
+        # a non-convex mesh in MuJoCo's default legacy mode, over-counted
+        ('<geom type="mesh" mesh="l"/>', "l"),
+        ('<geom type="mesh" mesh="l" pos="0 0.2 0" euler="0 30 0"/>', "l"),
+    ],
+)
+def test_the_geometry_of_an_mjcf_body_is_what_mujoco_weighs(tmp_path, geoms, asset):
+    path = write_model(tmp_path, geoms, asset=l_shape(tmp_path) if asset else "")
+    unit = analyse(load_mjcf(path)).by_name["b"].geometry.unit
+    mass, com, moments = body_mass_properties(mujoco.MjModel.from_xml_path(str(path)), 1)
+    ours = unit.with_mass(unit.mass * 1000.0)  # MuJoCo's default density
+    assert ours.mass == pytest.approx(mass, rel=1e-9)
+    np.testing.assert_allclose(ours.com, com, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(ours.principal_moments, moments, rtol=1e-9)
+
+
+def test_an_open_mesh_matters_where_mujoco_weighs_it(tmp_path):
+    asset = open_box(tmp_path)
+    inferred = write_model(tmp_path, '<geom type="mesh" mesh="open"/>', asset=asset)
+    (finding,) = findings(inferred, "IN032")
+    assert finding.message.startswith("body `b`: counted mesh `open.stl` is open: MuJoCo weighs")
+    assert "legacy" in finding.detail and 'inertia="convex"' in finding.help
+    mujoco.MjModel.from_xml_path(str(inferred))  # MuJoCo compiles it, weighing what it has
+
+    written = '<inertial pos="0 0 0" mass="1" diaginertia="0.001 0.004 0.004"/>'
+    explicit = write_model(tmp_path, written + '<geom type="mesh" mesh="open"/>', asset=asset)
+    static = write_model(tmp_path, '<geom type="mesh" mesh="open"/>', asset=asset, welded=True)
+    convex = asset.replace("/>", ' inertia="convex"/>')
+    hull = write_model(tmp_path, '<geom type="mesh" mesh="open"/>', asset=convex)
+    for path in (explicit, static, hull):
+        assert findings(path, "IN032") == []
+
+
+def test_a_moment_a_hundred_times_below_its_geometrys_is_an_error(tmp_path):
+    box = '<geom type="box" size="0.2 0.1 0.05"/>'
+    # the box's moments for 60 kg: 0.25, 0.85, 1.0 kg·m²
+    tiny = write_model(
+        tmp_path, box + '<inertial pos="0 0 0" mass="60" diaginertia="0.002 0.85 1"/>'
+    )
+    (finding,) = findings(tiny, "IN020")
+    assert finding.severity is Severity.ERROR and "no real part's moment" in finding.detail
+    small = write_model(
+        tmp_path, box + '<inertial pos="0 0 0" mass="60" diaginertia="0.02 0.85 1"/>'
+    )
+    (finding,) = findings(small, "IN020")
+    assert finding.severity is Severity.WARNING
+
+
+def test_an_isotropic_placeholder_far_off_is_an_error_and_may_be_balanceinertias(tmp_path):
+    box = '<geom type="box" size="0.2 0.1 0.05"/>'
+    body = box + '<inertial pos="0 0 0" mass="60" diaginertia="0.001 0.001 0.001"/>'
+    (finding,) = findings(write_model(tmp_path, body), "IN013")
+    assert finding.severity is Severity.ERROR
+    assert "balanceinertia" in finding.detail and "times off about one axis" in finding.detail
+    near = box + '<inertial pos="0 0 0" mass="60" diaginertia="0.5 0.5 0.5"/>'
+    (finding,) = findings(write_model(tmp_path, near), "IN013")
+    assert finding.severity is Severity.WARNING and "times off" not in finding.detail
+
+
+def test_a_centre_of_mass_a_slip_puts_back_inside_but_far_out_says_so(tmp_path):
+    # a 0.4 × 0.1 × 0.1 m bar along x; the COM at z = 0.2 is outside, read with x and z
+    # exchanged it is at x = 0.2, inside (the bar's end), but beyond where real parts put it
+    body = (
+        '<geom type="box" size="0.2 0.05 0.05"/>'
+        '<inertial pos="0 0 0.15" mass="1" diaginertia="0.0008 0.0135 0.0135"/>'
+    )
+    (finding,) = findings(write_model(tmp_path, body), "IN021")
+    assert finding.severity is Severity.ERROR
+    assert "with x and z exchanged (75% to the edge) it would lie inside" in finding.detail
