@@ -81,9 +81,6 @@ class RobotFixes:
     notes: list[str] = field(default_factory=list)
 
 
-_UNWRITTEN = "{} models are read and linted; their fixes are not written yet: nothing changed"
-
-
 def plan_fixes(
     analysis: RobotAnalysis,
     findings: Sequence[Finding],
@@ -105,9 +102,6 @@ def plan_fixes(
     those in ``vouched`` (a finding on them is suppressed: their author keeps their values);
     ``safe_only``: only safe fixes (``inertia-lint --fix`` without ``--unsafe-fixes``).
     """
-    if analysis.robot.format != "urdf":
-        # the placement below writes URDF/xacro elements: never into another format's file
-        return RobotFixes(notes=[_UNWRITTEN.format(analysis.robot.format.upper())])
     wants: dict[str, list[FixRule]] = {}
     spoils: dict[str, str] = {}
     for finding in findings:
@@ -254,7 +248,10 @@ def _place(
     result: RobotFixes,
 ) -> None:
     """Place every target with one call, so links sharing a macro body are seen together."""
-    from inertia_kit.fixes.sites import place
+    if analysis.robot.format == "mjcf":
+        from inertia_kit.fixes.mjcf_sites import place
+    else:
+        from inertia_kit.fixes.sites import place
 
     placements = place(targets, analysis.links, files)
     for target in targets:
@@ -265,13 +262,16 @@ def _place(
             result.notes.extend(placement.notes)
         else:
             # the problem says what to do, right for every link a shared macro makes
-            fix = LinkFix(
-                target.name, safety, title, target, reason=placement.problem, block=_block(target)
-            )
+            block = _block(target, analysis.robot.format)
+            fix = LinkFix(target.name, safety, title, target, reason=placement.problem, block=block)
         result.links[target.name] = fix
 
 
-def _block(target: Target) -> str:
+def _block(target: Target, form: str) -> str:
+    if form == "mjcf":
+        from inertia_kit.description.mjcf.writer import inertial_element
+
+        return inertial_element(target.properties)
     from inertia_kit.description.inertial_xml import inertial_block
 
     return inertial_block(target.properties, indent="  ", level=0)

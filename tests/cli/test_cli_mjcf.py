@@ -1,13 +1,16 @@
 """
 The command line on MJCF models (issue 22): read by content (root ``<mujoco>``), findings at
 the MJCF file and line (an included file's when the value is written there), suppressions as
-XML comments, and no fix written into the file until the MJCF writer exists.
+XML comments, fixes written into the MJCF where the values are (a fixed point MuJoCo compiles).
 """
 
 from __future__ import annotations
 
 import json
 
+import mujoco
+import numpy as np
+import pytest
 from click.testing import CliRunner
 from kit import write
 
@@ -73,14 +76,76 @@ def test_a_folder_lints_its_mjcf_models_and_not_its_other_xml(tmp_path):
     assert code == 1 and files == ["parts.xml"]
 
 
-def test_fixes_leave_an_mjcf_file_untouched_and_say_so(tmp_path):
+def test_fixes_are_written_where_the_values_are_and_a_second_run_changes_nothing(tmp_path):
     path = model(tmp_path)
-    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
-    code, out, err = run(lint_main, "--fix", "--unsafe-fixes", str(path))
-    assert code == 1
-    code, out, err = run(fill_main, "--fix", "all", str(path))
-    assert "fixes are not written yet: nothing changed" in err + out
-    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == before
+    run(lint_main, "--fix", "--unsafe-fixes", "--select", "IN002,IN010", str(path))
+    parts, arm = (tmp_path / "parts.xml").read_text(), path.read_text()
+    # each <inertial> replaced in the file that writes it, on its own line, nothing else
+    sphere = 'mass="0.523599" diaginertia="0.000523599 0.000523599 0.000523599"'
+    assert PARTS.replace('mass="-1" diaginertia="1 1 1"', sphere) == parts
+    assert arm.count("<inertial") == 1 and 'diaginertia="-1 1 1"' not in arm
+    assert arm.replace(arm.splitlines()[8], ARM.splitlines()[8]) == ARM
+    mujoco.MjModel.from_xml_path(str(path))  # compiles
+    again = ("--fix", "--unsafe-fixes", "--diff", "--select", "IN002,IN010", str(path))
+    _, out, _ = run(lint_main, *again)
+    assert "@@" not in out
+
+
+def test_fill_writes_an_inertial_into_a_body_mujoco_infers(tmp_path):
+    path = write(
+        tmp_path / "m.xml",
+        '<mujoco>\n  <worldbody>\n    <body name="b">\n      <joint axis="0 0 1"/>\n'
+        '      <geom type="box" size="0.1 0.2 0.3"/>\n    </body>\n  </worldbody>\n</mujoco>\n',
+    )
+    inferred = mujoco.MjModel.from_xml_path(str(path))
+    run(fill_main, "--density", "1000", str(path))
+    lines = path.read_text().splitlines()
+    assert lines[3].startswith('      <inertial pos="0 0 0" mass="48" diaginertia="')
+    written = mujoco.MjModel.from_xml_path(str(path))
+    assert written.body_mass[1] == pytest.approx(inferred.body_mass[1], rel=1e-6)
+    np.testing.assert_allclose(written.body_inertia[1], inferred.body_inertia[1], rtol=1e-5)
+    before = path.read_bytes()
+    run(fill_main, "--density", "1000", "--fix", "all", str(path))
+    assert path.read_bytes() == before  # a fixed point
+
+
+def test_a_fullinertia_stays_fullinertia(tmp_path):
+    path = write(
+        tmp_path / "m.xml",
+        '<mujoco><worldbody><body name="b"><joint axis="0 0 1"/>'
+        '<geom type="box" size="0.1 0.2 0.3"/>'
+        '<inertial pos="0 0 0" mass="48" fullinertia="-1 1 1 0 0 0"/>'
+        "</body></worldbody></mujoco>",
+    )
+    run(lint_main, "--fix", "--unsafe-fixes", "--select", "IN010", str(path))
+    assert 'fullinertia="2.08 1.6 0.8 0 0 0"' in path.read_text()
+    mujoco.MjModel.from_xml_path(str(path))
+
+
+def test_an_element_that_makes_several_bodies_is_written_only_for_them_all(tmp_path):
+    path = write(
+        tmp_path / "m.xml",
+        '<mujoco><worldbody><replicate count="2" offset="1 0 0"><body name="b">'
+        '<joint axis="0 0 1"/><geom type="box" size="0.1 0.2 0.3"/>'
+        '<inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/>'
+        "</body></replicate></worldbody></mujoco>",
+    )
+    before = path.read_bytes()
+    run(lint_main, "--fix", "--unsafe-fixes", "--select", "IN002", str(path))
+    # both copies want the same values: one edit writes them
+    assert path.read_bytes() != before and 'mass="48"' in path.read_text()
+
+
+def test_inertiafromgeom_true_gets_no_inertial_written(tmp_path):
+    path = write(
+        tmp_path / "m.xml",
+        '<mujoco><compiler inertiafromgeom="true"/><worldbody><body name="b">'
+        '<joint axis="0 0 1"/><geom type="box" size="0.1 0.2 0.3"/>'
+        '<inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/></body></worldbody></mujoco>',
+    )
+    before = path.read_bytes()
+    run(lint_main, "--fix", "--unsafe-fixes", "--select", "IN002", str(path))
+    assert path.read_bytes() == before
 
 
 def test_a_suppression_comment_in_mjcf_silences_its_finding(tmp_path):

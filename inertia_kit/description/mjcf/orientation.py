@@ -117,3 +117,30 @@ def rotation(form: str, values: Sequence[float], *, degrees: bool, eulerseq: str
         step = _axis_quat(axis, angle * unit)
         q = _multiply(q, step) if letter.islower() else _multiply(step, q)
     return quat_matrix(q)
+
+
+def matrix_quat(matrix: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The unit quaternion (w, x, y, z), w ≥ 0, of a rotation matrix (Shepperd's method)."""
+    m = matrix
+    trace = np.trace(m)
+    if trace > max(m[0, 0], m[1, 1], m[2, 2]):
+        w = np.sqrt(1.0 + trace) / 2
+        q = np.array(
+            [
+                w,
+                (m[2, 1] - m[1, 2]) / (4 * w),
+                (m[0, 2] - m[2, 0]) / (4 * w),
+                (m[1, 0] - m[0, 1]) / (4 * w),
+            ]
+        )
+    else:
+        i = int(np.argmax(np.diag(m)))
+        j, k = (i + 1) % 3, (i + 2) % 3
+        r = np.sqrt(1.0 + m[i, i] - m[j, j] - m[k, k])
+        q = np.empty(4)
+        q[1 + i] = r / 2
+        q[1 + j] = (m[j, i] + m[i, j]) / (2 * r)
+        q[1 + k] = (m[k, i] + m[i, k]) / (2 * r)
+        q[0] = (m[k, j] - m[j, k]) / (2 * r)
+    q /= np.linalg.norm(q)
+    return -q if q[0] < 0 else q

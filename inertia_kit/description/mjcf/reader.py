@@ -27,6 +27,7 @@ from inertia_kit.description.mjcf.compiler import Compiler, read_compiler
 from inertia_kit.description.mjcf.defaults import MAIN, Defaults, local
 from inertia_kit.description.mjcf.includes import Assembled, assemble
 from inertia_kit.description.mjcf.orientation import FORMS, OrientationError, rotation
+from inertia_kit.description.mjcf.replicate import expand_replicates
 from inertia_kit.errors import InputError
 from inertia_kit.physics.frames import matrix_rpy, transform
 from inertia_kit.physics.numbers import usable
@@ -57,6 +58,7 @@ class _Reader:
         self.source_of = self.assembled.source_of
         self.defaults = Defaults(self.root, self.source_of)
         self.compiler: Compiler = read_compiler(self.root, self.source_of)
+        expand_replicates(self.root, self.assembled.sources, self.compiler)
         self.invalid: list[model.Invalid] = []
         self.links: list[model.Link] = []
         self.joints: list[model.Joint] = []

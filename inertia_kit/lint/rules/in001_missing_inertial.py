@@ -359,7 +359,7 @@ def _inferred(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
                 f"give no density or mass, so MuJoCo weighs them at its default "
                 f"{fmt(DENSITY)} kg/m³ (water; aluminium is 2700, steel 7850, ABS 1050)"
             ),
-            help="write the body's <inertial> (its CAD values), or give its geoms the "
-            "material's density (`density=` on the geom or its default class)",
-            fixable=False,
+            help="write the body's <inertial> (its CAD values; `inertia-fill --density D` "
+            "writes its geoms' at the material's density), or give its geoms the material's "
+            "density (`density=` on the geom or its default class)",
         )

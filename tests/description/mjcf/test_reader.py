@@ -258,3 +258,35 @@ def test_a_file_without_a_worldbody_is_a_fragment(tmp_path):
 )
 def test_mjcf_is_known_by_its_root(text, expected):
     assert is_mjcf(text) is expected
+
+
+@pytest.mark.parametrize("compiler", ["", '<compiler angle="radian" eulerseq="zyx"/>'])
+def test_replicate_copies_are_mujocos_names_order_and_poses(tmp_path, compiler):
+    angle = "0 0 1.2" if compiler else "0 10 30"
+    path = write(
+        tmp_path,
+        "m.xml",
+        f"<mujoco>{compiler}<worldbody><body name='base' pos='0.1 0 0'>"
+        f'<replicate count="2" offset="1 0 0" euler="{angle}">'
+        f'<replicate count="11" offset="0 0.2 0" euler="{angle}" sep="-">'
+        '<body name="b" pos="0 0 1"><joint axis="0 0 1"/>'
+        '<inertial pos="0.1 0 0" mass="1" diaginertia="1 1 1"/></body>'
+        "</replicate></replicate></body></worldbody></mujoco>",
+    )
+    robot, mjmodel = both(path)
+    names = [mjmodel.body(i).name for i in range(mjmodel.nbody)]
+    assert [link.name for link in robot.links] == names and names[2:4] == ["b-000", "b-010"]
+    for name in names[1:]:
+        np.testing.assert_allclose(pose_of(robot, name), mujoco_pose(mjmodel, name), atol=1e-12)
+    # every copy's <inertial> is the one element written once
+    sources = {robot.link(name).inertial.source for name in names[2:]}
+    assert len(sources) == 1
+
+
+def test_a_replicate_that_is_no_count_is_refused_where_it_is(tmp_path):
+    path = write(
+        tmp_path, "m.xml", '<mujoco><worldbody>\n<replicate count="two"/></worldbody></mujoco>'
+    )
+    with pytest.raises(InputError, match="not a positive whole number") as raised:
+        load_mjcf(path)
+    assert raised.value.line == 2

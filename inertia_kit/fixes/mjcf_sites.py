@@ -1,0 +1,115 @@
+"""
+Where an MJCF body's mass properties are written: its ``<inertial>``, replaced whole by the
+one for the new values (in the form its author chose: ``diaginertia`` with ``quat``, or
+``fullinertia``), or, for a body MuJoCo infers from its geoms, a new ``<inertial>`` as the
+body's first child. An element that makes several bodies (a ``<replicate>``, a model
+``<attach>``\\ed twice) is written only when every body it makes gets the same values; a value
+under ``inertiafromgeom="true"`` is not written (the compiler ignores it).
+"""
+
+from __future__ import annotations
+
+import re
+from collections import defaultdict
+from collections.abc import Sequence
+
+from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description.edits import Edit
+from inertia_kit.description.mjcf.writer import inertial_element
+from inertia_kit.description.model import Source
+from inertia_kit.description.xmlspan import children, element_span, indent_unit, line_indent
+from inertia_kit.fixes.files import Files, key, location
+from inertia_kit.fixes.sites import Placement, Target
+
+_LINE_REST = re.compile(r"[ \t]*(\r\n|\n|\r)")
+
+
+def place(
+    targets: Sequence[Target], links: Sequence[LinkAnalysis], files: Files
+) -> dict[str, Placement]:
+    """The edits that write each target's values into the MJCF files (``links``: every body
+    of the model, to know which others an element makes too)."""
+    written = {t.name: _written(t) for t in targets}
+    makers: dict[object, list[str]] = defaultdict(list)
+    for link in links:
+        makers[key(_where(link))].append(link.name)
+    placements = {}
+    for target in targets:
+        inference = target.link.robot.robot.inference if target.link.robot else None
+        if inference is not None and inference.from_geometry == "always":
+            placements[target.name] = Placement(
+                problem='the compiler\'s inertiafromgeom="true" ignores every <inertial>: set '
+                'it to "auto" (or remove it) first'
+            )
+            continue
+        where = _where(target.link)
+        others = [n for n in makers[key(where)] if n != target.name]
+        differing = [n for n in others if written.get(n) != written[target.name]]
+        if differing:
+            tag = "<inertial>" if target.link.link.inertial is not None else "<body>"
+            placements[target.name] = Placement(
+                problem=f"its {tag} at {location(where)} makes {len(others) + 1} bodies "
+                f"({', '.join(f'`{n}`' for n in [target.name, *others][:4])}), and "
+                f"`{differing[0]}` would need other values: write each its own <inertial>"
+            )
+            continue
+        placements[target.name] = _place(target, written[target.name], files)
+    return placements
+
+
+def _where(link: LinkAnalysis) -> Source:
+    inertial = link.link.inertial
+    return inertial.source if inertial is not None else link.link.source
+
+
+def _written(target: Target) -> str:
+    inertial = target.link.link.inertial
+    form = (
+        "fullinertia"
+        if inertial is not None and inertial.tensor_form == "fullinertia"
+        else "diaginertia"
+    )
+    return inertial_element(target.properties, form)
+
+
+def _place(target: Target, element: str, files: Files) -> Placement:
+    inertial = target.link.link.inertial
+    tag = "inertial" if inertial is not None else "body"
+    where = _where(target.link)
+    if not files.editable(where.path):
+        return Placement(
+            problem=f"its <{tag}> is written in {location(where)}, {files.outside(where.path)}"
+        )
+    offset = files.offset(where, tag)
+    if offset is None:
+        return Placement(problem=f"its <{tag}> was not found at {location(where)}")
+    source = files.source(where.path)
+    text = source.text
+    span = element_span(text, offset)
+    if inertial is not None:
+        if text[span.start : span.end] == element:
+            return Placement()
+        return Placement((Edit(source.path, span.start, span.end, element),))
+    if span.empty:
+        return Placement(problem=f"its <body> at {location(where)} is an empty element")
+    inner = children(text, span)
+    indent = (
+        line_indent(text, inner[0].start)
+        if inner
+        else line_indent(text, offset) + indent_unit(text)
+    )
+    rest = _LINE_REST.match(text, span.start_tag_end)
+    if rest is not None:
+        return Placement(
+            (Edit(source.path, rest.end(), rest.end(), indent + element + source.newline),)
+        )
+    return Placement(
+        (
+            Edit(
+                source.path,
+                span.start_tag_end,
+                span.start_tag_end,
+                source.newline + indent + element + source.newline + line_indent(text, span.start),
+            ),
+        )
+    )
