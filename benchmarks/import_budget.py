@@ -7,7 +7,7 @@ load it by path).
 #: what no run may import: a plain URDF needs no xacro (nor what it pulls in), and a warm
 #: cache reads no mesh, so needs no mesh library
 NOT_FOR_PLAIN_URDF = (
-    "inertia_kit.description.xacro_expand",
+    "inertia_kit.description.urdf.xacro_expand",
     "xacro",
     "yaml",
     "urllib.request",

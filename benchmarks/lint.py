@@ -148,7 +148,7 @@ def robot(name: str, links: list[tuple[str, str]]) -> str:
 
 
 def primitive_robot() -> str:
-    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.description.urdf.inertial_xml import inertial_block
     from inertia_kit.physics import primitives
 
     links = []
@@ -172,7 +172,7 @@ def primitive_robot() -> str:
 
 
 def mesh_robot(meshes: list[Path]) -> str:
-    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.description.urdf.inertial_xml import inertial_block
     from inertia_kit.physics.meshes import mesh
 
     links = []

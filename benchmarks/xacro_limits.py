@@ -32,7 +32,7 @@ from kit.runaway_xacro import HUGE_POWER, HUGE_STRING, doubling_chain, expressio
 
 from inertia_kit.description import xacro_expand  # noqa: E402
 from inertia_kit.description.loader import needs_expansion  # noqa: E402
-from inertia_kit.description.packages import PackageResolver  # noqa: E402
+from inertia_kit.description.urdf.packages import PackageResolver  # noqa: E402
 from inertia_kit.description.xacro_limits import XacroLimits  # noqa: E402
 
 MEASURE = """

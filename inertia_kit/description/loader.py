@@ -1,56 +1,54 @@
 """
-Robot descriptions in: a ``.urdf`` or xacro file, parsed safely, into the model with the source
-location of every element. Raises :class:`~inertia_kit.errors.InputError` for anything that is
-not a readable robot description; never a traceback.
-
-:func:`load` picks the way in: xacro that uses xacro goes through :mod:`.xacro_expand`, anything
-else is parsed as XML (:mod:`.xmlparse`); either tree becomes the model in :mod:`.builder`.
+Robot descriptions in, whatever their format: :func:`load` reads a file within bounds, checks
+that it is text, and hands it to its format's reader by content: an MJCF model (root
+``<mujoco>``: :mod:`.mjcf.reader`), else URDF or xacro (:mod:`.urdf.reader`). Every reader
+gives the one model (:mod:`.model`) with the source location of every element, and raises
+:class:`~inertia_kit.errors.InputError` for anything that is not a readable robot
+description; never a traceback. A third format (SDFormat, USD) is a third reader here.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from lxml import etree
-
 from inertia_kit.description import model
-from inertia_kit.description.builder import Builder
 from inertia_kit.description.mjcf.detect import is_mjcf
-from inertia_kit.description.reads import digest, key
 from inertia_kit.description.safexml import read_bounded
-from inertia_kit.description.xmlparse import check_text, element_locator, parse_xml
+from inertia_kit.description.urdf.reader import expanded_text as expanded
+from inertia_kit.description.urdf.reader import files_read, load_urdf, narrow, needs_expansion
+from inertia_kit.description.xmlparse import check_text
 
 if TYPE_CHECKING:
     from inertia_kit.description.xacro_limits import XacroLimits
 
-# Anything xacro would change: without it, a file that declares the xacro namespace (as xacro's
-# own output does) is plain URDF, and xacro would give it back unchanged
-_XACRO_AT_WORK = re.compile(rb"<\s*xacro:|\$\{|\$\(")
+#: what the layers above read descriptions through: ``needs_expansion`` (a file made by macros,
+#: xacro), ``files_read`` (what such a file's expansion reads: the include graph),
+#: ``expanded`` (its expansion as text, for ``inertia-fill -o``), ``may_be_included`` and
+#: ``stand_in_suffix`` (a text read from stdin), besides :func:`load`
+__all__ = [
+    "expanded",
+    "files_read",
+    "load",
+    "may_be_included",
+    "needs_expansion",
+    "stand_in_suffix",
+]
 
 
-def needs_expansion(data: bytes) -> bool:
-    """
-    Whether a file must go through xacro: xacro by content *and* using it (macros, ``${}``,
-    ``$()``). A file that only declares the namespace, as xacro's own output does, is URDF.
-    """
-    from inertia_kit.description.xacro_detect import is_xacro
+def may_be_included(data: bytes) -> bool:
+    """Whether a text may be a fragment that robots include (xacro, by content)."""
+    from inertia_kit.description.urdf.xacro_detect import is_xacro
 
-    data = _narrow(data)
-    return is_xacro(data) and _XACRO_AT_WORK.search(data) is not None
+    return is_xacro(data)
 
 
-def _narrow(data: bytes) -> bytes:
-    """UTF-16/32 text (by byte-order mark) as UTF-8, to look for xacro in; other data as it is."""
-    for mark, codec in ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32")):
-        if data.startswith(mark):
-            return data.decode(codec, "replace").encode("utf-8")
-    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
-        return data.decode("utf-16", "replace").encode("utf-8")
-    return data
+def stand_in_suffix(data: bytes) -> str:
+    """The file name suffix a text read from stdin is linted under: its format's."""
+    if is_mjcf(narrow(data)):
+        return ".xml"
+    return ".urdf.xacro" if may_be_included(data) else ".urdf"
 
 
 def load(
@@ -61,12 +59,12 @@ def load(
     xacro_limits: XacroLimits | None = None,
 ) -> model.Robot:
     """
-    Load a URDF or xacro robot description.
+    Load a robot description: MJCF, URDF or xacro, told apart by content.
 
     Parameters
     ----------
     path : str or Path
-      A ``.urdf``, ``.xacro`` or ``.urdf.xacro`` file; xacro is recognised by content.
+      The file (``.xml``, ``.urdf``, ``.xacro``, ``.urdf.xacro``, any name).
     xacro_args : mapping, optional
       ``name -> value`` for ``$(arg name)``, as ``name:=value`` on xacro's command line.
     package_paths : iterable of paths
@@ -79,64 +77,22 @@ def load(
     Returns
     -------
     robot : Robot
-      A fragment (a xacro file, by name or content, with no ``<link>`` and no ``<joint>``
-      once expanded: macros, properties, materials, ``<gazebo>`` blocks) loads as a robot with
-      no links and ``fragment=True``. Its ``reads`` hold a digest of the bytes of every file
-      read (the input, every xacro file included), which edits of them check (:mod:`.reads`).
+      See :func:`.urdf.reader.load_urdf` and :func:`.mjcf.reader.load_mjcf`; ``robot.format``
+      says which (``urdf``, ``mjcf``).
 
     Raises
     ------
     InputError
-      For anything that is not a readable robot description: a missing, unreadable, empty,
-      binary or oversized file, malformed XML, entity declarations, a root other than
-      ``<robot>``, anything xacro refuses, or a xacro expansion past a limit. Missing
-      meshes and non-numeric values are not errors: they are recorded on the model
-      (``Mesh.problem``, ``Robot.invalid``).
+      A missing, unreadable, empty, binary or oversized file, or anything its format's reader
+      refuses.
     """
-    from inertia_kit.description.packages import PackageResolver
-    from inertia_kit.description.xacro_detect import is_fragment, is_xacro
-
     path = Path(path)
     data = read_bounded(path)
     check_text(data, path)
-    if is_mjcf(_narrow(data)):
+    if is_mjcf(narrow(data)):
         from inertia_kit.description.mjcf.reader import load_mjcf
 
         return load_mjcf(path)
-    resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
-
-    xacro = is_xacro(data)
-    if needs_expansion(data):
-        from inertia_kit.description.xacro_expand import expand  # plain URDF: not imported
-
-        expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
-        read = tuple(expanded.reads.items())
-        if expanded.fragment:
-            return _fragment(path, expanded.files, read)
-        robot = Builder(path, expanded.source_of, resolver, tuple(expanded.files)).robot(
-            expanded.root
-        )
-        return dataclasses.replace(
-            robot, environment_values=expanded.environment_values, reads=read
-        )
-
-    read = ((key(path), digest(data)),)
-    root = parse_xml(data, path)
-    if (xacro or path.name.lower().endswith(".xacro")) and is_fragment(root):
-        # as expand() classes a xacro file without links
-        return _fragment(path, (str(path),), read)
-    position = element_locator(data, root)
-
-    def source_of(element: etree._Element) -> model.Source:
-        return model.Source(str(path), *position(element))
-
-    robot = Builder(path, source_of, resolver, (str(path),)).robot(root)
-    return dataclasses.replace(robot, reads=read)
-
-
-def _fragment(
-    path: Path, files: Iterable[str], read: tuple[tuple[str, str | None], ...]
-) -> model.Robot:
-    return model.Robot(
-        None, (), (), (), model.Source(str(path), 1), tuple(files), (), True, reads=read
+    return load_urdf(
+        path, data, xacro_args=xacro_args, package_paths=package_paths, xacro_limits=xacro_limits
     )

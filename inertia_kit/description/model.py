@@ -104,9 +104,10 @@ class Ellipsoid:
 class Mesh:
     """
     A ``<mesh filename scale>``. ``path`` is the resolved file, or ``None`` when the URI did not
-    resolve (``problem`` then says why). ``rule`` names the package resolution rule that found
-    it (:data:`~inertia_kit.description.package_lookup.RULES`); ``searched`` lists the places looked
-    at before (all of them when nothing was found).
+    resolve (``problem`` then says why). ``rule`` names the rule that found it (URDF's package
+    resolution rules, :data:`~inertia_kit.description.urdf.package_lookup.RULES`; MJCF's
+    ``meshdir``, ``assetdir`` or ``model folder``); ``searched`` lists the places looked at
+    before (all of them when nothing was found).
 
     ``inertia`` is how the format's engine weighs the mesh when it infers mass properties from
     it (MJCF's ``<mesh inertia>``: ``legacy``, ``exact``, ``convex`` or ``shell``); ``None``:

@@ -5,8 +5,8 @@ atomically.
 
 A plan is the fixes of the rules (:mod:`~inertia_kit.lint.fixing`, the path ``inertia-lint
 --fix`` takes) that :mod:`~inertia_kit.fill.policy` selects by what they repair, with fill's
-mass inputs: the values, the edits where :mod:`~inertia_kit.fixes.sites` places them (in xacro,
-perhaps a macro body or a macro call), and the links refused with their reasons.
+mass inputs: the values, the edits where :mod:`~inertia_kit.description.placement` places them
+(in xacro, perhaps a macro body or a macro call), and the links refused with their reasons.
 :class:`FillPlan` holds the result: the edits, the refusals, the diff. For ``-o OUT``,
 :mod:`~inertia_kit.fill.output` says what is filled and writes it.
 """
@@ -54,9 +54,9 @@ class LinkFill:
 
     @property
     def mass_text(self) -> str:
-        from inertia_kit.description.inertial_xml import inertial_values
+        from inertia_kit.description.writing import mass_text
 
-        return inertial_values(self.properties)["mass"]
+        return mass_text(self.properties.mass)
 
 
 @dataclass(frozen=True)
@@ -340,10 +340,10 @@ def plan_robot(
     reload: Callable[[], Robot] | None = None,
 ) -> FillPlan:
     """The fill plan of ``robot``, whose elements are written literally in ``source``
-    (``reload``: load it again as it was, for :attr:`~inertia_kit.fixes.files.Files.reload`)."""
+    (``reload``: load it again as it was, for
+    :attr:`~inertia_kit.description.editing.Files.reload`)."""
     from inertia_kit.analysis.links import analyse
-    from inertia_kit.fixes.files import key
-    from inertia_kit.fixes.sites import Files
+    from inertia_kit.description.editing import Files, key
     from inertia_kit.lint.fixing import robot_fixes
     from inertia_kit.lint.stand_in import is_stand_in
 
@@ -377,7 +377,7 @@ def plan_robot(
         if found.reason is not None or found.target is None:
             refused.append(Refusal(name, found.reason or "no values", found.block))
             continue
-        link = found.target.link.link
+        link = found.target.link
         replaced = link.inertial is not None
         target = found.target
         at = key(link.source if link.inertial is None else link.inertial.source)

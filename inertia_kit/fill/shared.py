@@ -85,9 +85,9 @@ def without(plan: FillPlan, robot: str, refused: dict[tuple[str, str], str]) -> 
 
 
 def _described(fill: LinkFill) -> str:
-    from inertia_kit.description.inertial_xml import inertial_values
+    from inertia_kit.description.writing import values_text
 
-    values = inertial_values(fill.properties)
+    values = values_text(fill.properties)
     return (
         f"{values['mass']} kg at ({values['xyz']}), "
         f"ixx iyy izz {values['ixx']} {values['iyy']} {values['izz']}"

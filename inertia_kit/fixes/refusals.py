@@ -53,10 +53,10 @@ def spoiled(code: str, message: str, expected: dict | None) -> str:
 
 def unwritable(properties: MassProperties) -> str | None:
     """
-    Why ``properties`` must not be written (:func:`~inertia_kit.description.inertial_xml.
+    Why ``properties`` must not be written (:func:`~inertia_kit.description.writing.
     unwritable`: never a number the linter refuses), with what to do, or ``None``.
     """
-    from inertia_kit.description.inertial_xml import unwritable as why
+    from inertia_kit.description.writing import unwritable as why
 
     problem = why(properties)
     if problem is None:

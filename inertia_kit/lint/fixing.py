@@ -5,9 +5,10 @@ them. ``inertia-lint`` attaches them to its findings; ``inertia-fill`` applies t
 A rule says which of its findings a fix repairs, how its values are found and how far they may
 be trusted (its ``FIX``, :class:`~inertia_kit.lint.findings.FixRule`). The values are found
 here for the whole robot at once (a ``--total-mass`` is shared among every link that takes a
-density), and placed together with one :func:`~inertia_kit.fixes.sites.place` call, which sees
-every link a shared macro makes: two wheels from one macro body that get the same values get one
-edit there; links that need different values get theirs at their calls' parameters.
+density), and placed together with one :func:`~inertia_kit.description.placement.place` call,
+which sees every link a shared macro makes: two wheels from one macro body that get the same
+values get one edit there; links that need different values get theirs at their calls'
+parameters.
 
 A link gets one set of values, whichever findings asked for it:
 
@@ -31,9 +32,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from inertia_kit.description.placement import Target
 from inertia_kit.fixes.masses import MassChoice, mass_for, share_total
 from inertia_kit.fixes.refusals import geometry_refusal, spoiled, unwritable
-from inertia_kit.fixes.sites import Target
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import EditPlace, Finding, Fix, FixRule, Repairs, Safety
 from inertia_kit.physics.mass import MassProperties
@@ -43,8 +44,8 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
+    from inertia_kit.description.editing import Files
     from inertia_kit.description.edits import Edit
-    from inertia_kit.fixes.files import Files
 
 #: the ``how`` of fixes that undo a slip in the declared values (not values from the geometry)
 _SLIPS = ("slip", "com-slip")
@@ -173,7 +174,8 @@ def plan_fixes(
             continue
         if safe_only and safety is not Safety.SAFE:
             continue
-        targets.append(Target(link, values, basis))
+        shapes = tuple(solid.shape for solid in link.geometry.solids)
+        targets.append(Target(link.link, values, basis, shapes))
     _place(targets, analysis, files, chosen, result)
     order = {link.name: index for index, link in enumerate(analysis.links)}
     result.links = dict(sorted(result.links.items(), key=lambda item: order.get(item[0], 0)))
@@ -248,12 +250,9 @@ def _place(
     result: RobotFixes,
 ) -> None:
     """Place every target with one call, so links sharing a macro body are seen together."""
-    if analysis.robot.format == "mjcf":
-        from inertia_kit.fixes.mjcf_sites import place
-    else:
-        from inertia_kit.fixes.sites import place
+    from inertia_kit.description.placement import place
 
-    placements = place(targets, analysis.links, files)
+    placements = place(targets, analysis.robot, files)
     for target in targets:
         safety, title, _ = chosen[target.name]
         placement = placements[target.name]
@@ -268,13 +267,9 @@ def _place(
 
 
 def _block(target: Target, form: str) -> str:
-    if form == "mjcf":
-        from inertia_kit.description.mjcf.writer import inertial_element
+    from inertia_kit.description.writing import inertial_text
 
-        return inertial_element(target.properties)
-    from inertia_kit.description.inertial_xml import inertial_block
-
-    return inertial_block(target.properties, indent="  ", level=0)
+    return inertial_text(target.properties, form)
 
 
 def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files) -> list[Finding]:

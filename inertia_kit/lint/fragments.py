@@ -160,7 +160,7 @@ def _includable(file: str) -> bool:
     default). A plain URDF with links is included by none in practice, and is linted as itself
     without scanning the repository.
     """
-    from inertia_kit.description.xacro_detect import is_xacro
+    from inertia_kit.description.loader import may_be_included
 
     if file.lower().endswith(".xacro"):
         return True
@@ -171,7 +171,7 @@ def _includable(file: str) -> bool:
         data = read_bounded(file)
     except InputError:
         return False
-    return is_xacro(data) or _linkless(data)
+    return may_be_included(data) or _linkless(data)
 
 
 def _linkless(data: bytes) -> bool:

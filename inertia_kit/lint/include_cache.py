@@ -38,7 +38,12 @@ FORMAT = 2  # 2: a xacro file without links or joints is a fragment, whatever ta
 MAX_BYTES = 64 << 20
 KINDS = ("plain", "robot", "fragment", "error")
 # the modules whose code decides what a scan records
-_SOURCES = ("include_graph.py", "include_cache.py", "../description/xacro_expand.py")
+_SOURCES = (
+    "include_graph.py",
+    "include_cache.py",
+    "../description/urdf/xacro_expand.py",
+    "../description/urdf/reader.py",
+)
 
 
 class Stamp(NamedTuple):

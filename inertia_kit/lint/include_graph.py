@@ -113,10 +113,8 @@ def _scan(
     xacro_limits: XacroLimits | None,
 ) -> Entry | None:
     """What ``path`` is and reads, by its text and (for xacro that includes) its expansion."""
-    from inertia_kit.description.loader import needs_expansion
-    from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.loader import files_read, needs_expansion
     from inertia_kit.description.safexml import read_bounded
-    from inertia_kit.description.xacro_expand import expand
     from inertia_kit.errors import InputError
 
     own = stamp(path)
@@ -128,19 +126,20 @@ def _scan(
         return None  # the loader tells why
     if not (needs_expansion(data) and _READS_OTHERS.search(data)):
         return Entry("plain", ((path, own),))
-    resolver = PackageResolver(package_paths=tuple(package_paths), start=path)
     try:
-        expanded = expand(path, args=dict(xacro_args or {}), resolver=resolver, limits=xacro_limits)
+        files, fragment = files_read(
+            path, xacro_args=xacro_args, package_paths=package_paths, limits=xacro_limits
+        )
     except InputError as error:
         # refused: a fragment that needs its robot's properties (the error is in the file
         # itself: it includes nobody's robot), or a robot an included file breaks, which it
         # then reads (linted for that file, it reports the error); scanned again when it changes
         at_fault = () if error.path is None else _stamped((error.path,)) or ()
         return Entry("error", tuple(dict([(path, own), *at_fault]).items()))
-    reads = _stamped((path, *expanded.files))  # the input first, each file once
+    reads = _stamped((path, *files))  # the input first, each file once
     if reads is None:
         return None
-    return Entry("fragment" if expanded.fragment else "robot", reads)
+    return Entry("fragment" if fragment else "robot", reads)
 
 
 def _stamped(files: Iterable[str]) -> tuple[tuple[str, Stamp], ...] | None:

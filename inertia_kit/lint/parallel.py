@@ -7,7 +7,7 @@ the linter once and forks each worker from it, so a worker starts without re-imp
 never inherits the parent's threads or open files. A worker ignores Ctrl-C (the parent alone
 decides: it ends the workers and exits 130); the parent ends a worker with SIGTERM, which the
 worker turns into an exit through ``finally`` blocks, so that a xacro expansion's sandbox child
-(:mod:`inertia_kit.description.xacro_sandbox`) is killed with it, not orphaned.
+(:mod:`inertia_kit.description.urdf.xacro_sandbox`) is killed with it, not orphaned.
 
 A worker that dies (a crash in C, out of memory) breaks the pool; the files not yet done are
 then tried again one at a time, each in a pool of its own, so that only the file that kills

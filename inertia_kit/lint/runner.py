@@ -316,7 +316,7 @@ def _with_fixes(
     The findings with their fixes, planned on the text of ``path`` as the load read it
     (``ChangedWhileEditing`` when a file the fixes edit holds other bytes now).
     """
-    from inertia_kit.fixes.files import Files
+    from inertia_kit.description.editing import Files
     from inertia_kit.lint.fixing import attach, plan_fixes
     from inertia_kit.lint.stand_in import is_stand_in
 

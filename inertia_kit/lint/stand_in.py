@@ -37,10 +37,10 @@ def stand_in(data: bytes, filename: str | None) -> Iterator[str]:
     named as a xacro or URDF file by its content); its path as given, removed on exit. Raises
     ``OSError`` when the folder cannot take it.
     """
-    from inertia_kit.description.xacro_detect import is_xacro
+    from inertia_kit.description.loader import stand_in_suffix
 
     if filename is None:
-        folder, suffix = "", ".urdf.xacro" if is_xacro(data) else ".urdf"
+        folder, suffix = "", stand_in_suffix(data)
         stands_for = os.path.abspath("-")
     else:
         folder, name = os.path.split(filename)

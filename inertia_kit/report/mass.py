@@ -80,7 +80,7 @@ def render(
     """
     import numpy as np
 
-    from inertia_kit.description.inertial_xml import inertial_block, unwritable
+    from inertia_kit.description.writing import inertial_text, unwritable
     from inertia_kit.physics.frames import rpy_matrix
     from inertia_kit.physics.primitives import body_mass
 
@@ -92,7 +92,7 @@ def render(
     axes = None if about_rpy is None else rpy_matrix(about_rpy)
     about_tensor = None if point is None else body.inertia_about(point, axes)
     problem = withheld or unwritable(body)
-    block = inertial_block(body) if problem is None else None
+    block = inertial_text(body) if problem is None else None
 
     if output_format == "json":
         payload = {

@@ -1,6 +1,6 @@
 """
 Ctrl-C through the real console scripts: SIGINT while a slow xacro expands (in its forked,
-SIGINT-ignoring child, cli/guard.py and description/xacro_sandbox.py) is exit 130 with
+SIGINT-ignoring child, cli/guard.py and description/urdf/xacro_sandbox.py) is exit 130 with
 ``interrupted`` and no traceback, at once, and the expansion's child process is gone.
 """
 

@@ -30,7 +30,7 @@ def test_a_urdf_load_records_its_bytes(tmp_path: Path):
 @pytest.mark.parametrize("sandboxed", [True, False])
 def test_a_xacro_load_records_every_include(tmp_path: Path, monkeypatch, sandboxed: bool):
     """From the forked child too: what it read comes back with the expansion."""
-    from inertia_kit.description import xacro_sandbox
+    from inertia_kit.description.urdf import xacro_sandbox
 
     if not sandboxed:
         monkeypatch.setattr(xacro_sandbox, "can_fork", lambda: False)

@@ -10,7 +10,7 @@ from kit import write
 
 from inertia_kit.description.loader import load
 from inertia_kit.description.redaction import MARK, Redaction, recordable
-from inertia_kit.description.xacro_expand import expand
+from inertia_kit.description.urdf.xacro_expand import expand
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding, Severity

@@ -14,8 +14,9 @@ from kit import write
 from kit.runaway_xacro import EXPRESSION_LINE, NS, expression_robot
 
 from inertia_kit.cli import lint_main
-from inertia_kit.description import safexml, xacro_sandbox
+from inertia_kit.description import safexml
 from inertia_kit.description.loader import load
+from inertia_kit.description.urdf import xacro_sandbox
 from inertia_kit.errors import InputError
 
 
@@ -101,7 +102,7 @@ def test_a_deep_tree_is_written_without_recursion():
     from xml.dom import minidom
 
     from inertia_kit.description.model import Source
-    from inertia_kit.description.xacro_source_map import serialise
+    from inertia_kit.description.urdf.xacro_source_map import serialise
 
     document = minidom.Document()
     node = document.createElement("robot")

@@ -98,7 +98,7 @@ def preload() -> None:
     ):
         with contextlib.suppress(Exception):
             importlib.import_module(name)
-    from inertia_kit.description import xacro_sandbox
+    from inertia_kit.description.urdf import xacro_sandbox
 
     xacro_sandbox.preload()
     import gc

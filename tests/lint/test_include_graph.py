@@ -56,7 +56,7 @@ def test_robots_and_the_files_they_read(tmp_path, cache):
 def test_files_that_include_nothing_are_not_expanded(tmp_path, cache, monkeypatch):
     """The cheap first pass: leaf.xacro and plain.urdf name no include; only the robot and the
     middle fragment are expanded."""
-    from inertia_kit.description import xacro_expand
+    from inertia_kit.description.urdf import xacro_expand
 
     expanded = []
     real_expand = xacro_expand.expand

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from inertia_kit.description.inertial_xml import inertial_block
+from inertia_kit.description.urdf.inertial_xml import inertial_block
 from inertia_kit.physics.formatting import fmt, xml_number
 from inertia_kit.physics.frames import as_transform, inverse, matrix_rpy, rpy_matrix, transform
 from inertia_kit.physics.primitives import cylinder

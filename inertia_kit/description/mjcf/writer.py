@@ -3,7 +3,7 @@ An MJCF ``<inertial>`` element for mass properties, written as an author of MJCF
 ``pos``, then the principal axes as a ``quat`` (left out when they are the body's), ``mass``
 and ``diaginertia``; or, for a body whose ``<inertial>`` gives ``fullinertia``, ``pos``,
 ``mass`` and the six ``fullinertia`` values in the body's axes. Numbers to
-:data:`~inertia_kit.description.inertial_xml.DIGITS` significant digits; a ``quat`` is
+:data:`~inertia_kit.description.writing.DIGITS` significant digits; a ``quat`` is
 independent of the compiler's ``angle`` unit.
 """
 
@@ -14,8 +14,8 @@ import itertools
 import numpy as np
 from numpy.typing import NDArray
 
-from inertia_kit.description.inertial_xml import DIGITS, PRODUCT_FLOOR
 from inertia_kit.description.mjcf.orientation import matrix_quat
+from inertia_kit.description.writing import DIGITS, PRODUCT_FLOOR
 from inertia_kit.physics.formatting import xml_number
 from inertia_kit.physics.mass import MassProperties
 

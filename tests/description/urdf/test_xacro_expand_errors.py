@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from kit import write
 
-from inertia_kit.description.xacro_expand import expand
+from inertia_kit.description.urdf.xacro_expand import expand
 from inertia_kit.errors import InputError
 
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

@@ -10,7 +10,7 @@ from kit import REPO
 from kit.meshes import write_box_stl
 
 from inertia_kit.description.package_files import package_name
-from inertia_kit.description.packages import PackageResolver, resolve_uri
+from inertia_kit.description.urdf.packages import PackageResolver, resolve_uri
 
 EXAMPLES = REPO / "examples"
 
@@ -166,7 +166,7 @@ def test_a_folder_with_more_entries_than_the_bound_is_read_up_to_it(tmp_path, mo
 
 
 def test_the_walks_of_one_search_are_bounded_together(tmp_path, monkeypatch):
-    from inertia_kit.description import package_lookup
+    from inertia_kit.description.urdf import package_lookup
 
     folder = tmp_path
     for _ in range(6):  # a `src` at every level, each with 20 folders
@@ -428,7 +428,7 @@ def test_rule_absolute(tmp_path, robot_file):
 
 
 def test_rules_are_documented_in_order():
-    from inertia_kit.description.package_lookup import RULES
+    from inertia_kit.description.urdf.package_lookup import RULES
 
     assert list(RULES) == [
         "package-path",

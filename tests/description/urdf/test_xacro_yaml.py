@@ -17,9 +17,10 @@ import pytest
 from kit import write
 from kit.runaway_xacro import NS
 
-from inertia_kit.description import safexml, xacro_sandbox
+from inertia_kit.description import safexml
 from inertia_kit.description.loader import load
-from inertia_kit.description.xacro_yaml import expanded_size
+from inertia_kit.description.urdf import xacro_sandbox
+from inertia_kit.description.urdf.xacro_yaml import expanded_size
 from inertia_kit.errors import InputError
 
 

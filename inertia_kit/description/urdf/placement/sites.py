@@ -17,7 +17,7 @@ A link's new values go to the first of these that works:
    inside a link): the call is replaced by the literal block.
 
 Values are compared as written (:mod:`.values`), and written as the next run reads them back
-(:func:`~inertia_kit.description.inertial_xml.as_written`): a second run changes nothing.
+(:func:`~inertia_kit.description.writing.as_written`): a second run changes nothing.
 Otherwise the link is not filled and the reason names the macro and what to do at each call.
 Files outside the input's package (the folder holding the nearest ``package.xml``, else the
 input's folder) are never edited.
@@ -25,77 +25,32 @@ input's folder) are never edited.
 
 from __future__ import annotations
 
-import functools
 import re
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from inertia_kit.description import model
+from inertia_kit.description.editing import Files, Key, key, location
 from inertia_kit.description.edits import Edit
-from inertia_kit.fixes.attributes import (
+from inertia_kit.description.placement import Placement, Target
+from inertia_kit.description.urdf.placement.attributes import (
     ArgumentsChoose,
     Decision,
     Decisions,
     decide,
     write_values,
 )
-from inertia_kit.fixes.files import Files, Key, key, location
-from inertia_kit.fixes.xacro_macros import macro_of, written_name
+from inertia_kit.description.urdf.placement.xacro_macros import macro_of, written_name
 
 if TYPE_CHECKING:
     from lxml import etree
 
-    from inertia_kit.analysis.links import LinkAnalysis
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Source
-    from inertia_kit.physics.mass import MassProperties
-
-
-def written_values(properties: MassProperties, rpy=(0.0, 0.0, 0.0)) -> dict[str, str]:
-    """The text of each value an ``<inertial>`` with ``<origin rpy>`` = ``rpy`` writes."""
-    from inertia_kit.description.inertial_xml import inertial_values
-
-    values = inertial_values(properties, rpy=rpy)
-    del values["rpy"]
-    return values
-
-
-@dataclass(frozen=True)
-class Target:
-    """A link to fill with ``properties`` (link frame, about its centre of mass); ``basis``
-    says where its mass comes from."""
-
-    link: LinkAnalysis
-    properties: MassProperties
-    basis: str = ""
-
-    def __post_init__(self) -> None:
-        from inertia_kit.description.inertial_xml import as_written
-
-        # what the file will hold, so that every comparison (and the next run) sees the same
-        object.__setattr__(self, "properties", as_written(self.properties))
-
-    @property
-    def name(self) -> str:
-        return self.link.name
-
-    @functools.cached_property
-    def values(self) -> dict[str, str]:
-        """The text written for each value (compared across links sharing a macro body)."""
-        return written_values(self.properties)
-
-
-@dataclass(frozen=True)
-class Placement:
-    """How a link's values get into its files: ``edits`` (empty: already there), or ``problem``."""
-
-    edits: tuple[Edit, ...] = ()
-    problem: str | None = None  # why not, and what to do
-    notes: tuple[str, ...] = ()  # expressions replaced by numbers: the link is no longer parametric
 
 
 def place(
-    targets: Sequence[Target], links: Sequence[LinkAnalysis], files: Files
+    targets: Sequence[Target], links: Sequence[model.Link], files: Files
 ) -> dict[str, Placement]:
     """
     The edits that write each target's values (``links``: every link of the robot, to know
@@ -118,14 +73,14 @@ class _Users:
     them (a macro body 1667 links share, asked by each: quadratic).
     """
 
-    def __init__(self, links: Sequence[LinkAnalysis]):
+    def __init__(self, links: Sequence[model.Link]):
         body: dict[Key, list[str]] = {}
         made: dict[Key, list[str]] = {}
         chain: dict[Key, list[str]] = {}
         call: dict[tuple[Key, Key], list[str]] = {}
         for link in links:
-            made.setdefault(key(link.link.source), []).append(link.name)
-            inertial = link.link.inertial
+            made.setdefault(key(link.source), []).append(link.name)
+            inertial = link.inertial
             if inertial is None:
                 continue
             body_key = key(inertial.source)
@@ -165,19 +120,19 @@ def _place(
     files: Files,
 ) -> Placement:
     link = target.link
-    inertial = link.link.inertial
+    inertial = link.inertial
     if inertial is None:
-        sharers = users.link[key(link.link.source)]
-        held = _conditional_inertials(files.element(link.link.source), files)
+        sharers = users.link[key(link.source)]
+        held = _conditional_inertials(files.element(link.source), files)
         if held and not users.agree(sharers, wanted):
             # what to do is the arguments, not a parameter: a block beside the condition
             # would give two <inertial> elements where it holds
-            from inertia_kit.fixes.conditionals import refusal
+            from inertia_kit.description.urdf.placement.conditionals import refusal
 
             return Placement(problem=refusal(held, files))
         if not users.agree(sharers, wanted):
-            problem = _shared_words(link.link.source, sharers, "<link>")
-            return Placement(problem=problem + _advice(link.link.source, sharers))
+            problem = _shared_words(link.source, sharers, "<link>")
+            return Placement(problem=problem + _advice(link.source, sharers))
         return _insert(target, files)
     decision = decisions[target.name]
     if decision is not None and not decision.changed:
@@ -228,7 +183,7 @@ def _advice(
 
 
 def _macro_name(where: Source, files: Files | None) -> str:
-    from inertia_kit.fixes.xacro_macros import enclosing_macro
+    from inertia_kit.description.urdf.placement.xacro_macros import enclosing_macro
 
     element = None if files is None else files.element(where)
     macro = None if element is None else enclosing_macro(element)
@@ -261,7 +216,7 @@ def _shared_words(where: Source, sharers: Sequence[str], what: str) -> str:
 def _insert(target: Target, files: Files) -> Placement:
     from inertia_kit.description.xmlspan import element_span, line_indent
 
-    where = target.link.link.source
+    where = target.link.source
     if not files.editable(where.path):
         return Placement(
             problem=f"its <link> is written in {location(where)}, {files.outside(where.path)}"
@@ -293,7 +248,7 @@ def _insert(target: Target, files: Files) -> Placement:
 
 
 def _conditional_inertials(link: etree._Element | None, files: Files) -> list[etree._Element]:
-    from inertia_kit.fixes.conditionals import conditional_inertials
+    from inertia_kit.description.urdf.placement.conditionals import conditional_inertials
 
     return [] if link is None else conditional_inertials(link, files)
 
@@ -306,7 +261,7 @@ def _guarded(
     under which the link makes an ``<inertial>`` of its own (so that no argument value expands
     two); or why not.
     """
-    from inertia_kit.fixes import conditionals
+    from inertia_kit.description.urdf.placement import conditionals
 
     if link is None:
         return block, "its <link> was not found where the load read it"
@@ -327,7 +282,7 @@ def _guarded(
 def _block(target: Target, source: SourceText, base: str, *, inner: bool) -> str:
     """The ``<inertial>`` text at indentation ``base`` (plus one level when ``inner``); its
     first line unindented when it replaces an element in place (``inner`` false)."""
-    from inertia_kit.description.inertial_xml import inertial_block
+    from inertia_kit.description.urdf.inertial_xml import inertial_block
     from inertia_kit.description.xmlspan import indent_unit
 
     unit = indent_unit(source.text)
@@ -355,7 +310,7 @@ def _replace_element(target: Target, where: Source, tag: str, files: Files) -> P
 
 def _replace_body(target: Target, wanted, users: _Users, files: Files) -> Placement:
     """Way 1: the ``<inertial>`` where it is written."""
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     assert inertial is not None
     sharers = users.body[key(inertial.source)]
     if not users.agree(sharers, wanted):
@@ -381,7 +336,7 @@ def _replace_body(target: Target, wanted, users: _Users, files: Files) -> Placem
 
 def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placement:
     """Way 3: a macro call whose expansion is just this ``<inertial>``, innermost first."""
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     assert inertial is not None
     chain = (*inertial.source.calls, inertial.source)
     for index in range(len(chain) - 2, -1, -1):

@@ -5,7 +5,7 @@ One xacro expansion's state and the hooks it installs in the ``xacro`` package, 
 :class:`Session` holds what one expansion reads and prints (files, captured stderr, the texts
 being evaluated) and the hooks' bodies: the safe, stamping ``parse``, the call-site stamps of
 ``handle_macro_call``, the checked ``safe_eval`` and ``$(find)`` through a
-:class:`~inertia_kit.description.packages.PackageResolver`; ``$(env)``, ``$(optenv)`` and
+:class:`~inertia_kit.description.urdf.packages.PackageResolver`; ``$(env)``, ``$(optenv)`` and
 ``xacro.load_yaml`` record what the environment gives (:mod:`.redaction`). :func:`patched`
 installs them (the caller holds the expansion lock) and restores xacro's globals exactly
 afterwards, also on error.
@@ -25,22 +25,23 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
-from inertia_kit.description import reads, safexml, xacro_dom, xacro_yaml
+from inertia_kit.description import reads, safexml
 from inertia_kit.description.model import Source
-from inertia_kit.description.xacro_errors import PackageNotFound
-from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
-from inertia_kit.description.xacro_sandbox import Expansion
-from inertia_kit.description.xacro_source_map import (
+from inertia_kit.description.urdf import xacro_dom, xacro_yaml
+from inertia_kit.description.urdf.xacro_errors import PackageNotFound
+from inertia_kit.description.urdf.xacro_sandbox import Expansion
+from inertia_kit.description.urdf.xacro_source_map import (
     _COPY_STAMP,
     add_call_site,
     parse_stamped,
     serialise,
     stamp_of,
 )
+from inertia_kit.description.xacro_limits import Meter, XacroLimits, guarded_code
 from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
-    from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.urdf.packages import PackageResolver
 
 
 class Session:

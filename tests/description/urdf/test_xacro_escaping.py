@@ -6,7 +6,7 @@ from __future__ import annotations
 import itertools
 from xml.sax.saxutils import escape, quoteattr
 
-from inertia_kit.description.xacro_source_map import _escape, _quoteattr
+from inertia_kit.description.urdf.xacro_source_map import _escape, _quoteattr
 
 
 def test_escape_and_quoteattr_match_saxutils_on_every_short_string():

@@ -2,9 +2,9 @@
 A link's ``<inertial>`` values as text, compared as written.
 
 A value is rewritten only when its text would read differently: the declared value and the new
-one are both written to :data:`~inertia_kit.description.inertial_xml.DIGITS` digits, in the axes
-of the ``<inertial>``'s ``<origin rpy>``, and compared. ``ixx="0.0191441"`` read back, written
-again, is ``0.0191441``: left alone, so a second run finds nothing to do.
+one are both written to :data:`~inertia_kit.description.writing.DIGITS` digits, in
+the axes of the ``<inertial>``'s ``<origin rpy>``, and compared. ``ixx="0.0191441"`` read
+back, written again, is ``0.0191441``: left alone, so a second run finds nothing to do.
 """
 
 from __future__ import annotations
@@ -35,14 +35,14 @@ def vector(value) -> tuple[float, float, float] | None:
 
 def new_texts(properties: MassProperties, rpy=ZERO) -> dict[str, str]:
     """The text of each value of ``properties`` (link frame) written with ``<origin rpy>``."""
-    from inertia_kit.description.inertial_xml import inertial_values
+    from inertia_kit.description.urdf.inertial_xml import inertial_values
 
     return inertial_values(properties, rpy=rpy)
 
 
 def declared_texts(inertial: Inertial) -> dict[str, str | None]:
     """The text each declared value would be written as (``None``: not numeric)."""
-    from inertia_kit.description.inertial_xml import DIGITS
+    from inertia_kit.description.writing import DIGITS
 
     def number(value) -> str | None:
         return xml_number(value, DIGITS) if isinstance(value, float) else None
@@ -64,14 +64,14 @@ def differing(
 ) -> list[str]:
     """
     The names of the values whose text would change. A product of inertia within rounding
-    noise of zero (:data:`~inertia_kit.description.inertial_xml.PRODUCT_FLOOR` of the largest
+    noise of zero (:data:`~inertia_kit.description.writing.PRODUCT_FLOOR` of the largest
     moment to be written) is the zero that would be written, whatever digits it has. With
     ``exact``, the new values before rounding: a declared value that is one of the two
     roundings of a new value lying on the midpoint between them (within float noise) is kept,
     whichever way this run's arithmetic rounds it (the run that wrote it computed the tie
     along another path, and rounded it the other way).
     """
-    from inertia_kit.description.inertial_xml import PRODUCT_FLOOR
+    from inertia_kit.description.writing import PRODUCT_FLOOR
 
     old = declared_texts(inertial)
     # the moments to be written, not the declared ones: the next run compares against the
@@ -97,7 +97,7 @@ def differing(
 
 def _rounds_to(declared, exact: float) -> bool:
     """Whether ``declared`` is ``exact`` rounded to DIGITS digits, either way on a tie."""
-    from inertia_kit.description.inertial_xml import DIGITS
+    from inertia_kit.description.writing import DIGITS
 
     if not isinstance(declared, float) or not math.isfinite(exact) or exact == 0:
         return False
@@ -107,7 +107,7 @@ def _rounds_to(declared, exact: float) -> bool:
 
 def same_vector(text: str, values) -> bool:
     """Whether the written vector ``text`` reads as ``values`` once written to DIGITS."""
-    from inertia_kit.description.inertial_xml import DIGITS
+    from inertia_kit.description.writing import DIGITS
 
     parsed = vector(values)
     if parsed is None:

@@ -13,29 +13,27 @@ import re
 from collections import defaultdict
 from collections.abc import Sequence
 
-from inertia_kit.analysis.links import LinkAnalysis
+from inertia_kit.description import model
+from inertia_kit.description.editing import Files, key, location
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.mjcf.writer import inertial_element
 from inertia_kit.description.model import Source
+from inertia_kit.description.placement import Placement, Target
 from inertia_kit.description.xmlspan import children, element_span, indent_unit, line_indent
-from inertia_kit.fixes.files import Files, key, location
-from inertia_kit.fixes.sites import Placement, Target
 
 _LINE_REST = re.compile(r"[ \t]*(\r\n|\n|\r)")
 
 
-def place(
-    targets: Sequence[Target], links: Sequence[LinkAnalysis], files: Files
-) -> dict[str, Placement]:
+def place(targets: Sequence[Target], robot: model.Robot, files: Files) -> dict[str, Placement]:
     """The edits that write each target's values into the MJCF files (``links``: every body
     of the model, to know which others an element makes too)."""
     written = {t.name: _written(t) for t in targets}
     makers: dict[object, list[str]] = defaultdict(list)
-    for link in links:
+    for link in robot.links:
         makers[key(_where(link))].append(link.name)
     placements = {}
     for target in targets:
-        inference = target.link.robot.robot.inference if target.link.robot else None
+        inference = robot.inference
         if inference is not None and inference.from_geometry == "always":
             placements[target.name] = Placement(
                 problem='the compiler\'s inertiafromgeom="true" ignores every <inertial>: set '
@@ -46,7 +44,7 @@ def place(
         others = [n for n in makers[key(where)] if n != target.name]
         differing = [n for n in others if written.get(n) != written[target.name]]
         if differing:
-            tag = "<inertial>" if target.link.link.inertial is not None else "<body>"
+            tag = "<inertial>" if target.link.inertial is not None else "<body>"
             placements[target.name] = Placement(
                 problem=f"its {tag} at {location(where)} makes {len(others) + 1} bodies "
                 f"({', '.join(f'`{n}`' for n in [target.name, *others][:4])}), and "
@@ -57,13 +55,13 @@ def place(
     return placements
 
 
-def _where(link: LinkAnalysis) -> Source:
-    inertial = link.link.inertial
-    return inertial.source if inertial is not None else link.link.source
+def _where(link: model.Link) -> Source:
+    inertial = link.inertial
+    return inertial.source if inertial is not None else link.source
 
 
 def _written(target: Target) -> str:
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     form = (
         "fullinertia"
         if inertial is not None and inertial.tensor_form == "fullinertia"
@@ -73,7 +71,7 @@ def _written(target: Target) -> str:
 
 
 def _place(target: Target, element: str, files: Files) -> Placement:
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     tag = "inertial" if inertial is not None else "body"
     where = _where(target.link)
     if not files.editable(where.path):

@@ -14,10 +14,10 @@ from lxml import etree
 from xacro import substitution_args
 
 from inertia_kit.description.model import Source
-from inertia_kit.description.packages import PackageResolver
-from inertia_kit.description.xacro_detect import is_xacro
-from inertia_kit.description.xacro_expand import _LOCK, expand
-from inertia_kit.description.xacro_session import Session, patched
+from inertia_kit.description.urdf.packages import PackageResolver
+from inertia_kit.description.urdf.xacro_detect import is_xacro
+from inertia_kit.description.urdf.xacro_expand import _LOCK, expand
+from inertia_kit.description.urdf.xacro_session import Session, patched
 from inertia_kit.errors import InputError
 
 EXAMPLES = REPO / "examples"

@@ -21,9 +21,9 @@ from kit.runaway_xacro import (
     expression_robot,
 )
 
-from inertia_kit.description import xacro_expand, xacro_sandbox
-from inertia_kit.description.packages import PackageResolver
-from inertia_kit.description.xacro_expand import expand
+from inertia_kit.description.urdf import xacro_expand, xacro_sandbox
+from inertia_kit.description.urdf.packages import PackageResolver
+from inertia_kit.description.urdf.xacro_expand import expand
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError
 

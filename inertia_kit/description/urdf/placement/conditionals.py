@@ -14,8 +14,8 @@ Two slips it must not make (franka_ros' fingers, husarion's rosbot wheels):
   ``<xacro:if value="${mecanum}">`` and once under ``<xacro:unless ...>`` reads the second with
   the default arguments; the value is written to the definition the expansion read, found by
   loading the robot once with each candidate given a distinct stand-in value
-  (:meth:`~inertia_kit.fixes.files.Files.expanded`). An expression reading such a value is never
-  replaced by a number: that number would then hold for every argument value.
+  (:meth:`~inertia_kit.description.editing.Files.expanded`). An expression reading such a
+  value is never replaced by a number: that number would then hold for every argument value.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ import re
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from inertia_kit.fixes.files import Files, location
-from inertia_kit.fixes.xacro_macros import enclosing_macro, is_xacro
+from inertia_kit.description.editing import Files, location
+from inertia_kit.description.urdf.placement.xacro_macros import enclosing_macro, is_xacro
 
 if TYPE_CHECKING:
     from lxml import etree

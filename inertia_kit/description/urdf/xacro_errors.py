@@ -13,8 +13,8 @@ from typing import Any
 from xml.dom import Node
 
 from inertia_kit.description.model import Source
+from inertia_kit.description.urdf.xacro_source_map import stamp_of
 from inertia_kit.description.xacro_limits import LimitExceeded
-from inertia_kit.description.xacro_source_map import stamp_of
 from inertia_kit.errors import InputError
 
 _PACKAGE_HINT = "pass --package-path DIR with the package folder or a folder that holds it"

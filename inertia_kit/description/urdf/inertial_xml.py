@@ -5,17 +5,11 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from inertia_kit.description.writing import DIGITS, PRODUCT_FLOOR
 from inertia_kit.physics.formatting import xml_number
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.numbers import unusable
 
-# significant digits written: CAD tools report about six; more only adds churn
-DIGITS = 6
-
-
-# products of inertia below this share of the largest moment are under half the last digit
-# written of that moment: rounding noise of a rotation (rpy="1.5708 0 0") written as zero
-PRODUCT_FLOOR = 5e-6
 TENSOR = {"ixx": (0, 0), "ixy": (0, 1), "ixz": (0, 2), "iyy": (1, 1), "iyz": (1, 2), "izz": (2, 2)}
 
 
@@ -61,19 +55,6 @@ def exact_values(properties: MassProperties, rpy: ArrayLike = (0.0, 0.0, 0.0)) -
     for name, (i, j) in TENSOR.items():
         values[name] = float(tensor[i, j])
     return values
-
-
-def as_written(properties: MassProperties, digits: int = DIGITS) -> MassProperties:
-    """
-    ``properties`` as a file holds them once written, and as the next run reads them back: the
-    mass as its text reads, the tensor scaled to that mass (what the next run computes from it),
-    the centre of mass as its text reads. Writing these instead of the values computed is what
-    makes filling a fixed point: a second run computes the same tensor and writes no new digit.
-    """
-    mass = float(xml_number(properties.mass, digits))
-    scaled = properties.with_mass(mass) if properties.mass > 0 and mass > 0 else properties
-    com = [float(xml_number(x, digits)) for x in properties.cleaned().com]
-    return MassProperties(mass, com, scaled.inertia)
 
 
 def inertial_block(

@@ -14,7 +14,7 @@ import pytest
 from kit import EXAMPLES, write
 from kit.runaway_xacro import NS
 
-from inertia_kit.description import xacro_dom
+from inertia_kit.description.urdf import xacro_dom
 
 FEATURES = f"""\
 <?xml version="1.0"?>

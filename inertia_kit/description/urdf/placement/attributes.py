@@ -27,10 +27,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from inertia_kit.fixes.files import Files, key, location
-from inertia_kit.fixes.values import ZERO, differing, new_texts, same_vector, vector
-from inertia_kit.fixes.writer import Writer
-from inertia_kit.fixes.xacro_macros import (
+from inertia_kit.description.editing import Files, key, location
+from inertia_kit.description.urdf.placement.values import (
+    ZERO,
+    differing,
+    new_texts,
+    same_vector,
+    vector,
+)
+from inertia_kit.description.urdf.placement.writer import Writer
+from inertia_kit.description.urdf.placement.xacro_macros import (
     child,
     enclosing_macro,
     parameter_names,
@@ -44,7 +50,7 @@ if TYPE_CHECKING:
 
     from inertia_kit.description.edits import Edit
     from inertia_kit.description.model import Source
-    from inertia_kit.fixes.sites import Target
+    from inertia_kit.description.placement import Target
 
 _EXPRESSION = re.compile(r"\$\{([^}]*)\}")
 _ELEMENT = {"xyz": ("origin", "xyz"), "rpy": ("origin", "rpy"), "mass": ("mass", "value")}
@@ -70,16 +76,16 @@ class Decision:
 def decide(target: Target) -> Decision | None:
     """The axes that change the fewest values: the ``<inertial>``'s own, else (a link of one
     turned shape) the shape's; ``None`` for a link without an ``<inertial>``."""
-    from inertia_kit.description.inertial_xml import exact_values
+    from inertia_kit.description.urdf.inertial_xml import exact_values
 
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     if inertial is None:
         return None
     current = vector(inertial.origin.rpy) or ZERO
     candidates: list[tuple[tuple[float, float, float], Source | None]] = [(current, None)]
-    solids = target.link.geometry.solids
-    if len(solids) == 1:
-        origin = solids[0].shape.origin
+    shapes = target.shapes
+    if len(shapes) == 1:
+        origin = shapes[0].origin
         turned = vector(origin.rpy)
         if turned is not None and any(turned) and turned != current:
             candidates.append((turned, origin.source))
@@ -90,7 +96,7 @@ def decide(target: Target) -> Decision | None:
         copied = {}
         if shape is not None:
             copied["rpy"] = shape
-            if same_vector(texts["xyz"], solids[0].shape.origin.xyz):
+            if same_vector(texts["xyz"], shapes[0].origin.xyz):
                 copied["xyz"] = shape
         if best is None or len(changed) < len(best.changed):
             best = Decision(rpy, texts, changed, copied)
@@ -151,7 +157,7 @@ def _users_agree(
 
 def chain(name: str, body: etree._Element, target: Target, users, files: Files) -> list[Slot]:
     """The slots of value ``name``, innermost (the ``<inertial>`` body) first."""
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     assert inertial is not None
     tag, attribute = _ELEMENT.get(name, ("inertia", name))
     element = child(body, tag)
@@ -245,7 +251,7 @@ def write_values(
     """The edits writing ``target``'s changed values where they are written, and the notes on
     expressions replaced by numbers; or why they cannot be written so."""
     decision = decisions[target.name]
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     assert decision is not None and inertial is not None
     body = files.element(inertial.source)
     if body is None:
@@ -263,7 +269,7 @@ def write_values(
         if problem is not None:
             return problem
     if absent:
-        from inertia_kit.fixes.origins import write_origin
+        from inertia_kit.description.urdf.placement.origins import write_origin
 
         problem = write_origin(absent, body, target, decisions, users, writer)
         if problem is not None:
@@ -329,9 +335,9 @@ def _formula(
 ) -> str | None:
     """The entry as a formula of the shape's dimensions and the kept mass, read where it is
     written (:mod:`.formulas`); ``None`` when the mass changes or the terms read elsewhere."""
-    from inertia_kit.fixes.formulas import formula
+    from inertia_kit.description.urdf.placement.formulas import formula
 
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     body = None if inertial is None else files.element(inertial.source)
     mass = None if body is None else child(body, "mass")
     if mass is None or "mass" in decision.changed or not _same_scope(place, mass, files):
@@ -348,7 +354,7 @@ def _definition(slot: Slot, name: str, target: Target, files: Files) -> etree._E
     else: editing its value keeps the property used. Defined in branches of a condition, the
     one the given arguments expand (:mod:`.conditionals`), or why it cannot be edited (a str).
     """
-    from inertia_kit.fixes import conditionals
+    from inertia_kit.description.urdf.placement import conditionals
 
     reference = None if slot.text is None else parameter_reference(slot.text)
     if reference is None or slot.element is None:
@@ -380,7 +386,7 @@ def _chosen_by_arguments(slot: Slot, name: str, files: Files) -> str | None:
     """Why the expression at the slot may not become a number: it reads an argument, or a
     property the arguments choose outside any macro, so other arguments read other values
     (the number would hold for all of them). ``None``: it may."""
-    from inertia_kit.fixes import conditionals
+    from inertia_kit.description.urdf.placement import conditionals
 
     text = slot.text or ""
     if slot.element is None:

@@ -11,7 +11,7 @@ replaced for the duration of the call, by the hooks of :mod:`.xacro_session`:
 - ``xacro.handle_macro_call``: elements a macro produced get the call site appended to their
   stamp's ``calls`` (outer calls are prepended later, so ``calls`` reads outermost first);
 - ``xacro.substitution_args._eval_find``: ``$(find pkg)`` goes to a
-  :class:`~inertia_kit.description.packages.PackageResolver` instead of ``ament_index_python``;
+  :class:`~inertia_kit.description.urdf.packages.PackageResolver` instead of ``ament_index_python``;
   ``xacro.eval_text`` is wrapped to see the path that follows it (``$(find pkg)/urdf/arm.xacro``),
   so that, as for a mesh, the candidate folder holding that path wins;
 - ``xacro.safe_eval``: expressions run with ``**``, ``*`` and ``<<`` checked
@@ -42,17 +42,17 @@ from typing import TYPE_CHECKING, Any
 from xml.dom import Node
 
 from inertia_kit.description.model import Source
-from inertia_kit.description.xacro_errors import input_error
+from inertia_kit.description.urdf.xacro_errors import input_error
+from inertia_kit.description.urdf.xacro_sandbox import Expansion
+from inertia_kit.description.urdf.xacro_session import Session, patched
+from inertia_kit.description.urdf.xacro_source_map import to_lxml
 from inertia_kit.description.xacro_limits import LimitExceeded, Meter, XacroLimits
-from inertia_kit.description.xacro_sandbox import Expansion
-from inertia_kit.description.xacro_session import Session, patched
-from inertia_kit.description.xacro_source_map import to_lxml
 from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
     from lxml import etree
 
-    from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.urdf.packages import PackageResolver
 
 #: Top-level tags of a file meant to be included rather than expanded on its own.
 FRAGMENT_TAGS = frozenset({"xacro:macro", "xacro:property", "xacro:arg", "xacro:include"})
@@ -148,8 +148,8 @@ def expand(
     """
     import xacro  # noqa: F401 - imported before any fork, once for every child
 
-    from inertia_kit.description import xacro_sandbox
-    from inertia_kit.description.packages import PackageResolver
+    from inertia_kit.description.urdf import xacro_sandbox
+    from inertia_kit.description.urdf.packages import PackageResolver
 
     shown = str(path)
     if resolver is None:
@@ -196,7 +196,7 @@ def _expanded(result: Expansion) -> Expanded:
     """The expansion handed over (from the child) as the lxml tree and its source map."""
     from lxml import etree
 
-    from inertia_kit.description.xacro_detect import is_fragment
+    from inertia_kit.description.urdf.xacro_detect import is_fragment
 
     environment = result.environment_values
     reads = result.reads or {}

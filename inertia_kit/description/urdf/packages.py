@@ -47,7 +47,7 @@ from pathlib import Path
 from urllib.parse import unquote
 
 from inertia_kit.description.package_files import exists, is_file, normal
-from inertia_kit.description.package_lookup import Candidate, PackageFinder
+from inertia_kit.description.urdf.package_lookup import Candidate, PackageFinder
 
 _FIND = re.compile(r"^\$\(find\s+([^\s)]+)\s*\)(.*)$", re.DOTALL)
 _SCHEME = re.compile(r"^([A-Za-z][A-Za-z0-9+.-]*)://")

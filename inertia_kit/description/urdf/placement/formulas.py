@@ -18,15 +18,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from inertia_kit.description import model
-from inertia_kit.description.inertial_xml import DIGITS
+from inertia_kit.description.writing import DIGITS
 from inertia_kit.physics.formatting import xml_number
 
 if TYPE_CHECKING:
     from lxml import etree
 
-    from inertia_kit.fixes.attributes import Decision
-    from inertia_kit.fixes.files import Files
-    from inertia_kit.fixes.sites import Target
+    from inertia_kit.description.editing import Files
+    from inertia_kit.description.placement import Target
+    from inertia_kit.description.urdf.placement.attributes import Decision
 
 _WHOLE = re.compile(r"^\$\{([^{}]*)\}$")
 _NUMBER = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
@@ -96,11 +96,11 @@ def formula(
 
     if name not in _AXES:
         return None  # products: zero on reordered axes, written as 0
-    solids = target.link.geometry.solids
+    shapes = target.shapes
     m = term(mass_text)
-    if len(solids) != 1 or m is None:
+    if len(shapes) != 1 or m is None:
         return None
-    shape = solids[0].shape
+    shape = shapes[0]
     turned = shape.origin.rpy if isinstance(shape.origin.rpy, tuple) else None
     if turned is None or not all(isinstance(a, float) for a in turned):
         return None

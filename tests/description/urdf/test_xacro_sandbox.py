@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from inertia_kit.description import xacro_sandbox
+from inertia_kit.description.urdf import xacro_sandbox
 from inertia_kit.errors import InputError
 
 pytestmark = pytest.mark.skipif(not xacro_sandbox.can_fork(), reason="no os.fork here")

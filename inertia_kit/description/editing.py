@@ -167,7 +167,7 @@ class Files:
         """``name -> <xacro:macro> elements`` defined in the files the load read, parsed once."""
         if self._macros is None:
             from inertia_kit.description.model import Source
-            from inertia_kit.fixes.xacro_macros import is_xacro
+            from inertia_kit.description.urdf.placement.xacro_macros import is_xacro
 
             self._macros = {}
             for path in self.reads:
@@ -202,7 +202,7 @@ class Files:
         from inertia_kit.description.edits import apply_edits
         from inertia_kit.description.overlay import overlaid
         from inertia_kit.description.reads import key as key_of_read
-        from inertia_kit.fixes.writer import Writer
+        from inertia_kit.description.urdf.placement.writer import Writer
 
         cached = tuple(id(c) for c in candidates)
         if cached in self._expanded:

@@ -10,8 +10,8 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from inertia_kit.description.editing import Files, location
 from inertia_kit.description.edits import Edit
-from inertia_kit.fixes.files import Files, location
 
 if TYPE_CHECKING:
     from lxml import etree

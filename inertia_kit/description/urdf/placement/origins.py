@@ -3,7 +3,7 @@ An ``<origin>`` value (``xyz``, ``rpy``) that the ``<inertial>`` does not write,
 the body when every link made from it needs the same; else the body's macro gains optional
 parameters (``origin_xyz:='0 0 0' origin_rpy:='0 0 0'``, xacro's default syntax), the body reads
 them, and only the calls that need another origin pass one, as the shape writes it where it
-reads the same (:func:`~inertia_kit.fixes.attributes.text_at`).
+reads the same (:func:`~inertia_kit.description.urdf.placement.attributes.text_at`).
 """
 
 from __future__ import annotations
@@ -11,7 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from inertia_kit.fixes.attributes import (
+from inertia_kit.description.editing import key
+from inertia_kit.description.urdf.placement.attributes import (
     DEFAULT_ORIGIN,
     Decision,
     Slot,
@@ -21,13 +22,16 @@ from inertia_kit.fixes.attributes import (
     text_at,
     users_agree,
 )
-from inertia_kit.fixes.files import key
-from inertia_kit.fixes.xacro_macros import child, enclosing_macro, parameter_names
+from inertia_kit.description.urdf.placement.xacro_macros import (
+    child,
+    enclosing_macro,
+    parameter_names,
+)
 
 if TYPE_CHECKING:
     from lxml import etree
 
-    from inertia_kit.fixes.sites import Target
+    from inertia_kit.description.placement import Target
 
 
 def write_origin(
@@ -41,7 +45,7 @@ def write_origin(
     """Write ``xyz``/``rpy`` that the ``<inertial>`` does not write: in the body when every
     link made from it needs the same; else through new optional parameters of its macro,
     passed only at the calls that need another origin than ``0 0 0``."""
-    inertial = target.link.link.inertial
+    inertial = target.link.inertial
     assert inertial is not None
     decision = decisions[target.name]
     assert decision is not None
