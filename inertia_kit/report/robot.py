@@ -16,11 +16,17 @@ if TYPE_CHECKING:
 
 
 def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
-    """One record per link, in document order, with JSON-ready values (SI units)."""
+    """
+    One record per link, in document order, with JSON-ready values (SI units). A body whose
+    mass properties its format's engine infers (MJCF without ``<inertial>``, or every body under
+    ``inertiafromgeom="true"``) has the values MuJoCo compiles for it, ``inertial`` saying
+    ``inferred``.
+    """
+    inferred = _inferred(robot)
     rows = []
     for link in robot.links:
         joint = robot.parent_joint(link.name)
-        properties = declared(link)
+        properties = inferred.get(link.name) or declared(link)
         source = link.source
         rows.append(
             {
@@ -32,7 +38,9 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
                 "principal_moments": None
                 if properties is None
                 else properties.principal_moments.tolist(),
-                "inertial": _state(link.inertial, properties),
+                "inertial": "inferred"
+                if link.name in inferred
+                else _state(link.inertial, properties),
                 "geometry": geometry_summary(link),
                 "meshes": _meshes(link),
                 "file": source.path,
@@ -43,6 +51,22 @@ def link_rows(robot: model.Robot) -> list[dict[str, Any]]:
             }
         )
     return rows
+
+
+def _inferred(robot: model.Robot) -> dict[str, Any]:
+    """The mass properties the engine infers for the bodies it infers, by name."""
+    if robot.inference is None:
+        return {}
+    from inertia_kit.analysis.links import analyse
+    from inertia_kit.engines.mujoco_inference import compiled, infers
+
+    found = {}
+    for name, body in compiled(analyse(robot)).items():
+        link = robot.link(name)
+        values = body.mass_properties
+        if link is not None and infers(link, robot.inference) and values and values.mass > 0:
+            found[name] = values
+    return found
 
 
 def _meshes(link: model.Link) -> list[dict[str, Any]]:
@@ -120,7 +144,9 @@ def render(
                 "(root)"
                 if row["parent_joint"] is None
                 else f"{row['parent_joint']} ({row['joint_type']})",
-                "-" if row["mass"] is None else fmt(row["mass"], 6),
+                "-"
+                if row["mass"] is None
+                else fmt(row["mass"], 6) + (" inferred" if row["inertial"] == "inferred" else ""),
                 "-" if row["com"] is None else vector_text(row["com"]),
                 ("-" if row["inertial"] == "none" else row["inertial"])
                 if row["principal_moments"] is None

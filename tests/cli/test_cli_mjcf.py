@@ -167,3 +167,22 @@ def test_report_and_view_read_an_mjcf_model(tmp_path):
     assert names == ["world", "tool", "base", "arm"]
     code, _, _ = run(main, "view", str(path), "-o", str(tmp_path / "page.html"))
     assert code == 0 and (tmp_path / "page.html").stat().st_size > 0
+
+
+def test_report_gives_an_inferred_body_what_mujoco_compiles(tmp_path):
+    path = write(
+        tmp_path / "m.xml",
+        '<mujoco><worldbody><body name="b"><joint axis="0 0 1"/>'
+        '<geom type="box" size="0.1 0.2 0.3" density="2700"/>'
+        '<geom type="sphere" size="0.1" pos="0 0 0.3"/></body></worldbody></mujoco>',
+    )
+    code, out, _ = run(main, "report", "--format", "json", str(path))
+    (row,) = [row for row in json.loads(out)["links"] if row["link"] == "b"]
+    compiled = mujoco.MjModel.from_xml_path(str(path))
+    assert code == 0 and row["inertial"] == "inferred"
+    assert row["mass"] == pytest.approx(compiled.body_mass[1], rel=1e-12)
+    np.testing.assert_allclose(
+        row["principal_moments"], sorted(compiled.body_inertia[1]), rtol=1e-9
+    )
+    code, out, _ = run(main, "report", str(path))
+    assert f"{compiled.body_mass[1]:.6g} inferred" in out
