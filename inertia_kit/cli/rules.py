@@ -9,11 +9,12 @@ import click
 
 from inertia_kit.cli.guard import GuardedCommand
 
-COLUMNS = ("code", "name", "severity", "fix", "engine")
+COLUMNS = ("code", "name", "severity", "fix", "engine", "formats")
 
 
 def rule_row(rule: ModuleType) -> dict[str, str | None]:
-    """What the listing says of ``rule``: code, name, default severity, fix safety, engine."""
+    """What the listing says of ``rule``: code, name, default severity, fix safety, engine,
+    the description formats it judges."""
     from inertia_kit.lint import catalog
 
     return {
@@ -22,6 +23,7 @@ def rule_row(rule: ModuleType) -> dict[str, str | None]:
         "severity": str(rule.SEVERITY),
         "fix": catalog.fix_safety_text(rule),
         "engine": catalog.engine(rule),
+        "formats": ",".join(catalog.formats(rule)),
     }
 
 
@@ -44,8 +46,9 @@ def _text(rows: list[dict[str, str | None]]) -> str:
 )
 def rules_command(output_format: str) -> None:
     """Every rule: code, name, default severity, its fix (safe, unsafe or none; safe/unsafe:
-    safe for an exact fit, unsafe for a real part's likely slip) and the engine it needs (an
-    engine rule runs only with --engine NAME; - for the others)."""
+    safe for an exact fit, unsafe for a real part's likely slip), the engine it needs (an
+    engine rule runs only with --engine NAME; - for the others) and the description formats it
+    judges (urdf, mjcf)."""
     from inertia_kit.lint import catalog
 
     rows = [rule_row(rule) for rule in catalog.RULES]

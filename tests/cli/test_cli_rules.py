@@ -41,6 +41,7 @@ def test_json_lists_every_catalogue_rule_with_its_module_values():
             "severity": rule.SEVERITY.name.lower(),
             "fix": expected_fix(rule),
             "engine": getattr(rule, "ENGINE", None),
+            "formats": ",".join(getattr(rule, "DESCRIPTION_FORMATS", ("urdf", "mjcf"))),
         }
 
 
@@ -56,7 +57,7 @@ def test_text_has_one_aligned_row_per_rule():
     result = CliRunner().invoke(main, ["rules"])
     assert result.exit_code == 0, result.output
     header, *rows = result.stdout.splitlines()
-    assert header.split() == ["code", "name", "severity", "fix", "engine"]
+    assert header.split() == ["code", "name", "severity", "fix", "engine", "formats"]
     assert len(rows) == len(catalog.RULES)
     for line, rule in zip(rows, catalog.RULES, strict=True):
         engine = getattr(rule, "ENGINE", None) or "-"
@@ -66,6 +67,7 @@ def test_text_has_one_aligned_row_per_rule():
             rule.SEVERITY.name.lower(),
             expected_fix(rule),
             engine,
+            ",".join(getattr(rule, "DESCRIPTION_FORMATS", ("urdf", "mjcf"))),
         ]
         assert line.index(rule.NAME) == header.index("name")  # aligned columns
 
