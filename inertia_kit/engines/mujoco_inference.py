@@ -9,6 +9,7 @@ stops with. (A URDF's import is :mod:`.mujoco_compiler`'s.)
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -93,7 +94,30 @@ def compiled(analysis: RobotAnalysis, weigh: GeomWeigher | None = None) -> dict[
         if any(not _weightless(bodies[c]) for c in welded_children.get(joint.child, ())):
             continue
         bodies[joint.child] = Compiled(None, body.inferred, body.raised, body.balanced, MINVAL)
-    return bodies
+    return _scaled_to_total(bodies, inference.total_mass)
+
+
+def _scaled_to_total(bodies: dict[str, Compiled], total: float | None) -> dict[str, Compiled]:
+    """``settotalmass``: every body's mass and tensor scaled by one factor, so that the masses
+    add up to ``total`` (MuJoCo's ``mj_setTotalmass``, after the compile)."""
+    weighed = [b.mass_properties for b in bodies.values() if b.mass_properties is not None]
+    now = sum(p.mass for p in weighed)
+    if total is None or not total > 0 or not now > 0:
+        return bodies
+    factor = total / now
+    return {
+        name: body
+        if body.mass_properties is None
+        else dataclasses.replace(
+            body,
+            mass_properties=MassProperties(
+                body.mass_properties.mass * factor,
+                body.mass_properties.com,
+                body.mass_properties.inertia * factor,
+            ),
+        )
+        for name, body in bodies.items()
+    }
 
 
 def _weightless(body: Compiled) -> bool:

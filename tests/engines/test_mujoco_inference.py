@@ -204,3 +204,19 @@ def test_a_visual_geom_weighed_with_the_colliding_ones_is_told(tmp_path):
     assert event.kind == "visual"
     body = body.replace('group="2"', 'group="2" density="0"')
     assert _events(model_file(tmp_path, body)) == []
+
+
+def test_settotalmass_scales_every_body_as_mujoco(tmp_path):
+    path = tmp_path / "m.xml"
+    path.write_text(
+        '<mujoco><compiler settotalmass="10"/><worldbody><body name="a"><joint/>'
+        '<geom type="box" size=".1 .2 .3"/><body name="b" pos="1 0 0"><joint/>'
+        '<inertial pos="0.1 0 0" mass="2" diaginertia="1 2 3"/></body></body></worldbody></mujoco>'
+    )
+    bodies = compiled(analyse(load_mjcf(path)))
+    mjmodel = mujoco.MjModel.from_xml_path(str(path))
+    for index, name in ((1, "a"), (2, "b")):
+        mass, com, moments = body_mass_properties(mjmodel, index)
+        ours = bodies[name].mass_properties
+        assert ours.mass == pytest.approx(mass, rel=1e-12)
+        np.testing.assert_allclose(ours.principal_moments, moments, rtol=1e-9)
