@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
     from inertia_kit.description.edits import SourceText
     from inertia_kit.description.model import Robot, Source
+    from inertia_kit.description.xmlspan import Span
 
 #: Where an element is written: resolved path, line, column.
 Key = tuple[str, int | None, int | None]
@@ -138,6 +139,21 @@ class Files:
             return line_start + where.column - 1
         found = [m.start() for m in pattern.finditer(text, line_start, line_end(text, line_start))]
         return found[0] if len(found) == 1 else None
+
+    def span(self, where: Source, tag: str) -> tuple[SourceText, Span] | str:
+        """
+        The text and span of the element ``<tag>`` written at ``where``, to be edited; or why
+        it cannot be: outside the files a fix may touch, or not found there.
+        """
+        from inertia_kit.description.xmlspan import element_span
+
+        if not self.editable(where.path):
+            return f"<{tag}> is written in {location(where)}, {self.outside(where.path)}"
+        offset = self.offset(where, tag)
+        if offset is None:
+            return f"<{tag}> was not found at {location(where)}"
+        source = self.source(where.path)
+        return source, element_span(source.text, offset)
 
     def element(self, where: Source) -> etree._Element | None:
         """The parsed element written at ``where`` (for reading a macro's attributes)."""

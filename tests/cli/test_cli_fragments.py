@@ -13,7 +13,7 @@ import math
 import os
 
 import pytest
-from click.testing import CliRunner
+from kit.in_process import run_split
 from kit.urdf import link_lines, robot_lines
 from kit.xacro_projects import (
     HEAD,
@@ -35,12 +35,7 @@ MASS_MESSAGE = "IN002 link `{link}`: mass = {mass:g} kg is not positive"
 
 
 def run(command, *args: str) -> tuple[int, str, str]:
-    try:
-        runner = CliRunner(mix_stderr=False)  # click < 8.2
-    except TypeError:
-        runner = CliRunner()
-    result = runner.invoke(command, list(args), catch_exceptions=False)
-    return result.exit_code, result.stdout, result.stderr
+    return run_split(command, args)
 
 
 def lint(*args: str) -> tuple[int, str, str]:

@@ -15,10 +15,9 @@ import types
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner
 from console_scripts import console_script
 from kit import REPO
-from kit.in_process import lint_in_process
+from kit.in_process import lint_in_process, run_split
 from kit.urdf import inertial, link, robot_lines
 
 from inertia_kit.cli import lint_main, main
@@ -79,12 +78,7 @@ def write(name: str, text: str) -> str:
 
 
 def run(*args: str, command=lint_main) -> tuple[int, str, str]:
-    try:
-        runner = CliRunner(mix_stderr=False)  # click < 8.2
-    except TypeError:
-        runner = CliRunner()
-    result = runner.invoke(command, list(args), catch_exceptions=False)
-    return result.exit_code, result.stdout, result.stderr
+    return run_split(command, args)
 
 
 # --- exit codes -------------------------------------------------------------------------------

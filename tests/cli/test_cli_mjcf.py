@@ -11,8 +11,8 @@ import json
 import mujoco
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from kit import write
+from kit.in_process import run_split
 
 from inertia_kit.cli import fill_main, lint_main, main
 
@@ -43,12 +43,7 @@ PARTS = """<mujoco>
 
 
 def run(command, *args: str) -> tuple[int, str, str]:
-    try:
-        runner = CliRunner(mix_stderr=False)  # click < 8.2
-    except TypeError:
-        runner = CliRunner()
-    result = runner.invoke(command, list(args), catch_exceptions=False)
-    return result.exit_code, result.stdout, result.stderr
+    return run_split(command, args)
 
 
 def model(tmp_path):

@@ -19,7 +19,7 @@ from inertia_kit.description.edits import Edit
 from inertia_kit.description.mjcf.writer import inertial_element
 from inertia_kit.description.model import Source
 from inertia_kit.description.placement import Placement, Target
-from inertia_kit.description.xmlspan import children, element_span, indent_unit, line_indent
+from inertia_kit.description.xmlspan import children, indent_unit, line_indent
 
 _LINE_REST = re.compile(r"[ \t]*(\r\n|\n|\r)")
 
@@ -74,16 +74,12 @@ def _place(target: Target, element: str, files: Files) -> Placement:
     inertial = target.link.inertial
     tag = "inertial" if inertial is not None else "body"
     where = _where(target.link)
-    if not files.editable(where.path):
-        return Placement(
-            problem=f"its <{tag}> is written in {location(where)}, {files.outside(where.path)}"
-        )
-    offset = files.offset(where, tag)
-    if offset is None:
-        return Placement(problem=f"its <{tag}> was not found at {location(where)}")
-    source = files.source(where.path)
+    found = files.span(where, tag)
+    if isinstance(found, str):
+        return Placement(problem=found)
+    source, span = found
     text = source.text
-    span = element_span(text, offset)
+    offset = span.start
     if inertial is not None:
         if text[span.start : span.end] == element:
             return Placement()

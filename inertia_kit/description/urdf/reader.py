@@ -65,18 +65,7 @@ def load_urdf(
     Load a URDF or xacro robot description whose bytes, read within bounds and checked as
     text, are ``data``.
 
-    Parameters
-    ----------
-    path : str or Path
-      A ``.urdf``, ``.xacro`` or ``.urdf.xacro`` file; xacro is recognised by content.
-    xacro_args : mapping, optional
-      ``name -> value`` for ``$(arg name)``, as ``name:=value`` on xacro's command line.
-    package_paths : iterable of paths
-      Folders searched first for ``$(find pkg)`` and ``package://pkg`` (a package, or a folder
-      of packages).
-    xacro_limits : XacroLimits, optional
-      Time, memory and element limits of a xacro expansion; by default
-      ``XacroLimits.resolve()``: the defaults and ``INERTIA_KIT_XACRO_LIMITS``.
+    The parameters are :func:`inertia_kit.description.loader.load`'s.
 
     Returns
     -------

@@ -293,18 +293,13 @@ def _block(target: Target, source: SourceText, base: str, *, inner: bool) -> str
 
 
 def _replace_element(target: Target, where: Source, tag: str, files: Files) -> Placement:
-    from inertia_kit.description.xmlspan import element_span, line_indent
+    from inertia_kit.description.xmlspan import line_indent
 
-    if not files.editable(where.path):
-        return Placement(
-            problem=f"<{tag}> is written in {location(where)}, {files.outside(where.path)}"
-        )
-    offset = files.offset(where, tag)
-    if offset is None:
-        return Placement(problem=f"<{tag}> was not found at {location(where)}")
-    source = files.source(where.path)
-    span = element_span(source.text, offset)
-    block = _block(target, source, line_indent(source.text, offset), inner=False)
+    found = files.span(where, tag)
+    if isinstance(found, str):
+        return Placement(problem=found)
+    source, span = found
+    block = _block(target, source, line_indent(source.text, span.start), inner=False)
     return Placement((Edit(source.path, span.start, span.end, block),))
 
 
