@@ -134,6 +134,89 @@ def _file_mass_properties(
     return soup_mass_properties(triangles, mode, unit * np.asarray(scale))
 
 
+def mesh_frame(
+    vertices: ArrayLike, faces: ArrayLike, mode: str = "legacy", *, scale: ArrayLike | None = None
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
+    """
+    ``(com, axes, box, measure)`` of a mesh as ``mjCMesh::Process`` leaves it, in the mesh's
+    frame: its centre of mass, principal axes (columns, :func:`principal_axes`' order), the
+    half-sides of its equivalent inertia box along them, and its volume (area for ``shell``).
+    The arguments are :func:`mesh_mass_properties`'; ``ValueError`` for a mesh MuJoCo refuses.
+    """
+    if mode not in MESH_MODES:
+        raise ValueError(f"mode must be one of {', '.join(MESH_MODES)}, got {mode!r}")
+    vert = _vertices(vertices)
+    if scale is not None:
+        vert = vert.astype(np.float32).astype(np.float64)
+    face = _faces(faces, len(vert))
+    hull = hull_faces(vert) if mode == "convex" or not len(face) else None
+    if not len(face):
+        face = hull
+    if mode == "exact":
+        _check_orientation(vert, face)
+    if scale is not None:
+        factors = _scale(scale)
+        if not np.prod(factors) > 0:
+            face = face[:, [0, 2, 1]]
+            hull = None if hull is None else hull[:, [0, 2, 1]]
+        vert = vert * factors
+
+    facecen = _face_centroid(vert, face)
+    solid = hull if mode == "convex" else face
+    if mode == "shell":
+        com = _surface_centre(vert, face, facecen)
+    else:
+        com = _volume_centre(vert, solid, facecen, absolute=mode == "legacy")
+    tensor, measure = _unit_inertia(vert - com, solid, mode)
+    eigval, eigvec = principal_axes(tensor)
+    if eigval[2] <= 0:
+        raise ValueError("eigenvalue of mesh inertia must be positive")
+    a, b, c = eigval
+    tol = 1.0 - _INEQUALITY_RTOL
+    if (
+        a + b < c * tol - _INEQUALITY_ATOL
+        or a + c < b * tol - _INEQUALITY_ATOL
+        or b + c < a * tol - _INEQUALITY_ATOL
+    ):
+        raise ValueError("eigenvalues of mesh inertia violate A + B >= C")
+    with np.errstate(invalid="ignore"):
+        box = 0.5 * np.sqrt(6 * np.array([b + c - a, a + c - b, a + b - c]) / measure)
+    if np.isnan(box).any():
+        # within the tolerance above but negative: MuJoCo takes the root of it
+        raise ValueError("the equivalent inertia box has a negative side² (MuJoCo: NaN inertia)")
+    return com, eigvec, box, measure
+
+
+def fitted_primitive(
+    kind: str,
+    vertices: ArrayLike,
+    faces: ArrayLike,
+    mode: str = "legacy",
+    *,
+    scale: ArrayLike | None = None,
+    fitscale: float = 1.0,
+) -> tuple[tuple[float, ...], NDArray[np.float64], NDArray[np.float64]]:
+    """
+    ``(size, centre, axes)`` of the primitive ``kind`` MuJoCo fits to a mesh
+    (``mjCMesh::FitGeom``, ``fitaabb="false"``): its ``size`` (radii and half-lengths, times
+    ``fitscale``) from the mesh's equivalent inertia box, placed at the mesh's centre of mass
+    in its principal axes. ``ValueError`` for a kind MuJoCo does not fit, or a mesh it refuses.
+    """
+    com, axes, box, _ = mesh_frame(vertices, faces, mode, scale=scale)
+    if kind == "sphere":
+        size: tuple[float, ...] = (float(box.sum()) / 3,)
+    elif kind == "capsule":
+        radius = float(box[0] + box[1]) / 2
+        size = (radius, max(0.0, float(box[2]) - radius / 2))
+    elif kind == "cylinder":
+        size = (float(box[0] + box[1]) / 2, float(box[2]))
+    elif kind in ("ellipsoid", "box"):
+        size = tuple(float(b) for b in box)
+    else:
+        raise ValueError(f"invalid geom type in fitting mesh: {kind}")
+    return tuple(v * fitscale for v in size), com, axes
+
+
 def mesh_mass_properties(
     vertices: ArrayLike,
     faces: ArrayLike,
@@ -186,47 +269,7 @@ def mesh_mass_properties(
     ValueError
       For a mesh MuJoCo refuses, in its words where it has them.
     """
-    if mode not in MESH_MODES:
-        raise ValueError(f"mode must be one of {', '.join(MESH_MODES)}, got {mode!r}")
-    vert = _vertices(vertices)
-    if scale is not None:
-        vert = vert.astype(np.float32).astype(np.float64)
-    face = _faces(faces, len(vert))
-    hull = hull_faces(vert) if mode == "convex" or not len(face) else None
-    if not len(face):
-        face = hull
-    if mode == "exact":
-        _check_orientation(vert, face)
-    if scale is not None:
-        factors = _scale(scale)
-        if not np.prod(factors) > 0:
-            face = face[:, [0, 2, 1]]
-            hull = None if hull is None else hull[:, [0, 2, 1]]
-        vert = vert * factors
-
-    facecen = _face_centroid(vert, face)
-    solid = hull if mode == "convex" else face
-    if mode == "shell":
-        com = _surface_centre(vert, face, facecen)
-    else:
-        com = _volume_centre(vert, solid, facecen, absolute=mode == "legacy")
-    tensor, measure = _unit_inertia(vert - com, solid, mode)
-    eigval, eigvec = principal_axes(tensor)
-    if eigval[2] <= 0:
-        raise ValueError("eigenvalue of mesh inertia must be positive")
-    a, b, c = eigval
-    tol = 1.0 - _INEQUALITY_RTOL
-    if (
-        a + b < c * tol - _INEQUALITY_ATOL
-        or a + c < b * tol - _INEQUALITY_ATOL
-        or b + c < a * tol - _INEQUALITY_ATOL
-    ):
-        raise ValueError("eigenvalues of mesh inertia violate A + B >= C")
-    with np.errstate(invalid="ignore"):
-        box = 0.5 * np.sqrt(6 * np.array([b + c - a, a + c - b, a + b - c]) / measure)
-    if np.isnan(box).any():
-        # within the tolerance above but negative: MuJoCo takes the root of it
-        raise ValueError("the equivalent inertia box has a negative side² (MuJoCo: NaN inertia)")
+    com, eigvec, box, measure = mesh_frame(vertices, faces, mode, scale=scale)
     m = geom_mass(measure, density, mass)
     if m == 0:
         return MassProperties(0.0, com, np.zeros((3, 3)))

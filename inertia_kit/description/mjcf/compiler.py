@@ -19,6 +19,7 @@ class Compiler:
     meshdir: str | None = None
     assetdir: str | None = None
     autolimits: bool = True
+    fitaabb: bool = False  # a primitive fitted to a mesh by its bounding box (not read yet)
     inference: model.Inference = field(default_factory=model.Inference)
 
     def mesh_folder(self, model_folder: Path) -> Path:
@@ -70,5 +71,6 @@ def read_compiler(root: etree._Element, source_of) -> Compiler:
         meshdir=said.get("meshdir"),
         assetdir=said.get("assetdir"),
         autolimits=said.get("autolimits", "true") in _TRUE,
+        fitaabb=said.get("fitaabb", "false") in _TRUE,
         inference=inference,
     )

@@ -382,8 +382,11 @@ class _Reader:
             pose = pose @ reference
         elif kind == "mesh":
             geometry = model.Unknown(f"mesh {mesh_name!r}" if mesh_name else "mesh", source)
-        elif mesh_name is not None:  # a primitive MuJoCo fits to the mesh: not read yet
-            geometry = model.Unknown(f"{kind} fitted to a mesh", source)
+        elif mesh_name is not None:  # a primitive MuJoCo fits to the mesh
+            fitscale, _ = self.value(element, "fitscale", classes, 1)
+            scale = fitscale[0] if isinstance(fitscale, tuple) else 1.0
+            geometry, placement = self.fitted(kind, self.meshes.get(mesh_name), scale, source)
+            pose = pose @ placement
         else:
             geometry = self.primitive(kind, size, half_length, source)
         density, _ = self.value(element, "density", classes, 1)
@@ -414,6 +417,41 @@ class _Reader:
                 for name in ("contype", "conaffinity")
             ),
         )
+
+    def fitted(self, kind: str, asset, fitscale: float, source: model.Source):
+        """
+        The primitive MuJoCo fits to a mesh (``fitaabb="false"``, its default) and its pose in
+        the geom's frame: sized by the mesh's equivalent inertia box, at its centre of mass in
+        its principal axes (:func:`~inertia_kit.physics.mujoco_mesh_inertia.fitted_primitive`);
+        an unknown geometry when the mesh cannot be read or is refused.
+        """
+        unknown = model.Unknown(f"{kind} fitted to a mesh", source), np.eye(4)
+        if asset is None or self.compiler.fitaabb:
+            return unknown
+        mesh, reference = asset
+        if mesh.path is None:
+            return unknown
+        from inertia_kit.errors import MeshError
+        from inertia_kit.physics.mesh_formats import read_triangles
+        from inertia_kit.physics.mujoco_mesh_inertia import fitted_primitive, shared_vertices
+
+        try:
+            triangles, unit = read_triangles(mesh.path)
+            vertices, faces = shared_vertices(triangles)
+            with np.errstate(all="ignore"):
+                size, centre, axes = fitted_primitive(
+                    kind,
+                    vertices,
+                    faces,
+                    mesh.inertia or "legacy",
+                    scale=unit * np.asarray(mesh.scale, dtype=np.float64),
+                    fitscale=fitscale,
+                )
+        except (MeshError, OSError, ValueError):
+            return unknown
+        placement = np.eye(4)
+        placement[:3, :3], placement[:3, 3] = axes, centre
+        return self.primitive(kind, size, None, source), reference @ placement
 
     @staticmethod
     def primitive(kind, size, half_length, source) -> model.Geometry:

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from kit.mjcf import body_mass_properties, body_pose, written_mass_properties
 
+from inertia_kit.analysis.links import analyse
 from inertia_kit.description import model
 from inertia_kit.description.mjcf.detect import is_mjcf
 from inertia_kit.description.mjcf.reader import load_mjcf
@@ -290,3 +291,30 @@ def test_a_replicate_that_is_no_count_is_refused_where_it_is(tmp_path):
     with pytest.raises(InputError, match="not a positive whole number") as raised:
         load_mjcf(path)
     assert raised.value.line == 2
+
+
+@pytest.mark.parametrize("kind", ["capsule", "cylinder", "box", "ellipsoid", "sphere"])
+@pytest.mark.parametrize("extra", ["", ' fitscale="1.5"', ' pos="0.1 0 0" euler="10 20 30"'])
+def test_a_primitive_fitted_to_a_mesh_is_mujocos(tmp_path, kind, extra):
+    import trimesh
+
+    part = trimesh.creation.box((0.3, 0.1, 0.05))
+    part.apply_transform(trimesh.transformations.rotation_matrix(0.4, [0, 0, 1]))
+    part.apply_translation((0.1, 0.2, 0))
+    part.export(tmp_path / "part.stl")
+    path = write(
+        tmp_path,
+        "m.xml",
+        '<mujoco><asset><mesh file="part.stl" scale="1 2 1"/></asset><worldbody>'
+        f'<body name="b"><joint/><geom type="{kind}" mesh="part"{extra}/></body>'
+        "</worldbody></mujoco>",
+    )
+    robot, mjmodel = both(path)
+    (shape,) = robot.link("b").collisions
+    assert not isinstance(shape.geometry, model.Unknown)
+    mass, com, moments = body_mass_properties(mjmodel, 1)
+    unit = analyse(robot).by_name["b"].geometry.unit
+    ours = unit.with_mass(unit.mass * 1000.0)
+    assert ours.mass == pytest.approx(mass, rel=1e-9)
+    np.testing.assert_allclose(ours.com, com, atol=1e-12)
+    np.testing.assert_allclose(ours.principal_moments, moments, rtol=1e-9)
