@@ -30,6 +30,7 @@ if TYPE_CHECKING:
 __all__ = [
     "expanded",
     "files_read",
+    "format_of",
     "load",
     "may_be_included",
     "needs_expansion",
@@ -37,16 +38,23 @@ __all__ = [
 ]
 
 
+def format_of(data: bytes) -> str:
+    """The format of a description's text, by content: ``mjcf`` (root ``<mujoco>``) or
+    ``urdf`` (URDF or xacro: anything else, which its reader accepts or refuses)."""
+    return "mjcf" if is_mjcf(narrow(data)) else "urdf"
+
+
 def may_be_included(data: bytes) -> bool:
-    """Whether a text may be a fragment that robots include (xacro, by content)."""
+    """Whether a text may be a fragment that URDF robots include (xacro, by content); an
+    MJCF file is a model of its own (the files it includes are read with it)."""
     from inertia_kit.description.urdf.xacro_detect import is_xacro
 
-    return is_xacro(data)
+    return format_of(data) == "urdf" and is_xacro(data)
 
 
 def stand_in_suffix(data: bytes) -> str:
     """The file name suffix a text read from stdin is linted under: its format's."""
-    if is_mjcf(narrow(data)):
+    if format_of(data) == "mjcf":
         return ".xml"
     return ".urdf.xacro" if may_be_included(data) else ".urdf"
 

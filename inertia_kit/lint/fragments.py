@@ -155,12 +155,12 @@ def targets(
 
 def _includable(file: str) -> bool:
     """
-    Whether ``file`` may be included by a robot: xacro by name or by content, or a file without
-    links (a placeholder such as husky's ``empty.urdf``, which ``$(arg urdf_extras)`` names by
-    default). A plain URDF with links is included by none in practice, and is linted as itself
-    without scanning the repository.
+    Whether ``file`` may be included by a URDF robot: xacro by name or by content, or a file
+    without links (a placeholder such as husky's ``empty.urdf``, which ``$(arg urdf_extras)``
+    names by default), unless an MJCF model. A plain URDF with links is included by none in
+    practice, and is linted as itself without scanning the repository.
     """
-    from inertia_kit.description.loader import may_be_included
+    from inertia_kit.description.loader import format_of, may_be_included
 
     if file.lower().endswith(".xacro"):
         return True
@@ -171,6 +171,8 @@ def _includable(file: str) -> bool:
         data = read_bounded(file)
     except InputError:
         return False
+    if format_of(data) == "mjcf":
+        return False  # a model of its own, its includes read with it: no robot includes it
     return may_be_included(data) or _linkless(data)
 
 

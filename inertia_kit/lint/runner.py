@@ -152,7 +152,10 @@ def run_rules(
                     finding = dataclasses.replace(finding, severity=configured)
                 elif configured is None:
                     # a helper frame's defect weighs what it adds to its lumped body
-                    finding = weigh(analysis, finding)
+                    weighed = weigh(analysis, finding)
+                    if weighed is None:
+                        continue
+                    finding = weighed
                 # Finding compares by place and code only: two messages at one place are two
                 findings.setdefault(_order(finding), finding)
     replaced = {

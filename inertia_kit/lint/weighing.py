@@ -30,8 +30,12 @@ from inertia_kit.engines.shares import share
 from inertia_kit.lint.findings import Finding, Severity
 
 
-def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
-    """``finding``, lowered and with its link's share told when that share is negligible."""
+def weigh(robot: RobotAnalysis, finding: Finding) -> Finding | None:
+    """
+    ``finding``, lowered and with its link's share told when that share is negligible; ``None``
+    for a massless body welded to the world in an MJCF model (``mass="0"`` with a zero tensor on
+    a fixed mount: MuJoCo accepts it as written and never moves it, an idiom of its models).
+    """
     if not finding.weighed or finding.severity is not Severity.ERROR or finding.link is None:
         return finding
     found = share(robot, finding.link)
@@ -43,6 +47,8 @@ def weigh(robot: RobotAnalysis, finding: Finding) -> Finding:
         return finding
     # the share is the reason for the severity: the detail's first sentence
     detail = found.text() + (f"; {finding.detail}" if finding.detail else "")
+    if found.massless and found.static and robot.robot.format == "mjcf":
+        return None
     if found.massless:
         # a frame, as written: nothing to repair (`inertia-fill --fix invalid` leaves it)
         return dataclasses.replace(finding, severity=Severity.INFO, detail=detail, wants=None)

@@ -181,3 +181,17 @@ def test_report_gives_an_inferred_body_what_mujoco_compiles(tmp_path):
     )
     code, out, _ = run(main, "report", str(path))
     assert f"{compiled.body_mass[1]:.6g} inferred" in out
+
+
+def test_an_mjcf_model_given_is_linted_as_itself_without_a_repository_scan(tmp_path, monkeypatch):
+    # a model has no <link>: it must not pass for a URDF placeholder robots may include, whose
+    # includers are looked for over the whole repository (here, every file of tmp_path)
+    from inertia_kit.lint import fragments
+
+    def scanned(*_args, **_kwargs):
+        raise AssertionError("the repository was scanned for robots including an MJCF model")
+
+    monkeypatch.setattr(fragments, "include_graph", scanned)
+    path = model(tmp_path)
+    code, out, _ = run(lint_main, "--select", "IN002", str(path))
+    assert code == 1 and "parts.xml:5:7: IN002" in out

@@ -127,3 +127,18 @@ def test_a_centre_of_mass_a_slip_puts_back_inside_but_far_out_says_so(tmp_path):
     (finding,) = findings(write_model(tmp_path, body), "IN021")
     assert finding.severity is Severity.ERROR
     assert "with x and z exchanged (75% to the edge) it would lie inside" in finding.detail
+
+
+def test_a_massless_body_welded_to_the_world_is_quiet(tmp_path):
+    # MuJoCo accepts a fixed mount with mass="0" and a zero tensor as written
+    path = tmp_path / "m.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="table">'
+        '<inertial pos="0 0 0" mass="0" diaginertia="0 0 0"/><geom type="box" size="0.5 0.5 0.02"/>'
+        '<body name="arm" pos="0 0 0.1"><joint axis="0 0 1"/>'
+        '<inertial pos="0 0 0" mass="1" diaginertia="0.004 0.004 0.0002"/>'
+        '<geom type="capsule" size="0.02 0.1"/></body></body></worldbody></mujoco>'
+    )
+    mujoco.MjModel.from_xml_path(str(path))
+    everything = Selection(("IN",), engines=("mujoco",))
+    assert [f for f in lint_robot(load_mjcf(path), everything) if f.link == "table"] == []
