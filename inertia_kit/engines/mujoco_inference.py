@@ -74,12 +74,18 @@ def compiled(analysis: RobotAnalysis, weigh: GeomWeigher | None = None) -> dict[
     (one with a joint) must weigh something, unless a welded child does (``mjCModel``'s
     check).
     """
+    if weigh is None:  # the default weighing: once per robot, whichever rule asks first
+        return analysis.fact("mujoco-compiled", lambda a: _compile(a, weigh_geom))
+    return _compile(analysis, weigh)
+
+
+def _compile(analysis: RobotAnalysis, weigh: GeomWeigher) -> dict[str, Compiled]:
     robot = analysis.robot
     inference = robot.inference
     if inference is None:
         return {}
     bodies = {
-        link.name: _compiled(link, inference, weigh or weigh_geom)
+        link.name: _compiled(link, inference, weigh)
         for link in analysis.links
         if link.name != model.WORLD
     }
