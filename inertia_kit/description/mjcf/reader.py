@@ -110,7 +110,7 @@ class _Reader:
         if isinstance(position, tuple):
             matrix[:3, 3] = position
         forms = [f for f in FORMS if self._has(element, f, childclass)]
-        if len(forms) > 1 and sum(element.get(f) is not None for f in forms) > 1:
+        if sum(element.get(f) is not None for f in forms) > 1:
             source = self.source_of(element)
             raise InputError(
                 f"orientation given twice ({', '.join(forms)}): MuJoCo refuses it",
