@@ -99,8 +99,16 @@ class LinkAnalysis:
                 yield from getattr(self, kind).solids
 
     @property
+    def skeletal(self) -> bool:
+        """Whether the link's shapes are a skeleton, not its envelope (``Robot.skeleton``)."""
+        return self.robot is not None and self.robot.robot.skeleton
+
+    @property
     def geometry(self) -> Geometry:
-        """The geometry mass comes from: collision shapes, else visual ones."""
+        """The geometry mass comes from: collision shapes, else visual ones; none for a
+        skeleton's (its flesh is drawn by no shape)."""
+        if self.skeletal:
+            return Geometry(None, (), None)
         if self.link.collisions:
             return self.collision
         if self.link.visuals:
@@ -115,7 +123,7 @@ class LinkAnalysis:
         envelope would understate what is possible).
         """
         hulls = [g.hull for g in (self.collision, self.visual) if g.solids]
-        if not hulls or any(h is None for h in hulls):
+        if self.skeletal or not hulls or any(h is None for h in hulls):
             return None
         return Hull.union(hulls)  # type: ignore[arg-type]
 
@@ -152,6 +160,8 @@ class LinkAnalysis:
         compare declared values with (one that matches either is not suspicious).
         """
         found = []
+        if self.skeletal:
+            return ()
         for shapes, name in ((self.link.collisions, "collision"), (self.link.visuals, "visual")):
             if shapes:
                 geometry = getattr(self, name)

@@ -334,6 +334,10 @@ class Robot:
     format: str = "urdf"
     #: how the format's engine infers mass properties nobody wrote (``None``: it does not)
     inference: Inference | None = None
+    #: the geometry is a skeleton, not the bodies' envelope: a musculoskeletal model (muscles
+    #: act on it), whose bodies carry flesh that no shape draws; their mass properties are not
+    #: judged against their shapes
+    skeleton: bool = False
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)

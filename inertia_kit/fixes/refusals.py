@@ -12,6 +12,11 @@ if TYPE_CHECKING:
 def geometry_refusal(link: LinkAnalysis) -> str | None:
     """Why the link's geometry cannot give its mass properties (with what to do), or ``None``."""
     geometry = link.geometry
+    if link.skeletal:
+        return (
+            "muscles act on this model: its shapes are bones, wrapping surfaces and skin, not "
+            "the body's flesh; write its <inertial> from the model's anthropometry"
+        )
     if not geometry.solids:
         if link.parent is None:
             return (

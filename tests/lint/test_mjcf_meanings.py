@@ -142,3 +142,62 @@ def test_a_massless_body_welded_to_the_world_is_quiet(tmp_path):
     mujoco.MjModel.from_xml_path(str(path))
     everything = Selection(("IN",), engines=("mujoco",))
     assert [f for f in lint_robot(load_mjcf(path), everything) if f.link == "table"] == []
+
+
+MUSCLE = (
+    '<tendon><spatial name="t"><site site="a"/><site site="b"/></spatial></tendon>'
+    '<actuator><muscle name="m" tendon="t"/></actuator>'
+)
+
+
+def skeleton_model(tmp_path, actuators: str):
+    """A forearm whose shape is its bone: 1.2 kg of flesh around a 2 cm rod, MyoSuite-like."""
+    path = tmp_path / "m.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="humerus"><site name="a"/>'
+        '<geom type="capsule" size="0.01 0.1"/>'
+        '<inertial pos="0 0 0" mass="2" diaginertia="0.012 0.012 0.002"/>'
+        '<body name="forearm" pos="0 0 -0.25"><joint name="elbow" axis="0 1 0"/>'
+        '<site name="b" pos="0.03 0 -0.05"/>'
+        '<geom type="capsule" size="0.008 0.1"/>'
+        '<inertial pos="0 0 -0.08" mass="1.2" diaginertia="0.007 0.007 0.0012"/>'
+        f"</body></body></worldbody>{actuators}</mujoco>"
+    )
+    mujoco.MjModel.from_xml_path(str(path))
+    return path
+
+
+def test_a_musculoskeletal_models_bones_are_not_its_bodies_envelopes(tmp_path):
+    everything = Selection(("IN",), engines=("mujoco",))
+    robot = load_mjcf(skeleton_model(tmp_path, MUSCLE))
+    assert robot.skeleton and lint_robot(robot, everything) == []
+    # the same bodies with a motor, not muscles: judged against their shapes
+    bare = load_mjcf(
+        skeleton_model(
+            tmp_path, '<actuator><motor joint="j"/></actuator>'.replace(' joint="j"', ' site="b"')
+        )
+    )
+    codes = {f.code for f in lint_robot(bare, everything)}
+    assert not bare.skeleton and {"IN022", "IN023"} & codes
+
+
+def test_balanceinertia_makes_an_impossible_tensor_a_warning(tmp_path):
+    body = '<inertial pos="0 0 0" mass="1" diaginertia="0.001 0.001 0.004"/><geom size="0.05"/>'
+    (refused,) = findings(write_model(tmp_path, body), "IN011")
+    assert refused.severity is Severity.ERROR and "MuJoCo refuses it" in refused.detail
+    balanced = tmp_path / "b.xml"
+    balanced.write_text(
+        write_model(tmp_path, body)
+        .read_text()
+        .replace("<mujoco>", '<mujoco><compiler balanceinertia="true"/>')
+    )
+    (loaded,) = findings(balanced, "IN011")
+    assert loaded.severity is Severity.WARNING and "0.002 kg·m², their mean" in loaded.detail
+
+
+def test_a_static_bodys_unreadable_mesh_is_not_told(tmp_path):
+    (tmp_path / "logo.msh").write_bytes(b"\x00" * 64)
+    static = write_model(
+        tmp_path, '<geom type="mesh" mesh="logo"/>', asset='<mesh file="logo.msh"/>', welded=True
+    )
+    assert findings(static, "IN034") == []

@@ -180,6 +180,21 @@ class _Reader:
             reads=tuple(self.assembled.reads.items()),
             format="mjcf",
             inference=self.compiler.inference,
+            skeleton=self.musculoskeletal(),
+        )
+
+    def musculoskeletal(self) -> bool:
+        """Whether muscles act on the model (``<muscle>``, or ``<general dyntype="muscle">``):
+        then its geoms are bones, wrapping surfaces and skin, not the bodies' envelopes."""
+        return any(
+            local(element) == "muscle"
+            or (
+                local(element) == "general"
+                and self.text(element, "dyntype", MAIN) == "muscle"  # from its class, too
+            )
+            for actuators in self.root
+            if local(actuators) == "actuator"
+            for element in actuators.iter()
         )
 
     def members(

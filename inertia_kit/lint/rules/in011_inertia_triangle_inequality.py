@@ -105,6 +105,19 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         basis = "" if written is None else f"; {basis_text(link, declared.mass)} {written.text()}"
         principal = np.array([a, b, c])
         shown = [0.0 if abs(v) <= tol0 else v for v in (a, b)]
+        consequence = (
+            "no rigid body has such a tensor: MuJoCo refuses it, Gazebo rejects it, Drake "
+            "replaces it by a sphere of water, PyBullet zeroes it"
+        )
+        severity = None
+        inference = robot.robot.inference
+        if inference is not None and inference.balance:
+            # the model loads: MuJoCo's balanceinertia makes the moments their mean (IN070)
+            severity = Severity.WARNING
+            consequence = (
+                "no rigid body has such a tensor; the compiler's balanceinertia loads it as "
+                f"three moments of {fmt(float(principal.sum()) / 3, 4)} kg·m², their mean"
+            )
         yield ctx.finding(
             f"link `{link.name}`: the principal moments break A + B ≥ C, "
             f"{fmt(100 * shortfall / c, 3)} % short",
@@ -112,9 +125,9 @@ def check(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
             link=link.name,
             expected=None if written is None else written.fields,
             detail=f"principal moments {moments_text(principal)}: {fmt(shown[0], 4)} + "
-            f"{fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)} < {fmt(c, 4)}; no rigid body "
-            "has such a tensor: MuJoCo refuses it, Gazebo rejects it, Drake replaces it by a "
-            f"sphere of water, PyBullet zeroes it{basis}",
+            f"{fmt(shown[1], 4)} = {fmt(shown[0] + shown[1], 4)} < {fmt(c, 4)}; "
+            f"{consequence}{basis}",
+            severity=severity,
             help="the tensor is impossible: check that it is about the centre of mass (not the "
             "link origin), that the products of inertia have the URDF sign (ixy = -∫xy dm), and "
             "that the values were not typed by hand; `inertia-fill --fix invalid` recomputes it "

@@ -19,6 +19,9 @@ SUMMARY = "a visual/collision mesh file is corrupt or in an unsupported format"
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
+    robot = link.robot
+    if robot is not None and robot.robot.format == "mjcf" and robot.welded_to_world(link.name):
+        return  # MJCF scenery: a static body's mass moves nothing, nothing is lost unread
     for solid in link.mesh_kind_solids():
         kind = solid.shape.kind
         if solid.problem is None or solid.problem[0] != "mesh-unreadable":
