@@ -6,6 +6,8 @@ path); its triangles are read again, through trimesh, only when the surface is n
 DAE, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into one triangle
 soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the caller scales
 the integrals analytically. trimesh is imported only for a file that needs it.
+:func:`read_mujoco_triangles` reads OBJ without trimesh, into the triangles MuJoCo builds
+(:mod:`.obj_polygons`), the ones MuJoCo's mass properties are computed from.
 
 trimesh and pycollada log what they cannot do for a renderer, textures first ("unable to load
 bumpmap", with a full traceback, when Pillow is absent or an image file is missing): a texture
@@ -112,6 +114,57 @@ def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
     """
     file, suffix = _readable(path)
     return _read_scene(file, suffix)
+
+
+def read_mujoco_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
+    """
+    The triangles MuJoCo builds from a mesh file, which its mass properties are computed from:
+    as :func:`read_triangles`, but for OBJ those of MuJoCo's OBJ decoder (:mod:`.obj_polygons`:
+    tinyobjloader's triangulation of quads and polygons, and the first object or group only; an
+    OBJ file has no unit: 1.0), read without trimesh.
+
+    Raises ``MeshError`` as :func:`read_surface` does.
+    """
+    file, suffix = _readable(path)
+    if suffix == ".obj":
+        return _read_obj(file), 1.0
+    return _read_scene(file, suffix)
+
+
+def _read_obj(path: Path) -> NDArray[np.float64]:
+    """The triangles MuJoCo builds from an OBJ file (see :func:`read_triangles`)."""
+    from inertia_kit.physics.obj_polygons import obj_triangles
+
+    name = FORMATS[".obj"][1]
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_MESH_BYTES + 1)
+    except OSError as error:
+        raise MeshError(
+            path, "unreadable", f"cannot read the file ({error}); check its permissions"
+        ) from None
+    if len(data) > MAX_MESH_BYTES:  # grown since it was measured
+        _check_size(path, MAX_MESH_BYTES)
+        raise MeshError(path, "unreadable", "the mesh file grew while it was read")
+    try:
+        with np.errstate(all="ignore"):
+            vertices, faces = obj_triangles(data)
+    except (ValueError, OverflowError, MemoryError) as error:
+        text = str(error).strip().splitlines()[0][:200] if str(error).strip() else ""
+        detail = f"{type(error).__name__}: {text}".rstrip(": ")
+        raise MeshError(
+            path,
+            "unreadable",
+            f"cannot read the file as {name} ({detail}); re-export it, or convert it to STL",
+        ) from None
+    if not len(faces):
+        raise MeshError(
+            path, "empty", f"the {name} file holds no triangles; export the part's solid body"
+        )
+    triangles = vertices[faces]
+    if not np.isfinite(triangles).all():
+        raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
+    return triangles
 
 
 def _readable(path: str | Path) -> tuple[Path, str]:

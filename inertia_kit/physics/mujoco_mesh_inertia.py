@@ -125,10 +125,10 @@ def _file_mass_properties(
     path: str, _mtime: int, _size: int, mode: str, scale: tuple[float, ...]
 ) -> MassProperties | None:
     from inertia_kit.errors import MeshError
-    from inertia_kit.physics.mesh_formats import read_triangles
+    from inertia_kit.physics.mesh_formats import read_mujoco_triangles
 
     try:
-        triangles, unit = read_triangles(path)
+        triangles, unit = read_mujoco_triangles(path)
     except (MeshError, OSError, ValueError):
         return None
     return soup_mass_properties(triangles, mode, unit * np.asarray(scale))

@@ -447,11 +447,11 @@ class _Reader:
         if mesh.path is None:
             return unknown
         from inertia_kit.errors import MeshError
-        from inertia_kit.physics.mesh_formats import read_triangles
+        from inertia_kit.physics.mesh_formats import read_mujoco_triangles
         from inertia_kit.physics.mujoco_mesh_inertia import fitted_primitive, shared_vertices
 
         try:
-            triangles, unit = read_triangles(mesh.path)
+            triangles, unit = read_mujoco_triangles(mesh.path)
             vertices, faces = shared_vertices(triangles)
             with np.errstate(all="ignore"):
                 size, centre, axes = fitted_primitive(
