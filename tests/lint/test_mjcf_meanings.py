@@ -7,6 +7,8 @@ placeholder far off it is an error, saying what MuJoCo's balanceinertia has to d
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import trimesh
@@ -201,3 +203,14 @@ def test_a_static_bodys_unreadable_mesh_is_not_told(tmp_path):
         tmp_path, '<geom type="mesh" mesh="logo"/>', asset='<mesh file="logo.msh"/>', welded=True
     )
     assert findings(static, "IN034") == []
+
+
+ALOHA = Path("/work/ext/menagerie/aloha/aloha.xml")  # the snapshot with meshes (SOURCE.md)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not ALOHA.is_file(), reason="the Menagerie snapshot with meshes is absent")
+def test_contact_spheres_do_not_outvote_a_parts_mesh_on_its_unit():
+    # ALOHA's fingers: a 10 cm finger mesh in metres with three 0.6 mm contact spheres on its
+    # pad, which (three votes against size and density) called it inches before
+    assert findings(ALOHA, "IN031") == []

@@ -135,8 +135,10 @@ def _evidence(
                 lambda r: f"the link's longest joint offset is {fmt(offset, 3)} m",
             )
         )
-    for peer in peers:
-        other = _extent(peer)
+    # the link's other shapes are one witness of its size, the largest of them: three contact
+    # spheres of a fingertip (ALOHA's 0.6 mm pads) are not three votes for a 100 mm mesh in inches
+    sized = [(other, peer) for peer in peers if (other := _extent(peer)) > 0]
+    for other, peer in sorted(sized, key=lambda pair: pair[0])[-1:]:
         if other > 0:
             found.append(
                 Evidence(
