@@ -28,6 +28,7 @@ from inertia_kit.description.mjcf.defaults import MAIN, Defaults, local
 from inertia_kit.description.mjcf.includes import Assembled, assemble
 from inertia_kit.description.mjcf.orientation import FORMS, OrientationError, rotation
 from inertia_kit.description.mjcf.replicate import expand_replicates
+from inertia_kit.description.reads import key
 from inertia_kit.errors import InputError
 from inertia_kit.physics.frames import matrix_rpy, transform
 from inertia_kit.physics.numbers import usable
@@ -50,9 +51,15 @@ def load_mjcf(path: str | Path) -> model.Robot:
     return _Reader(Path(path)).robot()
 
 
+#: models attached inside attached models, deeper than any real model nests them
+MAX_ATTACH_DEPTH = 32
+
+
 class _Reader:
-    def __init__(self, path: Path):
+    def __init__(self, path: Path, attaching: tuple[str, ...] = ()):
         self.path = path
+        # the files of the models being attached around this one, outermost first
+        self.attaching = (*attaching, key(path))
         self.assembled: Assembled = assemble(path)
         self.root = self.assembled.root
         self.source_of = self.assembled.source_of
@@ -258,7 +265,15 @@ class _Reader:
                 source.line,
                 source.column,
             )
-        other = _Reader(file).robot()
+        if key(file) in self.attaching or len(self.attaching) >= MAX_ATTACH_DEPTH:
+            why = "attaches itself" if key(file) in self.attaching else "attaches models too deep"
+            raise InputError(
+                f"<attach model={element.get('model')!r}>: {file} {why}",
+                source.path,
+                source.line,
+                source.column,
+            )
+        other = _Reader(file, self.attaching).robot()
         if other.link(wanted) is None:
             raise InputError(
                 f"<attach>: no body {wanted!r} in {file}", source.path, source.line, source.column

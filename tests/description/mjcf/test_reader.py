@@ -318,3 +318,16 @@ def test_a_primitive_fitted_to_a_mesh_is_mujocos(tmp_path, kind, extra):
     assert ours.mass == pytest.approx(mass, rel=1e-9)
     np.testing.assert_allclose(ours.com, com, atol=1e-12)
     np.testing.assert_allclose(ours.principal_moments, moments, rtol=1e-9)
+
+
+def test_a_model_that_attaches_itself_is_refused_where_it_does(tmp_path):
+    # MuJoCo 4.0.0 itself crashes on it (a segmentation fault)
+    path = write(
+        tmp_path,
+        "m.xml",
+        '<mujoco><asset><model name="m" file="m.xml"/></asset><worldbody><body name="b">\n'
+        '<attach model="m" body="b" prefix="x"/></body></worldbody></mujoco>',
+    )
+    with pytest.raises(InputError, match="attaches itself") as raised:
+        load_mjcf(path)
+    assert raised.value.line == 2
