@@ -51,6 +51,8 @@ def load_mjcf(path: str | Path) -> model.Robot:
     return _Reader(Path(path)).robot()
 
 
+#: the shortest ``fromto`` MuJoCo accepts (``mjMINVAL``, mjCGeom::Compile)
+MIN_FROMTO = 1e-15
 #: models attached inside attached models, deeper than any real model nests them
 MAX_ATTACH_DEPTH = 32
 
@@ -401,9 +403,15 @@ class _Reader:
         if isinstance(fromto, tuple) and kind in _FROMTO_TYPES:
             start, end = np.array(fromto[:3]), np.array(fromto[3:])
             axis = start - end  # MuJoCo's z points from `to` to `from` (mjCGeom::Compile)
+            try:
+                if not np.linalg.norm(axis) > MIN_FROMTO:
+                    raise OrientationError("fromto points too close in geom: MuJoCo refuses it")
+                turn = rotation("zaxis", tuple(axis), degrees=False)
+            except OrientationError as error:
+                raise InputError(str(error), source.path, source.line, source.column) from None
             pose = frame.copy()
             pose[:3, 3] = frame[:3, :3] @ ((start + end) / 2) + frame[:3, 3]
-            pose[:3, :3] = frame[:3, :3] @ rotation("zaxis", tuple(axis), degrees=False)
+            pose[:3, :3] = frame[:3, :3] @ turn
             half_length = float(np.linalg.norm(axis)) / 2
         size = size if isinstance(size, tuple) else ()
         mesh_name = self.text(element, "mesh", classes)
@@ -547,7 +555,12 @@ class _Reader:
                 refquat, _ = self.value(element, "refquat", classes, 4)
                 turn = np.eye(3)
                 if isinstance(refquat, tuple):
-                    turn = rotation("quat", refquat, degrees=False)
+                    try:
+                        turn = rotation("quat", refquat, degrees=False)
+                    except OrientationError as error:
+                        raise InputError(
+                            f"<mesh refquat>: {error}", source.path, source.line, source.column
+                        ) from None
                 # MuJoCo reads a vertex v as scale ⊙ Rᵀ(v - refpos): the same as the file scaled
                 # by R·diag(scale)·Rᵀ, then turned by Rᵀ and moved, when that is a scale
                 turned = turn @ np.diag(written) @ turn.T

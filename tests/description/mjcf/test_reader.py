@@ -331,3 +331,29 @@ def test_a_model_that_attaches_itself_is_refused_where_it_does(tmp_path):
     with pytest.raises(InputError, match="attaches itself") as raised:
         load_mjcf(path)
     assert raised.value.line == 2
+
+
+def test_a_fromto_of_zero_length_is_refused_as_mujoco_refuses_it(tmp_path):
+    path = write(
+        tmp_path,
+        "m.xml",
+        '<mujoco><worldbody><body name="b"><joint/>\n'
+        '<geom type="capsule" fromto="1 2 3 1 2 3" size="0.1"/></body></worldbody></mujoco>',
+    )
+    with pytest.raises(ValueError, match="fromto points too close"):
+        mujoco.MjModel.from_xml_path(str(path))
+    with pytest.raises(InputError, match="fromto points too close") as raised:
+        load_mjcf(path)
+    assert raised.value.line == 2
+
+
+def test_a_mesh_refquat_of_zero_length_is_refused_at_the_mesh(tmp_path):
+    path = write(
+        tmp_path,
+        "m.xml",
+        '<mujoco><asset>\n<mesh file="b.stl" refquat="0 0 0 0"/></asset><worldbody>'
+        '<body name="b"><joint/><geom type="mesh" mesh="b"/></body></worldbody></mujoco>',
+    )
+    with pytest.raises(InputError, match="refquat.*zero length") as raised:
+        load_mjcf(path)
+    assert raised.value.line == 2
