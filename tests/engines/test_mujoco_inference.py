@@ -219,4 +219,5 @@ def test_settotalmass_scales_every_body_as_mujoco(tmp_path):
         mass, com, moments = body_mass_properties(mjmodel, index)
         ours = bodies[name].mass_properties
         assert ours.mass == pytest.approx(mass, rel=1e-12)
+        np.testing.assert_allclose(ours.com, com, atol=1e-15)
         np.testing.assert_allclose(ours.principal_moments, moments, rtol=1e-9)

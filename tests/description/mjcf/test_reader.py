@@ -354,6 +354,6 @@ def test_a_mesh_refquat_of_zero_length_is_refused_at_the_mesh(tmp_path):
         '<mujoco><asset>\n<mesh file="b.stl" refquat="0 0 0 0"/></asset><worldbody>'
         '<body name="b"><joint/><geom type="mesh" mesh="b"/></body></worldbody></mujoco>',
     )
-    with pytest.raises(InputError, match="refquat.*zero length") as raised:
+    with pytest.raises(InputError, match=r"refquat.*zero length") as raised:
         load_mjcf(path)
     assert raised.value.line == 2
