@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from inertia_kit.description.edits import ChangedWhileEditing
+from inertia_kit.description.edits import ChangedWhileEditing, Edit
 from inertia_kit.errors import InputError
 
 if TYPE_CHECKING:
@@ -259,3 +259,22 @@ class Files:
 def location(where: Source) -> str:
     """``path:line`` of an element, for messages."""
     return f"{where.path}:{where.line}" if where.line is not None else where.path
+
+
+#: the rest of a start tag's line when nothing but blanks follows it
+_LINE_REST = re.compile(r"[ \t]*(\r\n|\n|\r)")
+
+
+def insert_first_child(source: SourceText, span: Span, block: str) -> Edit:
+    """
+    The edit that writes ``block`` (lines already indented, joined by the file's newline) as
+    the first child of the element at ``span``: on the line after its start tag, or, when the
+    element's content follows the start tag on its line, on lines of its own.
+    """
+    from inertia_kit.description.xmlspan import line_indent
+
+    rest = _LINE_REST.match(source.text, span.start_tag_end)
+    if rest is not None:
+        return Edit(source.path, rest.end(), rest.end(), block + source.newline)
+    after = source.newline + block + source.newline + line_indent(source.text, span.start)
+    return Edit(source.path, span.start_tag_end, span.start_tag_end, after)

@@ -9,37 +9,34 @@ under ``inertiafromgeom="true"`` is not written (the compiler ignores it).
 
 from __future__ import annotations
 
-import re
 from collections import defaultdict
 from collections.abc import Sequence
 
 from inertia_kit.description import model
-from inertia_kit.description.editing import Files, key, location
+from inertia_kit.description.editing import Files, insert_first_child, key, location
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.mjcf.writer import inertial_element
 from inertia_kit.description.model import Source
 from inertia_kit.description.placement import Placement, Target
 from inertia_kit.description.xmlspan import children, indent_unit, line_indent
 
-_LINE_REST = re.compile(r"[ \t]*(\r\n|\n|\r)")
-
 
 def place(targets: Sequence[Target], robot: model.Robot, files: Files) -> dict[str, Placement]:
-    """The edits that write each target's values into the MJCF files (``links``: every body
-    of the model, to know which others an element makes too)."""
+    """The edits that write each target's values into the MJCF files (every body of
+    ``robot`` is seen, to know which others an element makes too)."""
+    inference = robot.inference
+    if inference is not None and inference.from_geometry == "always":
+        ignored = Placement(
+            problem='the compiler\'s inertiafromgeom="true" ignores every <inertial>: set it '
+            'to "auto" (or remove it) first'
+        )
+        return {target.name: ignored for target in targets}
     written = {t.name: _written(t) for t in targets}
     makers: dict[object, list[str]] = defaultdict(list)
     for link in robot.links:
         makers[key(_where(link))].append(link.name)
     placements = {}
     for target in targets:
-        inference = robot.inference
-        if inference is not None and inference.from_geometry == "always":
-            placements[target.name] = Placement(
-                problem='the compiler\'s inertiafromgeom="true" ignores every <inertial>: set '
-                'it to "auto" (or remove it) first'
-            )
-            continue
         where = _where(target.link)
         others = [n for n in makers[key(where)] if n != target.name]
         differing = [n for n in others if written.get(n) != written[target.name]]
@@ -51,7 +48,7 @@ def place(targets: Sequence[Target], robot: model.Robot, files: Files) -> dict[s
                 f"`{differing[0]}` would need other values: write each its own <inertial>"
             )
             continue
-        placements[target.name] = _place(target, written[target.name], files)
+        placements[target.name] = _place(target, where, written[target.name], files)
     return placements
 
 
@@ -70,17 +67,15 @@ def _written(target: Target) -> str:
     return inertial_element(target.properties, form)
 
 
-def _place(target: Target, element: str, files: Files) -> Placement:
-    inertial = target.link.inertial
-    tag = "inertial" if inertial is not None else "body"
-    where = _where(target.link)
-    found = files.span(where, tag)
+def _place(target: Target, where: Source, element: str, files: Files) -> Placement:
+    """Replace the body's ``<inertial>`` by ``element``, or write it as its first child."""
+    replace = target.link.inertial is not None
+    found = files.span(where, "inertial" if replace else "body")
     if isinstance(found, str):
         return Placement(problem=found)
     source, span = found
     text = source.text
-    offset = span.start
-    if inertial is not None:
+    if replace:
         if text[span.start : span.end] == element:
             return Placement()
         return Placement((Edit(source.path, span.start, span.end, element),))
@@ -90,20 +85,6 @@ def _place(target: Target, element: str, files: Files) -> Placement:
     indent = (
         line_indent(text, inner[0].start)
         if inner
-        else line_indent(text, offset) + indent_unit(text)
+        else line_indent(text, span.start) + indent_unit(text)
     )
-    rest = _LINE_REST.match(text, span.start_tag_end)
-    if rest is not None:
-        return Placement(
-            (Edit(source.path, rest.end(), rest.end(), indent + element + source.newline),)
-        )
-    return Placement(
-        (
-            Edit(
-                source.path,
-                span.start_tag_end,
-                span.start_tag_end,
-                source.newline + indent + element + source.newline + line_indent(text, span.start),
-            ),
-        )
-    )
+    return Placement((insert_first_child(source, span, indent + element),))

@@ -30,7 +30,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 from inertia_kit.description import model
-from inertia_kit.description.editing import Files, Key, key, location
+from inertia_kit.description.editing import Files, Key, insert_first_child, key, location
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.placement import Placement, Target
 from inertia_kit.description.urdf.placement.attributes import (
@@ -214,37 +214,20 @@ def _shared_words(where: Source, sharers: Sequence[str], what: str) -> str:
 
 
 def _insert(target: Target, files: Files) -> Placement:
-    from inertia_kit.description.xmlspan import element_span, line_indent
+    from inertia_kit.description.xmlspan import line_indent
 
     where = target.link.source
-    if not files.editable(where.path):
-        return Placement(
-            problem=f"its <link> is written in {location(where)}, {files.outside(where.path)}"
-        )
-    offset = files.offset(where, "link")
-    if offset is None:
-        return Placement(problem=f"its <link> was not found at {location(where)}")
-    source = files.source(where.path)
-    text = source.text
-    span = element_span(text, offset)
-    block = _block(target, source, line_indent(text, offset), inner=True)
-    newline = source.newline
+    found = files.span(where, "link")
+    if isinstance(found, str):
+        return Placement(problem=f"its {found}")
+    source, span = found
+    block = _block(target, source, line_indent(source.text, span.start), inner=True)
     block, problem = _guarded(block, files.element(where), files, source)
     if problem is not None:
         return Placement(problem=problem)
     if span.empty:  # <link name="x"/>: no geometry, never filled; defensive
         return Placement(problem=f"its <link> at {location(where)} is an empty element")
-    rest = re.compile(r"[ \t]*(\r\n|\n|\r)").match(text, span.start_tag_end)
-    if rest is not None:
-        edit = Edit(source.path, rest.end(), rest.end(), block + newline)
-    else:  # the link's content follows its start tag on the same line
-        edit = Edit(
-            source.path,
-            span.start_tag_end,
-            span.start_tag_end,
-            newline + block + newline + line_indent(text, span.start),
-        )
-    return Placement((edit,))
+    return Placement((insert_first_child(source, span, block),))
 
 
 def _conditional_inertials(link: etree._Element | None, files: Files) -> list[etree._Element]:
