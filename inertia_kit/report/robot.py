@@ -58,13 +58,12 @@ def _inferred(robot: model.Robot) -> dict[str, Any]:
     if robot.inference is None:
         return {}
     from inertia_kit.analysis.links import analyse
-    from inertia_kit.engines.mujoco_inference import compiled, infers
+    from inertia_kit.engines.mujoco_inference import compiled
 
     found = {}
     for name, body in compiled(analyse(robot)).items():
-        link = robot.link(name)
         values = body.mass_properties
-        if link is not None and infers(link, robot.inference) and values and values.mass > 0:
+        if body.inferred and values is not None and values.mass > 0:
             found[name] = values
     return found
 

@@ -332,7 +332,7 @@ def _inferred(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     properties from its geoms. Told (info) when the density it weighs them at is MuJoCo's
     default, which nobody chose; a refusal or a geom we cannot weigh is IN070's.
     """
-    from inertia_kit.engines.mujoco_inference import compiled, counted, infers
+    from inertia_kit.engines.mujoco_inference import compiled, counted
 
     inference = robot.robot.inference
     if inference is None or inference.from_geometry != "missing":
@@ -340,7 +340,7 @@ def _inferred(robot: RobotAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     bodies = compiled(robot)
     for link in robot.links:
         body = bodies.get(link.name)
-        if body is None or not infers(link.link, inference) or body.mass_properties is None:
+        if body is None or not body.inferred or body.mass_properties is None:
             continue
         shapes = [s for s in (*link.link.visuals, *link.link.collisions) if counted(s, inference)]
         weighed = [s for s in shapes if s.mass is None and s.density is None]
