@@ -161,6 +161,31 @@ def _size(bases: Sequence[Geometry]) -> float:
     return float((high - low).max())
 
 
+def _usable(bases: Sequence[Geometry]) -> list[Geometry]:
+    """The bases a point can be placed against: a solid and a hull."""
+    return [g for g in bases if g.unit is not None and g.hull is not None]
+
+
+def _readable(usable: Sequence[Geometry], com: NDArray[np.float64]) -> bool:
+    """Whether readings of ``com`` mean anything: geometry to read them against, a finite point,
+    and not the origin (a point left there is no slip to undo: every reading of it is the
+    origin, or a frame's origin; IN021 moves it to the centroid)."""
+    return bool(usable) and bool(np.isfinite(com).all()) and bool(com.any())
+
+
+def _scored(
+    com: NDArray[np.float64],
+    usable: Sequence[Geometry],
+    frames: Sequence[tuple[str, NDArray[np.float64]]],
+    size: float,
+) -> list[ComReading]:
+    """Every reading of ``com`` with where it lands (:func:`least_fraction`), unsorted."""
+    return [
+        ComReading(rank, words, kind, point, least_fraction(usable, point))
+        for rank, words, kind, point in readings(com, frames, size)
+    ]
+
+
 def diagnose_com(
     com: NDArray[np.float64],
     bases: Sequence[Geometry],
@@ -172,23 +197,15 @@ def diagnose_com(
     already within :data:`BAND`, or no reading that lands in the band a clear margin closer.
     A diagnosis without a ``reading`` is ambiguous (see the module docstring).
     """
-    usable = [g for g in bases if g.unit is not None and g.hull is not None]
+    usable = _usable(bases)
     com = np.asarray(com, dtype=np.float64)
-    # a point left at the origin is no slip to undo (every reading of it is the origin, or a
-    # frame's origin): IN021 moves it to the centroid
-    if not usable or not np.isfinite(com).all() or not com.any():
+    if not _readable(usable, com):
         return None
     declared = least_fraction(usable, com)
     if not declared > BAND:
         return None
     size = _size(usable)
-    scored = sorted(
-        (
-            ComReading(rank, words, kind, point, least_fraction(usable, point))
-            for rank, words, kind, point in readings(com, frames, size)
-        ),
-        key=lambda r: (r.fraction, r.rank),
-    )
+    scored = sorted(_scored(com, usable, frames, size), key=lambda r: (r.fraction, r.rank))
     fits = [r for r in scored if r.fraction <= BAND and _gain(declared, r.fraction) >= MARGIN]
     if not fits:
         return None
@@ -224,17 +241,11 @@ def inside_readings(link: LinkAnalysis) -> list[ComReading]:
     from inertia_kit.analysis.declared import declared_com
 
     com = declared_com(link.link)
-    usable = [g for g in link.bases if g.unit is not None and g.hull is not None]
-    if com is None or not usable or not np.isfinite(com).all() or not com.any():
+    usable = _usable(link.bases)
+    if com is None or not _readable(usable, com):
         return []
     size = _size(usable)
-    found = sorted(
-        (
-            ComReading(rank, words, kind, point, least_fraction(usable, point))
-            for rank, words, kind, point in readings(com, (), size)
-        ),
-        key=lambda r: (r.rank, r.fraction),
-    )
+    found = sorted(_scored(com, usable, (), size), key=lambda r: (r.rank, r.fraction))
     kept: list[ComReading] = []
     for reading in found:  # the simplest of readings that give one point (see SAME_POINT)
         if all(np.linalg.norm(reading.point - k.point) > SAME_POINT * size for k in kept):
