@@ -67,7 +67,7 @@ class _Reader:
         self.source_of = self.assembled.source_of
         self.defaults = Defaults(self.root, self.source_of)
         self.compiler: Compiler = read_compiler(self.root, self.source_of)
-        expand_replicates(self.root, self.assembled.sources, self.compiler)
+        expand_replicates(self.assembled, self.compiler)
         self.invalid: list[model.Invalid] = []
         self.links: list[model.Link] = []
         self.joints: list[model.Joint] = []
@@ -522,7 +522,7 @@ class _Reader:
         """Mesh assets by name: the model's mesh and the pose of its file's frame in the
         geom's (``refpos``/``refquat``: vertices are read relative to that frame)."""
         folder = self.compiler.mesh_folder(self.path.parent)
-        self.mesh_rule = (
+        found_by = (
             "meshdir"
             if self.compiler.meshdir is not None
             else "assetdir"
@@ -548,7 +548,7 @@ class _Reader:
                     candidate = candidate if candidate.is_absolute() else folder / name_file
                     path = str(candidate) if candidate.is_file() else None
                     problem = None if path else f"no such file: {candidate}"
-                    rule = "absolute path" if Path(name_file).is_absolute() else self.mesh_rule
+                    rule = "absolute path" if Path(name_file).is_absolute() else found_by
                     searched = () if path else (str(candidate),)
                 written = scale if isinstance(scale, tuple) else (1.0, 1.0, 1.0)
                 refpos, _ = self.value(element, "refpos", classes, 3)

@@ -15,9 +15,9 @@ import copy
 import numpy as np
 from lxml import etree
 
-from inertia_kit.description import model
 from inertia_kit.description.mjcf.compiler import Compiler
 from inertia_kit.description.mjcf.defaults import local
+from inertia_kit.description.mjcf.includes import Assembled
 from inertia_kit.description.mjcf.orientation import matrix_quat, rotation
 from inertia_kit.errors import InputError
 
@@ -25,23 +25,21 @@ from inertia_kit.errors import InputError
 MAX_COPIES = 100_000
 
 
-def expand_replicates(
-    root: etree._Element, sources: dict[etree._Element, model.Source], compiler: Compiler
-) -> None:
-    """Replace every ``<replicate>`` under ``root`` by its copies, innermost first."""
+def expand_replicates(assembled: Assembled, compiler: Compiler) -> None:
+    """Replace every ``<replicate>`` of the assembled tree by its copies, innermost first."""
     made = [0]
-    for element in [e for e in root.iter() if local(e) == "replicate"][::-1]:
-        _expand(element, sources, compiler, made)
+    for element in [e for e in assembled.root.iter() if local(e) == "replicate"][::-1]:
+        _expand(element, assembled, compiler, made)
 
 
-def _numbers(element, attribute: str, default: str, sources) -> list[float]:
+def _numbers(element, attribute: str, default: str, assembled: Assembled) -> list[float]:
     text = element.get(attribute, default)
     try:
         values = [float(v) for v in text.split()]
     except ValueError:
         values = []
     if len(values) != len(default.split()) or not np.isfinite(values).all():
-        source = sources.get(element) or model.Source("", element.sourceline)
+        source = assembled.source_of(element)
         raise InputError(
             f"<replicate {attribute}={text!r}>: not {len(default.split())} numbers",
             source.path,
@@ -51,8 +49,9 @@ def _numbers(element, attribute: str, default: str, sources) -> list[float]:
     return values
 
 
-def _expand(element, sources, compiler: Compiler, made: list[int]) -> None:
-    source = sources.get(element) or model.Source("", element.sourceline)
+def _expand(element, assembled: Assembled, compiler: Compiler, made: list[int]) -> None:
+    sources = assembled.sources
+    source = assembled.source_of(element)
     count_text = element.get("count", "")
     if not count_text.strip().isdigit() or int(count_text) < 1:
         raise InputError(
@@ -67,8 +66,8 @@ def _expand(element, sources, compiler: Compiler, made: list[int]) -> None:
         raise InputError(
             f"<replicate>s make more than {MAX_COPIES} elements", source.path, source.line
         )
-    offset = np.array(_numbers(element, "offset", "0 0 0", sources))
-    euler = np.array(_numbers(element, "euler", "0 0 0", sources))
+    offset = np.array(_numbers(element, "offset", "0 0 0", assembled))
+    euler = np.array(_numbers(element, "euler", "0 0 0", assembled))
     separator = element.get("sep", "")
     digits = len(str(count))
     parent = element.getparent()
@@ -80,12 +79,10 @@ def _expand(element, sources, compiler: Compiler, made: list[int]) -> None:
         turn = rotation(
             "euler", euler * index, degrees=compiler.degrees, eulerseq=compiler.eulerseq
         )
-        pose = np.eye(4)
-        pose[:3, :3], pose[:3, 3] = turn, position_i
-        position_i = position_i + turn @ offset
         frame = etree.Element("frame")
-        frame.set("pos", " ".join(repr(float(v)) for v in pose[:3, 3]))
-        frame.set("quat", " ".join(repr(float(v)) for v in matrix_quat(pose[:3, :3])))
+        frame.set("pos", " ".join(repr(float(v)) for v in position_i))
+        frame.set("quat", " ".join(repr(float(v)) for v in matrix_quat(turn)))
+        position_i = position_i + turn @ offset
         sources[frame] = source
         suffix = separator + str(index).zfill(digits)
         for child in element:
