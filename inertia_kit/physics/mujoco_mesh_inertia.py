@@ -110,28 +110,85 @@ def file_mass_properties(
     applied), ``None`` when they cannot be read; kept per file state, mode and scale, since
     every rule that weighs a mesh as MuJoCo does asks again.
     """
+    stamp = _file_stamp(path)
+    if stamp is None:
+        return None
+    return _file_mass_properties(path, *stamp, mode, _factors(scale))
+
+
+def file_fitted_primitive(
+    path: str, kind: str, mode: str, scale: ArrayLike = (1.0, 1.0, 1.0), fitscale: float = 1.0
+) -> tuple[tuple[float, ...], NDArray[np.float64], NDArray[np.float64]] | None:
+    """
+    :func:`fitted_primitive` of a mesh file's triangles (in metres: the file's unit applied),
+    ``None`` when they cannot be read or MuJoCo refuses the mesh; kept as
+    :func:`file_mass_properties` keeps its values.
+    """
+    stamp = _file_stamp(path)
+    if stamp is None:
+        return None
+    return _file_fitted_primitive(path, *stamp, kind, mode, _factors(scale), float(fitscale))
+
+
+def _file_stamp(path: str) -> tuple[int, int] | None:
+    """A file's modification time and size: what a cached value of it is kept under."""
     import os
 
     try:
         stat = os.stat(path)
     except OSError:
         return None
-    factors = tuple(float(f) for f in np.broadcast_to(np.asarray(scale, dtype=np.float64), 3))
-    return _file_mass_properties(path, stat.st_mtime_ns, stat.st_size, mode, factors)
+    return stat.st_mtime_ns, stat.st_size
+
+
+def _factors(scale: ArrayLike) -> tuple[float, ...]:
+    return tuple(float(f) for f in np.broadcast_to(np.asarray(scale, dtype=np.float64), 3))
+
+
+def _file_triangles(path: str) -> tuple[NDArray[np.float64], float] | None:
+    """The triangles MuJoCo builds from a mesh file and its unit, ``None`` when unreadable."""
+    from inertia_kit.errors import MeshError
+    from inertia_kit.physics.mesh_formats import read_mujoco_triangles
+
+    try:
+        return read_mujoco_triangles(path)
+    except (MeshError, OSError, ValueError):
+        return None
 
 
 @functools.lru_cache(maxsize=512)
 def _file_mass_properties(
     path: str, _mtime: int, _size: int, mode: str, scale: tuple[float, ...]
 ) -> MassProperties | None:
-    from inertia_kit.errors import MeshError
-    from inertia_kit.physics.mesh_formats import read_mujoco_triangles
-
-    try:
-        triangles, unit = read_mujoco_triangles(path)
-    except (MeshError, OSError, ValueError):
+    read = _file_triangles(path)
+    if read is None:
         return None
+    triangles, unit = read
     return soup_mass_properties(triangles, mode, unit * np.asarray(scale))
+
+
+@functools.lru_cache(maxsize=512)
+def _file_fitted_primitive(
+    path: str,
+    _mtime: int,
+    _size: int,
+    kind: str,
+    mode: str,
+    scale: tuple[float, ...],
+    fitscale: float,
+) -> tuple[tuple[float, ...], NDArray[np.float64], NDArray[np.float64]] | None:
+    read = _file_triangles(path)
+    if read is None:
+        return None
+    triangles, unit = read
+    vertices, faces = shared_vertices(triangles)
+    try:
+        with np.errstate(all="ignore"):
+            return fitted_primitive(
+                kind, vertices, faces, mode, scale=unit * np.asarray(scale), fitscale=fitscale
+            )
+    except ValueError:
+        return None
 
 
 def mesh_frame(

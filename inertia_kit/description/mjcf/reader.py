@@ -469,24 +469,14 @@ class _Reader:
         mesh, reference = asset
         if mesh.path is None:
             return unknown
-        from inertia_kit.errors import MeshError
-        from inertia_kit.physics.mesh_formats import read_mujoco_triangles
-        from inertia_kit.physics.mujoco_mesh_inertia import fitted_primitive, shared_vertices
+        from inertia_kit.physics.mujoco_mesh_inertia import file_fitted_primitive
 
-        try:
-            triangles, unit = read_mujoco_triangles(mesh.path)
-            vertices, faces = shared_vertices(triangles)
-            with np.errstate(all="ignore"):
-                size, centre, axes = fitted_primitive(
-                    kind,
-                    vertices,
-                    faces,
-                    mesh.inertia or "legacy",
-                    scale=unit * np.asarray(mesh.scale, dtype=np.float64),
-                    fitscale=fitscale,
-                )
-        except (MeshError, OSError, ValueError):
+        fitted = file_fitted_primitive(
+            mesh.path, kind, mesh.inertia or "legacy", mesh.scale, fitscale
+        )
+        if fitted is None:
             return unknown
+        size, centre, axes = fitted
         placement = np.eye(4)
         placement[:3, :3], placement[:3, 3] = axes, centre
         return self.primitive(kind, size, None, source), reference @ placement
