@@ -274,10 +274,8 @@ def _first_shape(
     faces = np.bincount(face_shape, minlength=shapes)
     others = np.bincount(shape[kinds == _PRIMITIVE], minlength=shapes)
     triangles = np.bincount(face_shape[sizes == 3], minlength=shapes)
-    quad = np.flatnonzero(sizes == 4)
-    corners = indices[starts[quad, None] + np.arange(4)]
-    valid = (corners < ended[face_shape[quad], None]).all(axis=1)
-    triangles += np.bincount(face_shape[quad[valid]], minlength=shapes)
+    quad, _ = _read_quads(sizes, starts, indices, lambda quads: ended[face_shape[quads], None])
+    triangles += np.bincount(face_shape[quad], minlength=shapes)
     polygons = np.bincount(face_shape[sizes > 4], minlength=shapes)
     for index, (kind, face_count, other_count, triangle_count, polygon_count) in enumerate(
         zip(
@@ -316,10 +314,7 @@ def _triangulate(
     parts.append(indices[starts[triangle, None] + np.arange(3)])
     owners.append(order[triangle])
 
-    quad = np.flatnonzero(sizes == 4)
-    corners = indices[starts[quad, None] + np.arange(4)]
-    valid = (corners < read).all(axis=1)
-    quad, corners = quad[valid], corners[valid]
+    quad, corners = _read_quads(sizes, starts, indices, lambda _: read)
     points = coordinates[corners]
     shorter = _squared(points[:, 2] - points[:, 0]) < _squared(points[:, 3] - points[:, 1])
     split = np.where(
@@ -338,6 +333,15 @@ def _triangulate(
 
     faces = np.concatenate(parts).astype(np.int64, copy=False)
     return faces[np.argsort(np.concatenate(owners), kind="stable")]
+
+
+def _read_quads(sizes, starts, indices, read) -> tuple[NDArray[np.intp], NDArray[np.int64]]:
+    """The quads whose corners had all been read when their shape ended (tinyobjloader drops
+    the others), and their corners; ``read(quads)``: the vertices read by then, per quad."""
+    quad = np.flatnonzero(sizes == 4)
+    corners = indices[starts[quad, None] + np.arange(4)]
+    valid = (corners < read(quad)).all(axis=1)
+    return quad[valid], corners[valid]
 
 
 def _squared(edges: NDArray[np.float32]) -> NDArray[np.float32]:
