@@ -38,11 +38,11 @@ def is_robot_file(path: str | Path) -> bool:
         return False
     if not _XML.search(name):
         return True
-    from inertia_kit.description.mjcf.detect import is_mjcf
+    from inertia_kit.description.loader import format_of
 
     try:
         with open(path, "rb") as file:
-            return is_mjcf(file.read(_HEAD))
+            return format_of(file.read(_HEAD)) == "mjcf"
     except OSError:
         return False
 
