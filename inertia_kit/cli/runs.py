@@ -29,6 +29,9 @@ if TYPE_CHECKING:
 MACHINE = ("json", "github", "sarif", "junit", "gitlab")
 #: formats printed file by file as the files are linted (json and sarif are one document)
 STREAMED = ("full", "concise", "github")
+#: formats that show where a fix would go or what it would write (its edits, or the reason it
+#: has no place to go): the others need only whether a finding has a fix, and of what safety
+PLACES_FIXES = ("full", "json", "sarif")
 
 
 def given_paths(paths: Sequence[str], stdin_filename: str | None) -> tuple[str, ...]:
@@ -185,6 +188,7 @@ class LintRun:
             "discovery": self.walk,
             "jobs": self.jobs,
             "follow_symlinks": self.follow_symlinks,
+            "place_fixes": self.output_format in PLACES_FIXES,
         }
 
 

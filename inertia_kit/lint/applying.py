@@ -35,7 +35,7 @@ MAX_PASSES = 10
 def applicable(finding: Finding, unsafe: bool) -> bool:
     """Whether ``--fix`` applies the finding's fix (unsafe ones only with ``--unsafe-fixes``)."""
     fix = finding.fix
-    if fix is None or not fix.edits:
+    if fix is None or (fix.placed and not fix.edits):
         return False
     return fix.safety is Safety.SAFE or (unsafe and fix.safety is Safety.UNSAFE)
 

@@ -88,10 +88,18 @@ class EditPlace:
 
 @dataclass(frozen=True)
 class Fix:
+    """
+    A finding's fix: its ``title``, the ``edits`` that make it, how far it may be trusted
+    (``safety``), and where each edit stands (``places``). ``placed`` false: the values and
+    safety are known but no edit was placed (a run that neither applies, shows nor writes
+    fixes out: ``[*]`` and "N fixable" need no more); ``--fix`` places them.
+    """
+
     title: str
     edits: tuple[Edit, ...]
     safety: Safety = Safety.UNSAFE
     places: tuple[EditPlace | None, ...] = ()  # one per edit, when known
+    placed: bool = True
 
     def to_json(self) -> dict[str, Any]:
         places = self.places or (None,) * len(self.edits)

@@ -58,7 +58,8 @@ class LinkFix:
     """
     What one link gets: its ``target`` values and the ``edits`` that write them (none: the
     files already say this), or the ``reason`` it gets none (with the ``block`` to paste when
-    the values are known but have no place to go).
+    the values are known but have no place to go). ``placed`` false: no edit was looked for
+    (:func:`plan_fixes` without ``files``).
     """
 
     link: str
@@ -68,6 +69,7 @@ class LinkFix:
     edits: tuple[Edit, ...] = ()
     reason: str | None = None
     block: str | None = None
+    placed: bool = True
 
     @property
     def fixed(self) -> bool:
@@ -86,7 +88,7 @@ def plan_fixes(
     analysis: RobotAnalysis,
     findings: Sequence[Finding],
     choice: MassChoice,
-    files: Files,
+    files: Files | None,
     *,
     repairs: Collection[Repairs] | None = None,
     asked: Collection[str] = (),
@@ -95,7 +97,9 @@ def plan_fixes(
     vouched: Collection[str] = (),
 ) -> RobotFixes:
     """
-    The fixes the ``findings`` of ``analysis`` ask for, placed in ``files``.
+    The fixes the ``findings`` of ``analysis`` ask for, placed in ``files`` (``None``: their
+    values, safety and refusals only, without looking for where the edits go, which costs more
+    than the rest together: for a run that does not apply, show or write out the edits).
 
     ``repairs``: only fixes repairing these (``None``: all); ``asked``: links fixed from the
     geometry although no finding asks (``inertia-fill --link``/``--mass``); ``recompute``:
@@ -176,7 +180,12 @@ def plan_fixes(
             continue
         shapes = tuple(solid.shape for solid in link.geometry.solids)
         targets.append(Target(link.link, values, basis, shapes))
-    _place(targets, analysis, files, chosen, result)
+    if files is not None:
+        _place(targets, analysis, files, chosen, result)
+    else:
+        for target in targets:
+            safety, title, _ = chosen[target.name]
+            result.links[target.name] = LinkFix(target.name, safety, title, target, placed=False)
     order = {link.name: index for index, link in enumerate(analysis.links)}
     result.links = dict(sorted(result.links.items(), key=lambda item: order.get(item[0], 0)))
     return result
@@ -272,7 +281,7 @@ def _block(target: Target, form: str) -> str:
     return inertial_text(target.properties, form)
 
 
-def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files) -> list[Finding]:
+def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files | None) -> list[Finding]:
     """``findings`` with the fix of their link (or why it has none) where they offer one."""
     result = []
     for finding in findings:
@@ -284,7 +293,11 @@ def attach(findings: Sequence[Finding], fixes: RobotFixes, files: Files) -> list
             if found.block:  # the values to paste, on the reason's one line
                 reason += "; its <inertial>: " + "".join(s.strip() for s in found.block.split("\n"))
             finding = dataclasses.replace(finding, unfixable=reason)
+        elif found is not None and not found.placed:
+            fix = Fix(found.title, (), found.safety, placed=False)
+            finding = dataclasses.replace(finding, fix=fix)
         elif found is not None and found.edits:
+            assert files is not None  # placed edits were placed in files
             places = tuple(_edit_place(edit, files) for edit in found.edits)
             fix = Fix(found.title, found.edits, found.safety, places)
             finding = dataclasses.replace(finding, fix=fix)

@@ -60,6 +60,7 @@ def linting(
     discovery: Any = None,
     jobs: int | None = 1,
     follow_symlinks: bool = False,
+    place_fixes: bool = True,
 ) -> Linting:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -88,6 +89,10 @@ def linting(
     says what the folder walk leaves out. A file to fix that is a symbolic link out of its
     repository is not written (an error for it), unless ``follow_symlinks``
     (:mod:`~inertia_kit.lint.repository_links`).
+
+    ``place_fixes`` false: the findings' fixes carry their values, safety and title but no
+    edits (``[*]`` and "N fixable" need no more; placing the edits is most of a small robot's
+    cost), unless ``fix`` or ``diff`` apply or show them.
 
     ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
     are several files); ``--fix`` always lints in this process (:func:`_workers` says why).
@@ -148,6 +153,7 @@ def linting(
                 # not `or`: Severity.INFO is 0
                 next(s for s in (fail_on, found.fail_on, DEFAULT_FAIL_ON) if s is not None),
                 follow_symlinks,
+                place_fixes,
             )
         )
     return Linting(tasks, chosen, _workers(tasks, jobs), on_error)
@@ -255,6 +261,7 @@ class _Task:
     diff: bool
     fail_on: Severity
     follow_symlinks: bool = False
+    place_fixes: bool = True
 
 
 def _lint_task(task: _Task) -> FileResult:
@@ -271,6 +278,7 @@ def _lint_task(task: _Task) -> FileResult:
             xacro_limits=task.xacro_limits,
             mass_choice=task.mass_choice,
             fixes="safe" if task.fixing and not task.unsafe else "all",
+            place_fixes=task.place_fixes or task.fixing or task.diff,
         )
         if target.changed:  # a given fragment: only what lands in it is fixed and told
             from inertia_kit.lint.fragments import located

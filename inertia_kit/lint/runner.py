@@ -238,13 +238,16 @@ def lint_file(
     xacro_limits: XacroLimits | None = None,
     mass_choice: MassChoice | None = None,
     fixes: str = "all",
+    place_fixes: bool = True,
 ) -> FileResult:
     """
     Lint one file; an unreadable one gives a result with ``error`` set, not an exception.
     Suppression comments (in the file and every xacro file it includes) and the selection's
     per-file ignores are applied. The findings that remain carry their fixes
     (:mod:`~inertia_kit.lint.fixing`; ``fixes``: ``all``, ``safe`` only, or ``none``), the
-    values from the geometry with ``mass_choice`` (default: 1000 kg/m³, declared masses kept).
+    values from the geometry with ``mass_choice`` (default: 1000 kg/m³, declared masses kept);
+    with their edits placed in the files, unless ``place_fixes`` is false (a run that neither
+    applies, shows nor writes out the edits: each fix's values, safety and title only).
     """
     from inertia_kit.description.loader import load
     from inertia_kit.lint import unused
@@ -281,7 +284,13 @@ def lint_file(
     reads = dict(robot.reads)
     uses = unused.track(robot.files or (str(path),), findings + replaced, ran, reads)
     kept += unused.report(uses, selection, path)
-    if fixes != "none" and any(f.wants is not None for f in kept):
+    if fixes != "none" and not place_fixes and any(f.wants is not None for f in kept):
+        from inertia_kit.lint.fixing import attach, plan_fixes
+
+        choice = mass_choice or MassChoice()
+        planned = plan_fixes(analysis, kept, choice, None, safe_only=fixes == "safe")
+        kept = attach(kept, planned, None)
+    elif fixes != "none" and any(f.wants is not None for f in kept):
         try:
             reload = functools.partial(
                 load,
