@@ -98,6 +98,30 @@ class Geometry:
             return None
         return Hull.union(hulls)  # type: ignore[arg-type]
 
+    def same_solids(self, other: Geometry) -> bool:
+        """
+        Whether ``other`` holds the very solids this does: the same mesh solids (one load,
+        visual and collision naming one file at one scale) placed alike. What a judgment
+        computes from one holds for the other; primitives are not compared (cheap to judge).
+        """
+        if len(self.solids) != len(other.solids) or not self.solids:
+            return False
+        return all(
+            a.mesh is not None
+            and a.mesh is b.mesh
+            and a.part is None
+            and b.part is None
+            and a.unit is not None
+            and b.unit is not None
+            and a.unit.mass == b.unit.mass
+            and np.array_equal(a.unit.com, b.unit.com)
+            and np.array_equal(a.unit.inertia, b.unit.inertia)
+            and a.corners is not None
+            and b.corners is not None
+            and np.array_equal(a.corners, b.corners)
+            for a, b in zip(self.solids, other.solids, strict=True)
+        )
+
     def at_mass(self, mass: float) -> MassProperties | None:
         """The geometry's mass properties for a total mass, at uniform density."""
         if self.unit is None or not self.unit.mass > 0 or not mass > 0:

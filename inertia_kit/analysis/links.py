@@ -122,7 +122,10 @@ class LinkAnalysis:
         can be at most. ``None`` without geometry, or when any shape yields no solid (a partial
         envelope would understate what is possible).
         """
-        hulls = [g.hull for g in (self.collision, self.visual) if g.solids]
+        kinds = [self.collision]
+        if not self.visual.same_solids(self.collision):
+            kinds.append(self.visual)  # the same solids twice make the same hull
+        hulls = [g.hull for g in kinds if g.solids]
         if self.skeletal or not hulls or any(h is None for h in hulls):
             return None
         return Hull.union(hulls)  # type: ignore[arg-type]

@@ -205,7 +205,8 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     if declared is None or not declared.mass > 0:
         return None
     found = []
-    for basis in link.bases:
+    bases = _distinct(link.bases)
+    for basis in bases:
         expected = basis.at_mass(declared.mass)
         if expected is None:
             return None
@@ -223,7 +224,7 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
     # visual one, when no basis contradicts it: two bases that name different slips leave it
     # unknown, and a basis that names none must at least come closer with the slip undone (a
     # crude collision box and a detailed visual mesh rarely both land within the band)
-    likely = [(basis, _cached(link, basis, "likely")) for basis in link.bases]
+    likely = [(basis, _cached(link, basis, "likely")) for basis in bases]
     named = {(d.code, type(d.slip)) for _, d in likely if d is not None}
     if len(named) != 1:
         return None
@@ -232,6 +233,16 @@ def _diagnose_link(link: LinkAnalysis) -> Diagnosis | None:
         if diagnosis is None and not _closer(declared, found, basis):
             return None
     return found
+
+
+def _distinct(bases: tuple[Geometry, ...]) -> list[Geometry]:
+    """The bases but one of two that hold the same solids (visual and collision naming one
+    mesh): its diagnosis would be the other's, which comes first and is the one kept."""
+    kept: list[Geometry] = []
+    for basis in bases:
+        if not any(basis.same_solids(other) for other in kept):
+            kept.append(basis)
+    return kept
 
 
 def _closer(declared: MassProperties, diagnosis: Diagnosis, basis: Geometry) -> bool:
