@@ -77,7 +77,10 @@ def main() -> None:
                 outputs.setdefault(f"{form}-{name}", set()).add(out)
     python = statistics.median(times["pass"])
     print(f"python -c pass: {python * 1e3:.1f} ms CPU (median of {runs})")
-    print(f"{'format':10} {'100 files':>10} {'1000 files':>11} {'per file':>9} {'ratio':>7}  same output")
+    print(
+        f"{'format':10} {'100 files':>10} {'1000 files':>11} {'per file':>9} {'ratio':>7}"
+        "  same output"
+    )
     for form in FORMATS:
         low = statistics.median(times[f"{form}-few"])
         high = statistics.median(times[f"{form}-all"])

@@ -33,6 +33,7 @@ COMMANDS = {
     "mass": "inertia_kit.cli.mass:mass_group",
     "report": "inertia_kit.cli.report:report_command",
     "rules": "inertia_kit.cli.rules:rules_command",
+    "scan": "inertia_kit.cli.scan:scan_command",
     "view": "inertia_kit.cli.view:view_command",
 }
 

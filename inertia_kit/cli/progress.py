@@ -1,5 +1,7 @@
 """
-A progress line on stderr while many files are linted: ``[=====     ] 12/40 robot.urdf``.
+A progress line on stderr while many files are linted: ``[=====     ] 12/40 robot.urdf``;
+with ``rate`` (``inertia-kit scan``), also how fast and how long is left:
+``[=====     ] 412/1000 61.2/s ETA 0:09 robot.urdf``.
 
 Shown only on a terminal, and only once the run has taken :data:`DELAY` seconds (a quick run
 prints nothing extra); redrawn in place with a carriage return, and erased before anything
@@ -24,19 +26,27 @@ WIDTH = 20  # characters of the bar itself
 class Progress:
     """The bar for one run; a no-op when ``enabled`` is false."""
 
-    def __init__(self, enabled: bool, stream: TextIO | None = None, delay: float = DELAY):
+    def __init__(
+        self,
+        enabled: bool,
+        stream: TextIO | None = None,
+        delay: float = DELAY,
+        rate: bool = False,
+    ):
         self.stream = stream or sys.stderr
         self.enabled = enabled
         self.delay = delay
+        self.rate = rate
         self.start = time.monotonic()
         self.shown = False
         self.last = ""
+        self.done_before = 0  # items done before this run (a resumed scan): not in the rate
 
     @classmethod
-    def for_terminal(cls, quiet: bool) -> Progress:
+    def for_terminal(cls, quiet: bool, rate: bool = False) -> Progress:
         """A bar on stderr when it is a terminal and the run is not ``-q``."""
         isatty = getattr(sys.stderr, "isatty", lambda: False)
-        return cls(not quiet and isatty())
+        return cls(not quiet and isatty(), rate=rate)
 
     def update(self, done: int, total: int, current: str | None) -> None:
         """Draw ``done`` of ``total`` files, working on ``current``, once past the delay."""
@@ -45,6 +55,10 @@ class Progress:
         columns = shutil.get_terminal_size((80, 24)).columns
         filled = WIDTH * done // max(total, 1)
         line = f"[{'=' * filled}{' ' * (WIDTH - filled)}] {done}/{total}"
+        if self.rate:
+            line += " " + rate_text(
+                done - self.done_before, time.monotonic() - self.start, total - done
+            )
         if current:
             line += f" {printable(current)}"  # a file name may hold a CR or an escape
         line = line[: max(columns - 1, 10)]
@@ -59,3 +73,20 @@ class Progress:
             self.stream.write("\r" + " " * len(self.last) + "\r")
             self.stream.flush()
             self.shown = False
+
+
+def rate_text(done: int, seconds: float, left: int) -> str:
+    """``61.2/s ETA 0:09``: items per second so far, and the time the ``left`` ones take at
+    that rate (``ETA -`` before any is done)."""
+    if done <= 0 or seconds <= 0:
+        return "0.0/s ETA -"
+    per_second = done / seconds
+    return f"{per_second:.1f}/s ETA {_clock(left / per_second)}"
+
+
+def _clock(seconds: float) -> str:
+    """``0:09``, ``12:30``, ``3:05:00``."""
+    whole = round(seconds)
+    hours, rest = divmod(whole, 3600)
+    minutes, secs = divmod(rest, 60)
+    return f"{hours}:{minutes:02d}:{secs:02d}" if hours else f"{minutes}:{secs:02d}"
