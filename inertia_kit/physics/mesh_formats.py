@@ -2,10 +2,11 @@
 Mesh files read into a triangle surface, in the file's own unit: which formats, and how.
 
 STL is read and integrated in one pass by :func:`.stl.read_stl`, without trimesh (the fast
-path); its triangles are read again, through trimesh, only when the surface is not closed. OBJ,
-DAE, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into one triangle
-soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the caller scales
-the integrals analytically. trimesh is imported only for a file that needs it.
+path); its triangles are read again, through trimesh, only when the surface is not closed.
+COLLADA is read by :mod:`.collada` (numpy and lxml: the triangles trimesh gives, without
+importing it). OBJ, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into
+one triangle soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the
+caller scales the integrals analytically. trimesh is imported only for a file that needs it.
 :func:`read_mujoco_triangles` reads OBJ without trimesh, into the triangles MuJoCo builds
 (:mod:`.obj_polygons`), the ones MuJoCo's mass properties are computed from.
 
@@ -91,7 +92,7 @@ def read_surface(
     """
     file, suffix = _readable(path)
     if suffix != ".stl":
-        triangles, unit_scale = _read_scene(file, suffix)
+        triangles, unit_scale = _read_triangles(file, suffix)
         return integrate(triangles), triangles, unit_scale
     try:
         integrator = read_stl(file)
@@ -113,6 +114,16 @@ def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
     Raises ``MeshError`` as :func:`read_surface` does.
     """
     file, suffix = _readable(path)
+    return _read_triangles(file, suffix)
+
+
+def _read_triangles(file: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
+    """A file's triangles: COLLADA by :mod:`.collada` (trimesh's reading, without trimesh),
+    the other formats trimesh reads through it."""
+    if suffix == ".dae":
+        from inertia_kit.physics.collada import read_collada
+
+        return read_collada(_read_bytes(file), file)
     return _read_scene(file, suffix)
 
 
@@ -136,16 +147,7 @@ def _read_obj(path: Path) -> NDArray[np.float64]:
     from inertia_kit.physics.obj_polygons import obj_triangles
 
     name = FORMATS[".obj"][1]
-    try:
-        with open(path, "rb") as stream:
-            data = stream.read(MAX_MESH_BYTES + 1)
-    except OSError as error:
-        raise MeshError(
-            path, "unreadable", f"cannot read the file ({error}); check its permissions"
-        ) from None
-    if len(data) > MAX_MESH_BYTES:  # grown since it was measured
-        _check_size(path, MAX_MESH_BYTES)
-        raise MeshError(path, "unreadable", "the mesh file grew while it was read")
+    data = _read_bytes(path)
     try:
         with np.errstate(all="ignore"):
             vertices, faces = obj_triangles(data)
@@ -165,6 +167,22 @@ def _read_obj(path: Path) -> NDArray[np.float64]:
     if not np.isfinite(triangles).all():
         raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
     return triangles
+
+
+def _read_bytes(path: Path) -> bytes:
+    """A mesh file's bytes, at most :data:`MAX_MESH_BYTES` (``MeshError`` beyond, or when it
+    cannot be read)."""
+    _check_size(path, MAX_MESH_BYTES)
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_MESH_BYTES + 1)
+    except OSError as error:
+        raise MeshError(
+            path, "unreadable", f"cannot read the file ({error}); check its permissions"
+        ) from None
+    if len(data) > MAX_MESH_BYTES:  # grown since it was measured
+        raise MeshError(path, "unreadable", "the mesh file grew while it was read")
+    return data
 
 
 def _readable(path: str | Path) -> tuple[Path, str]:

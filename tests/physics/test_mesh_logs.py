@@ -1,8 +1,9 @@
 """
 trimesh's and pycollada's logs while we read a mesh: kept from a library user's handlers and the
 terminal, passed on to our own logger at DEBUG, one line without traceback; no global logging
-setting changes, and other threads keep theirs. The real `inertia-lint` is checked in
-tests/cli/test_cli_lint_logs.py.
+setting changes, and other threads keep theirs. COLLADA itself is read without them now
+(physics.collada); their reading of it (``_read_scene``, the path PLY, GLB and glTF take) is
+what logs here. The real `inertia-lint` is checked in tests/cli/test_cli_lint_logs.py.
 """
 
 from __future__ import annotations
@@ -14,7 +15,8 @@ from pathlib import Path
 import pytest
 from kit.meshes import box_triangles, write_textured_collada
 
-from inertia_kit.physics.mesh_formats import library_logs_quiet, read_surface
+from inertia_kit.physics.mesh_formats import _read_scene, library_logs_quiet, read_surface
+from inertia_kit.physics.polyhedra import integrate
 
 SIZE = (0.1, 0.2, 0.3)  # 0.006 m³: 6 kg at the default 1000 kg/m³
 
@@ -41,10 +43,11 @@ def test_library_records_reach_our_debug_log_only(tmp_path: Path, caplog):
 
     before = logging_state()
     with caplog.at_level(logging.DEBUG):
-        integrator, _, unit = read_surface(path)
+        triangles, unit = _read_scene(path, ".dae")
 
     assert unit == 1.0
-    assert integrator.moments.volume == pytest.approx(0.006, rel=1e-6)  # float32 in the file
+    volume = integrate(triangles).moments.volume
+    assert volume == pytest.approx(0.006, rel=1e-6)  # float32 in the file
     assert [r for r in caplog.records if r.name.split(".")[0] in ("trimesh", "collada")] == []
     ours = [r for r in caplog.records if r.name == "inertia_kit.physics.mesh_formats"]
     assert any("unable to load bumpmap (FileNotFoundError: skin.png)" in r.message for r in ours)
@@ -56,6 +59,15 @@ def test_library_records_reach_our_debug_log_only(tmp_path: Path, caplog):
     with caplog.at_level(logging.WARNING):
         logging.getLogger("trimesh.util").warning("a user's own trimesh call")
     assert [r.message for r in caplog.records] == ["a user's own trimesh call"]
+
+
+def test_our_collada_reader_logs_nothing(tmp_path: Path, caplog):
+    """The same textured part read as the linter reads it: no library, nothing logged."""
+    path = textured_part(tmp_path, image=False)
+    with caplog.at_level(logging.DEBUG):
+        integrator, _, unit = read_surface(path)
+    assert (unit, integrator.moments.volume) == (1.0, pytest.approx(0.006, rel=1e-6))
+    assert caplog.records == []
 
 
 def test_other_threads_keep_their_library_logs(tmp_path: Path, caplog):
