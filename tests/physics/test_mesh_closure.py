@@ -218,3 +218,69 @@ def test_inertia_kit_mass_reports_the_welded_solid(tmp_path):
     assert result.exit_code == 0, result.output
     assert "triangles, exact" in result.output
     assert f"(volume {volume:.6g} m³" in result.output
+
+
+def _cube_faces() -> np.ndarray:
+    from kit.meshes import box_triangles
+
+    triangles = box_triangles((1.0, 2.0, 3.0))
+    points, faces = np.unique(triangles.reshape(-1, 3), axis=0, return_inverse=True)
+    return points, faces.reshape(-1, 3)
+
+
+@pytest.mark.parametrize(
+    "change",
+    ["none", "flip one", "drop one", "duplicate one", "flip all", "empty", "doubled surface"],
+)
+def test_closure_is_trimeshs_judgment(change):
+    """closure() answers as trimesh's is_watertight and is_winding_consistent, without it."""
+    import trimesh
+
+    from inertia_kit.physics.mesh_closure import closure
+
+    points, faces = _cube_faces()
+    if change == "flip one":
+        faces[3] = faces[3][::-1]
+    elif change == "drop one":
+        faces = faces[1:]
+    elif change == "duplicate one":
+        faces = np.vstack((faces, faces[:1]))
+    elif change == "flip all":
+        faces = faces[:, ::-1]
+    elif change == "empty":
+        faces = faces[:0]
+    elif change == "doubled surface":
+        faces = np.vstack((faces, faces[:, ::-1]))
+    mesh = trimesh.Trimesh(vertices=points, faces=faces, process=False)
+    assert closure(faces) == (mesh.is_watertight, mesh.is_winding_consistent)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.permutations(range(5)).map(lambda p: p[:3]), min_size=1, max_size=12))
+def test_closure_is_trimeshs_judgment_on_any_faces(faces):
+    """Faces over five corners in any number and winding: the same two answers as trimesh."""
+    from inertia_kit.physics.mesh_closure import closure
+
+    faces = np.array(faces, dtype=np.int64)
+    points = np.random.default_rng(0).normal(size=(5, 3))
+    mesh = trimesh.Trimesh(vertices=points, faces=faces, process=False)
+    assert closure(faces) == (mesh.is_watertight, mesh.is_winding_consistent)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.lists(
+        st.tuples(*(st.integers(0, 10**8) for _ in range(3))) | st.just((7, 7, 7)),
+        min_size=1,
+        max_size=40,
+    )
+)
+def test_cell_ids_group_the_rows_as_numpy_unique_does(rows):
+    from inertia_kit.physics.mesh_closure import _cell_ids
+
+    cells = np.array(rows, dtype=np.int64)
+    ours = _cell_ids(cells)
+    numpys = np.unique(cells, axis=0, return_inverse=True)[1].reshape(-1)
+    # the same partition of the rows: each of our ids is one of numpy's, and back
+    assert len(set(zip(ours.tolist(), numpys.tolist(), strict=True))) == len(set(ours.tolist()))
+    assert len(set(ours.tolist())) == len(set(numpys.tolist()))
