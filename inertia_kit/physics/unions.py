@@ -6,6 +6,11 @@ twice. :func:`union` counts it once:
 
 ``union = Σ exact_i - (Σ tessellated_i - tessellated_union)``
 
+One overlap has a closed form and is taken exactly, before any tessellation: a cylinder with a
+sphere of its radius centred on each end cap is a capsule (robot descriptions build capsules
+so, URDF having none: franka_ros' self-collision links), and the three parts are counted as
+that capsule.
+
 The bracket is the volume integral of the overlaps, computed on tessellations with manifold3d.
 Each tessellation is built volume-preserving, so its error averages out over every facet, and
 outside the overlaps the tessellated terms cancel exactly: the result is exact wherever parts
@@ -231,8 +236,8 @@ class UnionResult:
     overlap_volume : float
       ``parts_volume - volume``: what a plain sum counts twice (or more), m³.
     exact : bool
-      True when no parts overlap (or there is one): the value is the exact sum, free of
-      tessellation error.
+      True when no parts overlap (or there is one), or only as a capsule's cylinder and end
+      spheres do: the value is exact, free of tessellation error.
     """
 
     mass_properties: MassProperties
@@ -288,18 +293,63 @@ def union(
         raise ValueError("give exactly one of density (kg/m³) or mass (kg)")
     segments = _segments(segments)
 
-    summed = sum(part.unit.transformed(part.pose) for part in parts)
     parts_volume = float(sum(part.volume for part in parts))
-    unit, overlap = summed, 0.0
+    parts = capsules(parts)
+    summed = sum(part.unit.transformed(part.pose) for part in parts)
+    unit, overlap = summed, parts_volume - float(sum(part.volume for part in parts))
     # parts whose boxes meet no other box add the same tessellation to both sides: skip them
+    exact = True
     group = overlapping([part.bounds for part in parts])
     if group:
         corrected = _overlap_corrected(summed, [parts[i] for i in group], segments)
         if corrected is not None:
-            unit, overlap = corrected
+            unit, tessellated = corrected
+            overlap += tessellated
+            exact = False
     volume = parts_volume if overlap == 0.0 else unit.mass
     properties = unit.with_mass(body_mass(volume, density, mass))
-    return UnionResult(properties, volume, parts_volume, overlap, exact=overlap == 0.0)
+    return UnionResult(properties, volume, parts_volume, overlap, exact=exact)
+
+
+#: how near a sphere must be to a cylinder's end cap's centre, and its radius to the
+#: cylinder's, relative to the cylinder's size, to make a capsule with it: rounding, not design
+CAPSULE_RTOL = 1e-9
+
+
+def capsules(parts: tuple[Part, ...]) -> tuple[Part, ...]:
+    """
+    ``parts`` with every cylinder that has a sphere of its radius centred on each end cap
+    replaced, with those two spheres, by the capsule they make (its exact mass properties, in
+    the cylinder's frame); the other parts as they are, in order.
+    """
+    spheres = [i for i, part in enumerate(parts) if part.kind == "sphere"]
+    if len(spheres) < 2:
+        return parts
+    used: set[int] = set()
+    replaced: dict[int, Part] = {}
+    for index, part in enumerate(parts):
+        if part.kind != "cylinder":
+            continue
+        radius, length = part.dimensions
+        tolerance = CAPSULE_RTOL * (radius + length)
+        inverse = np.linalg.inv(part.pose)
+        ends = []
+        for end in (0.5 * length, -0.5 * length):
+            for i in spheres:
+                if i in used or i in ends:
+                    continue
+                centre = inverse[:3, :3] @ parts[i].pose[:3, 3] + inverse[:3, 3]
+                if abs(parts[i].dimensions[0] - radius) <= tolerance and np.all(
+                    np.abs(centre - (0.0, 0.0, end)) <= tolerance
+                ):
+                    ends.append(i)
+                    break
+        if len(ends) == 2:
+            used.update(ends)
+            replaced[index] = Part.capsule(radius, length, part.pose)
+    if not replaced:
+        return parts
+    return tuple(replaced.get(i, part) for i, part in enumerate(parts) if i not in used)
 
 
 # --- the overlap correction -------------------------------------------------------------

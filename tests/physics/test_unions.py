@@ -15,7 +15,7 @@ from inertia_kit.physics import primitives
 from inertia_kit.physics.frames import transform
 from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.polyhedra import integrate
-from inertia_kit.physics.unions import Part, union
+from inertia_kit.physics.unions import Part, capsules, union
 
 
 def errors(actual: MassProperties, expected: MassProperties) -> tuple[float, float, float]:
@@ -367,3 +367,53 @@ def test_union_takes_parts_only():
 def test_import_does_not_load_manifold3d():
     code = "import sys, inertia_kit.physics.unions; assert 'manifold3d' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def _capsule_parts(radius, length, pose, off=0.0):
+    """A cylinder and a sphere of its radius on each end cap (the second moved by ``off``)."""
+    axis = pose[:3, 2]
+    centre = pose[:3, 3]
+    end = [np.eye(4), np.eye(4)]
+    end[0][:3, 3] = centre + 0.5 * length * axis
+    end[1][:3, 3] = centre - (0.5 * length + off) * axis
+    return [
+        Part.sphere(radius, end[0]),
+        Part.cylinder(radius, length, pose),
+        Part.sphere(radius, end[1]),
+    ]
+
+
+def test_a_cylinder_with_a_sphere_on_each_end_is_a_capsule_exactly(monkeypatch):
+    import inertia_kit.physics.unions as unions
+
+    pose = transform((0.1, -0.2, 0.3), (0.4, -0.7, 1.1))
+    monkeypatch.setattr(unions, "_overlap_corrected", lambda *a: pytest.fail("tessellated"))
+    result = union(_capsule_parts(0.06, 0.11, pose), density=1000.0)
+    expected = primitives.capsule(0.06, 0.11, density=1000.0).transformed(pose)
+    assert result.exact
+    assert result.mass_properties.mass == pytest.approx(expected.mass, rel=1e-14)
+    np.testing.assert_allclose(result.mass_properties.com, expected.com, rtol=1e-13)
+    np.testing.assert_allclose(result.mass_properties.inertia, expected.inertia, rtol=1e-12)
+    # what a plain sum counts twice: a hemisphere inside each end of the cylinder
+    assert result.overlap_volume == pytest.approx(4 / 3 * math.pi * 0.06**3, rel=1e-12)
+
+
+def test_a_sphere_off_the_end_cap_is_no_capsule_and_is_united_by_tessellation():
+    pose = transform((0.0, 0.0, 0.0), (0.0, 0.5, 0.0))
+    parts = _capsule_parts(0.05, 0.2, pose, off=0.01)
+    assert [p.kind for p in capsules(tuple(parts))] == ["sphere", "cylinder", "sphere"]
+    result = union(parts, density=1.0)
+    assert not result.exact
+    exact = primitives.capsule(0.05, 0.2, density=1.0).mass
+    assert exact < result.mass_properties.mass < exact + 4 / 3 * math.pi * 0.05**3
+
+
+def test_a_capsule_among_other_parts_still_unites_with_them():
+    pose = np.eye(4)
+    box = Part.box((0.3, 0.3, 0.05), transform((0.0, 0.0, 0.15), (0, 0, 0)))
+    parts = (box, *_capsule_parts(0.05, 0.2, pose))
+    assert [p.kind for p in capsules(parts)] == ["box", "capsule"]
+    result = union(parts, density=1.0)
+    assert not result.exact  # the box meets the capsule's upper end
+    alone = primitives.capsule(0.05, 0.2, density=1.0).mass + 0.3 * 0.3 * 0.05
+    assert result.mass_properties.mass < alone
