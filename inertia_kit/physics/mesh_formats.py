@@ -3,10 +3,11 @@ Mesh files read into a triangle surface, in the file's own unit: which formats, 
 
 STL is read and integrated in one pass by :func:`.stl.read_stl`, without trimesh (the fast
 path); its triangles are read again, through trimesh, only when the surface is not closed.
-COLLADA is read by :mod:`.collada` (numpy and lxml: the triangles trimesh gives, without
-importing it). OBJ, PLY, GLB and glTF go through trimesh, whose scene graph is flattened into
-one triangle soup. The file's own unit (COLLADA ``<unit meter>``) is returned, not applied: the
-caller scales the integrals analytically. trimesh is imported only for a file that needs it.
+COLLADA and OBJ are read by :mod:`.collada` and :mod:`.obj_soup` (numpy and lxml: the
+triangles trimesh gives, without importing it). PLY, GLB and glTF go through trimesh, whose
+scene graph is flattened into one triangle soup. The file's own unit (COLLADA ``<unit meter>``)
+is returned, not applied: the caller scales the integrals analytically. trimesh is imported only
+for a file that needs it.
 :func:`read_mujoco_triangles` reads OBJ without trimesh, into the triangles MuJoCo builds
 (:mod:`.obj_polygons`), the ones MuJoCo's mass properties are computed from.
 
@@ -118,12 +119,14 @@ def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:
 
 
 def _read_triangles(file: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
-    """A file's triangles: COLLADA by :mod:`.collada` (trimesh's reading, without trimesh),
-    the other formats trimesh reads through it."""
+    """A file's triangles: COLLADA and OBJ as trimesh reads them, without it (:mod:`.collada`,
+    :mod:`.obj_soup`); the other formats through trimesh."""
     if suffix == ".dae":
         from inertia_kit.physics.collada import read_collada
 
         return read_collada(_read_bytes(file), file)
+    if suffix == ".obj":
+        return _read_obj(file, as_mujoco=False), 1.0
     return _read_scene(file, suffix)
 
 
@@ -142,15 +145,25 @@ def read_mujoco_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]
     return _read_scene(file, suffix)
 
 
-def _read_obj(path: Path) -> NDArray[np.float64]:
-    """The triangles MuJoCo builds from an OBJ file (see :func:`read_triangles`)."""
-    from inertia_kit.physics.obj_polygons import obj_triangles
-
+def _read_obj(path: Path, as_mujoco: bool = True) -> NDArray[np.float64]:
+    """
+    The triangles of an OBJ file: those MuJoCo builds (:mod:`.obj_polygons`, see
+    :func:`read_mujoco_triangles`), or, not ``as_mujoco``, those trimesh gives
+    (:mod:`.obj_soup`: every object, its faces fanned), read without trimesh.
+    """
     name = FORMATS[".obj"][1]
     data = _read_bytes(path)
     try:
         with np.errstate(all="ignore"):
-            vertices, faces = obj_triangles(data)
+            if as_mujoco:
+                from inertia_kit.physics.obj_polygons import obj_triangles
+
+                vertices, faces = obj_triangles(data)
+                triangles = vertices[faces]
+            else:
+                from inertia_kit.physics.obj_soup import obj_soup
+
+                triangles = obj_soup(data)
     except (ValueError, OverflowError, MemoryError) as error:
         text = str(error).strip().splitlines()[0][:200] if str(error).strip() else ""
         detail = f"{type(error).__name__}: {text}".rstrip(": ")
@@ -159,11 +172,10 @@ def _read_obj(path: Path) -> NDArray[np.float64]:
             "unreadable",
             f"cannot read the file as {name} ({detail}); re-export it, or convert it to STL",
         ) from None
-    if not len(faces):
+    if not len(triangles):
         raise MeshError(
             path, "empty", f"the {name} file holds no triangles; export the part's solid body"
         )
-    triangles = vertices[faces]
     if not np.isfinite(triangles).all():
         raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
     return triangles

@@ -142,7 +142,7 @@ def _vertices(lines: list[bytes]) -> NDArray[np.float64]:
     numbers = np.fromiter(map(len, map(bytes.split, lines)), np.intp, len(lines)) - 1
     if len(lines) and numbers.min() < 3:
         line = lines[int(np.argmin(numbers))]
-        raise ValueError(f"a `v` line has fewer than 3 coordinates: {_quoted(line)}")
+        raise ValueError(f"a `v` line has fewer than 3 coordinates: {quoted_line(line)}")
     try:
         if np.all(numbers == 3):
             tokens = b" ".join(line[2:] for line in lines).split()
@@ -162,7 +162,7 @@ def _face_indices(lines: list[bytes]) -> tuple[NDArray[np.intp], NDArray[np.int6
         if extra:  # tinyobjloader reads what follows the triple as an index, and fails
             start = max(body.rfind(b" ", 0, extra.start()), body.rfind(b"\t", 0, extra.start()))
             token = body[start + 1 :].split(maxsplit=1)[0]
-            raise ValueError(f"an `f` line's index has more than two `/`: {_quoted(token)}")
+            raise ValueError(f"an `f` line's index has more than two `/`: {quoted_line(token)}")
         tokens = [token.partition(b"/")[0] for token in tokens]
     try:
         indices = np.array(tokens, dtype=np.int64)
@@ -206,7 +206,7 @@ def _check_other_indices(lines: list[bytes], kinds: NDArray[np.int8], faces: lis
         body = line[2:].lstrip(b" \t") if kinds[k] == _FACE else line[2:]
         counts = (int(vertices[k]), int(read[b"vt"][k]), int(read[b"vn"][k]))
         if _refused(body, counts):
-            raise ValueError(f"tinyobjloader cannot resolve an index of {_quoted(line)}")
+            raise ValueError(f"tinyobjloader cannot resolve an index of {quoted_line(line)}")
 
 
 def _refused(body: bytes, counts: tuple[int, int, int]) -> bool:
@@ -254,7 +254,7 @@ def _resolve(
         token = int(np.argmax(bad))
         line = lines[int(np.searchsorted(np.cumsum(sizes), token, side="right"))]
         what = "vertex 0" if indices[token] == 0 else "a vertex before the first (relative index)"
-        raise ValueError(f"an `f` line names {what}: {_quoted(line)}")
+        raise ValueError(f"an `f` line names {what}: {quoted_line(line)}")
     return resolved
 
 
@@ -525,7 +525,7 @@ def _inside(
     return inside
 
 
-def _quoted(line: bytes) -> str:
+def quoted_line(line: bytes) -> str:
     """A line for a message: decoded, at most 80 characters."""
     text = line.decode("utf-8", "replace")
     return f"`{text[:80]}{'…' if len(text) > 80 else ''}`"
