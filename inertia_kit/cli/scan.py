@@ -61,7 +61,23 @@ from inertia_kit.cli.printing import say
     metavar="MB",
     help="Memory an asset may allocate; past it the asset is recorded `memory` (0: none).",
 )
-@jobs_option("Worker processes [default: the usable cores].")
+@jobs_option("Worker processes [default: the usable cores]; with --dask local: Dask workers.")
+@click.option(
+    "--dask",
+    metavar="ADDRESS",
+    default=None,
+    help="Lint on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:8786), or on a "
+    "local one of -j workers (`local`); the record is written here. Needs the dask extra.",
+)
+@click.option(
+    "--mesh-cache",
+    type=click.Path(file_okay=False),
+    default=None,
+    metavar="DIR",
+    help="The cache folder the workers use (with --dask: one every worker sees) "
+    "[default: each worker's own].",
+)
+@click.option("--no-mesh-cache", is_flag=True, help="The workers use no cache.")
 @click.option(
     "--summary",
     "summary_file",
@@ -115,7 +131,7 @@ def scan_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
     into a JSON Lines record: one line per asset, written as soon as it is done, with its
     status, findings, declared mass properties, times, peak memory and sha256 hashes.
     Re-running with the same -o resumes. Each asset runs in a worker process under --timeout
-    and --max-memory. A summary follows on stderr.
+    and --max-memory, locally or on a Dask cluster (--dask). A summary follows on stderr.
 
     \b
     Exit codes: 0 no finding at or above --fail-on; 1 findings (or assets not linted); 2
@@ -124,6 +140,7 @@ def scan_command(ctx: click.Context, paths: tuple[str, ...], **options: Any) -> 
     Examples:
       inertia-kit scan -o scan.jsonl assets/
       inertia-kit scan --list assets.txt -o scan.jsonl -j 8 --timeout 30 --keep keep.txt
+      inertia-kit scan --dask tcp://scheduler:8786 -o scan.jsonl /shared/assets
     """
     ctx.exit(scan(paths, options))
 
@@ -138,6 +155,14 @@ def scan(paths: tuple[str, ...], options: dict[str, Any]) -> int:
     from inertia_kit.lint.scan import scanning, walked
     from inertia_kit.lint.scan_record import lines
 
+    if options["dask"] is not None:
+        from inertia_kit.lint import scan_dask  # only now: a local scan imports no Dask
+
+        try:
+            scan_dask.require()
+        except InputError as error:
+            say(f"error: {error}")
+            return 2
     scan_options, walk = _scan_options(options)
     written = (options["output"], options["keep_file"], options["summary_file"])
     problem = _links_on_the_way([path for path in written if path is not None])
@@ -195,6 +220,8 @@ def _scan_options(options: dict[str, Any]) -> tuple[Any, Any]:
     from inertia_kit.lint.scan import ScanOptions
     from inertia_kit.lint.scan_pool import Limits
 
+    if options["mesh_cache"] is not None and options["no_mesh_cache"]:
+        raise UsageError("--mesh-cache and --no-mesh-cache: give one")
     try:
         finder = ConfigFinder(options["config_path"])
     except ConfigError as error:
@@ -209,6 +236,9 @@ def _scan_options(options: dict[str, Any]) -> tuple[Any, Any]:
         xacro_limits=parse_xacro_limits(options["xacro_limits"]),
         limits=Limits(options["timeout"], options["max_memory"]),
         jobs=options["jobs"] or parallel.usable_cores(),
+        dask=options["dask"],
+        mesh_cache=options["mesh_cache"],
+        no_mesh_cache=options["no_mesh_cache"],
     )
     return scan_options, discovery(options, finder)
 

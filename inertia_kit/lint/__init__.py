@@ -9,6 +9,6 @@ lint: rules over the analysed robot, and findings out.
 refuses to write a robot file that links out of its repository; ``merge`` joins the results of
 several files; ``scan`` (``scan_pool``, ``scan_record``, ``scan_summary``) lints an asset
 library one asset at a time under limits, into a resumable JSON Lines record (``inertia-kit
-scan``);
+scan``), ``scan_dask`` on a Dask cluster (``--dask``);
 ``output/`` prints them, one module per format; ``documents`` finds each rule's document.
 """

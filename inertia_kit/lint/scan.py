@@ -13,9 +13,10 @@ holds robots, and that search reads the whole repository).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -91,7 +92,10 @@ class ScanOptions:
     """
     How each asset is linted (the options of :func:`~inertia_kit.lint.paths.linting`: each
     file's configuration from ``config``, ``select``/``ignore``/``engines`` on top)
-    and held: ``limits`` per asset, ``jobs`` worker processes.
+    and held: ``limits`` per asset, ``jobs`` worker processes; on the Dask scheduler at
+    ``dask`` (``local``: a local cluster of ``jobs`` workers) instead, when given
+    (:mod:`.scan_dask`). ``mesh_cache``: the cache folder the workers use (else their own
+    default); ``no_mesh_cache``: none.
     """
 
     config: ConfigFinder | None = None
@@ -103,6 +107,9 @@ class ScanOptions:
     xacro_limits: Mapping[str, float] | None = None
     limits: Limits = field(default_factory=Limits)
     jobs: int = 1
+    dask: str | None = None
+    mesh_cache: str | None = None
+    no_mesh_cache: bool = False
 
 
 @dataclass(frozen=True)
@@ -115,6 +122,8 @@ class AssetTask:
     package_paths: tuple[str, ...]
     xacro_limits: XacroLimits
     mass_choice: MassChoice
+    #: set in the worker's environment before the lint (the cache folder, or none)
+    environment: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -139,13 +148,19 @@ def scanning(assets: Sequence[Asset], out: str | Path, options: ScanOptions) -> 
     from inertia_kit.lint.scan_record import Record
 
     options = _checked(options)  # before the record is touched
+    run: Callable[..., Iterator[tuple[int, Outcome]]] = run_limited
+    if options.dask is not None:
+        from inertia_kit.lint import scan_dask
+
+        scan_dask.require()
+        run = functools.partial(scan_dask.run_on_dask, options.dask)
     hashes = {asset.path: file_sha256(asset.path) for asset in assets}
     with Record(out) as record:
         done = record.resume(hashes)
         todo = [asset for asset in assets if asset.path not in done]
         tasks = _tasks(todo, options)
         recorded = len(assets) - len(todo)
-        for index, outcome in run_limited(lint_asset, tasks, options.jobs, options.limits):
+        for index, outcome in run(lint_asset, tasks, options.jobs, options.limits):
             asset = todo[index]
             record.write(line(asset, hashes[asset.path], outcome))
             recorded += 1
@@ -185,6 +200,7 @@ def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
     from inertia_kit.lint.config_files import ConfigFinder
 
     finder = options.config or ConfigFinder()
+    environment = _environment(options)
     settings: dict[Any, tuple[Selection, XacroLimits, MassChoice]] = {}
     tasks = []
     for asset in assets:
@@ -202,10 +218,27 @@ def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
         selection, limits, choice = settings[found.path]
         tasks.append(
             AssetTask(
-                asset.path, selection, options.xacro_args, options.package_paths, limits, choice
+                asset.path,
+                selection,
+                options.xacro_args,
+                options.package_paths,
+                limits,
+                choice,
+                environment,
             )
         )
     return tasks
+
+
+def _environment(options: ScanOptions) -> tuple[tuple[str, str], ...]:
+    """What the workers set in their environment: the cache folder, or none."""
+    if not options.no_mesh_cache and options.mesh_cache is None:
+        return ()
+    from inertia_kit.physics.mesh_cache import ENV_DIR, ENV_DISABLE
+
+    if options.no_mesh_cache:
+        return ((ENV_DISABLE, "1"),)
+    return ((ENV_DIR, os.path.abspath(options.mesh_cache)),)
 
 
 def line(asset: Asset, sha256: str | None, outcome: Outcome) -> dict[str, Any]:
@@ -240,6 +273,7 @@ def lint_asset(task: AssetTask) -> dict[str, Any]:
     from inertia_kit.lint.output.common import finite
     from inertia_kit.lint.runner import lint_file
 
+    os.environ.update(task.environment)
     result = lint_file(
         task.path,
         task.selection,
