@@ -167,7 +167,10 @@ def _pooled(
 
     try:
         pool = ProcessPoolExecutor(
-            jobs, mp_context=_context(), initializer=_worker_started, initargs=(dict(os.environ),)
+            jobs,
+            mp_context=worker_context(),
+            initializer=_worker_started,
+            initargs=(dict(os.environ),),
         )
     except (OSError, ImportError, NotImplementedError) as error:
         raise _NoWorkers from error
@@ -221,7 +224,7 @@ def start_early() -> None:
     made (about a third of a second off a parallel run). Nothing is started where workers
     cannot be; the pool then falls back as it would have.
     """
-    context = _context()
+    context = worker_context()
     if context.get_start_method() != "forkserver":
         return
     from multiprocessing import forkserver
@@ -230,13 +233,15 @@ def start_early() -> None:
         forkserver.ensure_running()
 
 
-def _context() -> Any:
+def worker_context(preload: list[str] = PRELOAD) -> Any:
+    """The multiprocessing context workers start from: a forkserver that imports ``preload``
+    once (``spawn`` where there is none)."""
     import multiprocessing
 
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
     if context.get_start_method() == "forkserver":
-        context.set_forkserver_preload(PRELOAD)
+        context.set_forkserver_preload(preload)
     return context
 
 

@@ -37,7 +37,8 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from inertia_kit.errors import InputError
-from inertia_kit.lint.scan_pool import Limits, Outcome, _collect, _context, _Worker
+from inertia_kit.lint.parallel import worker_context
+from inertia_kit.lint.scan_pool import PRELOAD, Limits, Outcome, _collect, _Worker
 
 #: tasks in flight per Dask worker thread
 IN_FLIGHT = 4
@@ -222,7 +223,7 @@ def _run_here(
 
 
 def _run_one(work: Callable[[Any], Any], item: Any, limits: Limits, scan: str) -> Outcome:
-    context = _context()
+    context = worker_context(PRELOAD)
     _may_have_children()
     with _lock:
         worker: _Worker | None = getattr(_here, "worker", None)

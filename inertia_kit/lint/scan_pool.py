@@ -77,7 +77,9 @@ def run_limited(
     """
     if not items:
         return
-    context = _context()
+    from inertia_kit.lint.parallel import worker_context
+
+    context = worker_context(PRELOAD)
     pending = deque(range(len(items)))
     workers: list[_Worker] = []
     try:
@@ -194,16 +196,6 @@ class _Worker:
                 os.kill(pid, signal.SIGKILL)
         self.process.join(5)
         self.connection.close()
-
-
-def _context() -> Any:
-    import multiprocessing
-
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    if context.get_start_method() == "forkserver":
-        context.set_forkserver_preload(PRELOAD)
-    return context
 
 
 # --- in the worker ------------------------------------------------------------------------

@@ -21,7 +21,7 @@ import pytest
 from click.testing import CliRunner
 from console_scripts import console_script
 from kit import urdf, write
-from kit.meshes import write_box_stl
+from kit.assets import asset_library
 from kit.runaway_xacro import HUGE_POWER, doubling_chain, expression_robot
 
 from inertia_kit.cli import main as kit_command
@@ -39,17 +39,7 @@ pytestmark = pytest.mark.skipif(
 
 def library(folder: Path, count: int) -> Path:
     """``count`` small robots in ten folders, a third with a mesh, a third with a wrong tensor."""
-    write_box_stl(folder / "meshes" / "box.stl", (0.1, 0.2, 0.3))
-    for n in range(count):
-        body = [urdf.box_inertial(1.0 + n, (0.1, 0.2, 0.3))]
-        if n % 3 == 1:
-            body = [urdf.inertial(1.0 + n, 1.0, 1.0, 0.0)]
-        shape = urdf.mesh("../meshes/box.stl") if n % 3 == 2 else urdf.box(0.1, 0.2, 0.3)
-        write(
-            folder / f"g{n % 10}" / f"r{n}.urdf",
-            urdf.robot(urdf.link("l", *body, urdf.collision(shape))),
-        )
-    return folder
+    return asset_library(folder, count)
 
 
 def scan_process(*args: str, cwd: Path, **options) -> subprocess.Popen:

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from kit import urdf, write
-from kit.meshes import write_box_stl
+from kit import write
+from kit.assets import asset_library
 from kit.runaway_xacro import doubling_chain
 
 from inertia_kit.cli import main as kit_command
@@ -56,18 +56,7 @@ def cluster(tmp_path_factory):
 def library(folder: Path, count: int = 40) -> Path:
     """``count`` small robots in ten folders: a third with a mesh, a third with a wrong tensor,
     and one unreadable."""
-    write_box_stl(folder / "meshes" / "box.stl", (0.1, 0.2, 0.3))
-    for n in range(count - 1):
-        body = [urdf.box_inertial(1.0 + n, (0.1, 0.2, 0.3))]
-        if n % 3 == 1:
-            body = [urdf.inertial(1.0 + n, 1.0, 1.0, 0.0)]
-        shape = urdf.mesh("../meshes/box.stl") if n % 3 == 2 else urdf.box(0.1, 0.2, 0.3)
-        write(
-            folder / f"g{n % 10}" / f"r{n}.urdf",
-            urdf.robot(urdf.link("l", *body, urdf.collision(shape))),
-        )
-    write(folder / "g0" / "broken.urdf", "<robot name='r'><link name='l'>")
-    return folder
+    return asset_library(folder, count, broken=True)
 
 
 def scan(*args: str):
