@@ -65,6 +65,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.errors import MeshError
+from inertia_kit.physics.frames import transformed_points
 
 #: The largest file read (as :data:`.mesh_formats.MAX_MESH_BYTES`).
 MAX_BYTES = 256 << 20
@@ -376,7 +377,7 @@ class _Document:
         for matrix, mesh in meshes:
             mirrored = np.linalg.det(matrix[:3, :3]) < 0
             for vertices, index in mesh:
-                placed = _transformed(vertices, matrix)
+                placed = transformed_points(vertices, matrix)
                 if mirrored:
                     index = index[:, ::-1]
                 parts.append(placed[index])
@@ -675,15 +676,3 @@ def _fix_rigid(matrix: NDArray[np.float64]) -> NDArray[np.float64]:
     if not np.allclose(repaired, matrix, atol=1e-5):
         raise _Refused("a node's transform is not rigid enough to repair as trimesh repairs it")
     return repaired
-
-
-def _transformed(vertices: NDArray[np.float64], matrix: NDArray) -> NDArray[np.float64]:
-    """(n, 3) vertices under a (4, 4) transform, element by element (as mesh_formats does)."""
-    matrix = np.asarray(matrix, dtype=np.float64)
-    if np.array_equal(matrix, _EYE):
-        return vertices
-    out = vertices[:, 0:1] * matrix[:3, 0]
-    out += vertices[:, 1:2] * matrix[:3, 1]
-    out += vertices[:, 2:3] * matrix[:3, 2]
-    out += matrix[:3, 3]
-    return out

@@ -111,3 +111,17 @@ def inverse(matrix: ArrayLike) -> NDArray[np.float64]:
     out[:3, :3] = m[:3, :3].T
     out[:3, 3] = -m[:3, :3].T @ m[:3, 3]
     return out
+
+
+def transformed_points(points: NDArray[np.float64], matrix: ArrayLike) -> NDArray[np.float64]:
+    """(n, 3) points under a (4, 4) transform, element by element: not a matrix product, since
+    BLAS may round the same point differently at different rows, and the closure check of a
+    mesh compares vertices by their exact bits."""
+    matrix = np.asarray(matrix, dtype=np.float64)
+    if np.array_equal(matrix, np.eye(4)):
+        return points
+    out = points[:, 0:1] * matrix[:3, 0]
+    out += points[:, 1:2] * matrix[:3, 1]
+    out += points[:, 2:3] * matrix[:3, 2]
+    out += matrix[:3, 3]
+    return out

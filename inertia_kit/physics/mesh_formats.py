@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.errors import MeshError
+from inertia_kit.physics.frames import transformed_points
 from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.stl import read_stl
 
@@ -331,7 +332,7 @@ def _scene_parts(
         geometry = scene.geometry[geometry_name]
         if not isinstance(geometry, mesh_type) or len(geometry.faces) == 0:
             continue
-        vertices = _transformed(np.asarray(geometry.vertices, dtype=np.float64), matrix)
+        vertices = transformed_points(np.asarray(geometry.vertices, dtype=np.float64), matrix)
         faces = np.asarray(geometry.faces)
         if np.linalg.det(matrix[:3, :3]) < 0:
             # a mirroring node turns the winding inside-out: undo it, as a renderer does
@@ -339,20 +340,6 @@ def _scene_parts(
         parts.append(vertices[faces])
         units.append(geometry.units or "meters")
     return parts, units
-
-
-def _transformed(vertices: NDArray[np.float64], matrix: NDArray) -> NDArray[np.float64]:
-    """(n, 3) vertices under a (4, 4) transform, element by element."""
-    matrix = np.asarray(matrix, dtype=np.float64)
-    if np.array_equal(matrix, np.eye(4)):
-        return vertices
-    # elementwise, not a matrix product: BLAS may round the same vertex differently at
-    # different rows, and the closure check compares vertices by their exact bits
-    out = vertices[:, 0:1] * matrix[:3, 0]
-    out += vertices[:, 1:2] * matrix[:3, 1]
-    out += vertices[:, 2:3] * matrix[:3, 2]
-    out += matrix[:3, 3]
-    return out
 
 
 def _unit_factor(path: Path, unit: str) -> float:
