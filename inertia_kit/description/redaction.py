@@ -32,7 +32,6 @@ Numbers
 from __future__ import annotations
 
 import contextlib
-import copy
 import dataclasses
 import math
 import re
@@ -177,7 +176,10 @@ class Redaction:
             }
             return dataclasses.replace(value, **changes)
         if isinstance(value, BaseException):
-            redacted = copy.copy(value)
+            # not copy.copy: a library may register a reducer for exceptions (tblib's, which
+            # Dask's distributed installs) that hands the copy the original's own __dict__
+            redacted = type(value).__new__(type(value))
+            redacted.__dict__.update(vars(value))
             for name in ("message", "path"):
                 if isinstance(getattr(value, name, None), str):
                     setattr(redacted, name, self.text(getattr(value, name)))

@@ -129,3 +129,32 @@ def test_a_failed_expansion_still_says_what_the_environment_gave(tmp_path, monke
         expand(path)
     assert "/opt/s3cret" in str(caught.value)
     assert caught.value.environment_values == ("/opt/s3cret",)
+
+
+def test_an_error_is_copied_even_where_a_library_registers_a_reducer_for_exceptions():
+    """tblib (installed by Dask's distributed) registers a copyreg reducer that hands a copy the
+    original's own __dict__: the redacted error must still be a copy."""
+    import copyreg
+
+    def shared(error):
+        return _rebuilt, (type(error), error.__dict__, error.args)
+
+    original = copyreg.dispatch_table.get(InputError)
+    copyreg.pickle(InputError, shared)
+    try:
+        error = InputError("cannot read /opt/secret/x.xacro", "/opt/secret/r.xacro", 2)
+        shown = Redaction().with_values(["/opt/secret"]).apply(error)
+    finally:
+        if original is None:
+            del copyreg.dispatch_table[InputError]
+        else:
+            copyreg.dispatch_table[InputError] = original
+    assert str(shown) == f"{MARK}/r.xacro:2: cannot read {MARK}/x.xacro"
+    assert str(error) == "/opt/secret/r.xacro:2: cannot read /opt/secret/x.xacro"
+
+
+def _rebuilt(cls, attributes, args):
+    error = cls.__new__(cls)
+    error.__dict__ = attributes  # the original's own dict, as tblib's reducer does
+    error.args = args
+    return error
