@@ -15,14 +15,16 @@ from typing import TYPE_CHECKING, Any
 
 from inertia_kit.analysis.geometry import MeshLoader
 from inertia_kit.description.xacro_limits import XacroLimits
-from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
+from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.runner import (
     DEFAULT_FAIL_ON,
     FileResult,
     Selection,
+    checked_selectors,
     lint_file,
+    mass_choice_for,
     selection_for,
 )
 
@@ -97,26 +99,9 @@ def linting(
     ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
     are several files); ``--fix`` always lints in this process (:func:`_workers` says why).
     """
-    from inertia_kit.errors import ConfigError
     from inertia_kit.lint.config_files import ConfigFinder
 
-    known = catalog.names()
-
-    def checked(option: str, values: Sequence[str]) -> tuple[str, ...]:
-        selectors = tuple(catalog.normalize_selector(value, known) for value in values)
-        for value, selector in zip(values, selectors, strict=True):
-            if selector is None:
-                raise ConfigError(f"{option}: {catalog.selector_error(value, known)}")
-        return selectors  # type: ignore[return-value]
-
-    select, ignore = checked("--select", select), checked("--ignore", ignore)
-    if engines is not None:
-        from inertia_kit.engines.vocabulary import parse_engines
-
-        try:
-            engines = parse_engines(engines)
-        except ValueError as error:
-            raise ConfigError(f"--engine: {error}") from None
+    select, ignore, engines = checked_selectors(select, ignore, engines)
     finder = config if isinstance(config, ConfigFinder) else ConfigFinder(config)
     if discovery is not None and discovery.config is None:
         discovery.config = finder  # one configuration read for the walk and the linting
@@ -133,11 +118,7 @@ def linting(
     tasks = []
     for target, found in plan:
         unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
-        choice = MassChoice.checked(
-            DEFAULT_DENSITY,
-            {n: v.mass for n, v in found.links.items() if v.mass is not None},
-            {n: v.density for n, v in found.links.items() if v.density is not None},
-        )
+        choice = mass_choice_for(found)
         tasks.append(
             _Task(
                 target,

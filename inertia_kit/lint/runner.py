@@ -26,7 +26,7 @@ from inertia_kit.description import model
 from inertia_kit.description.edits import ChangedWhileEditing
 from inertia_kit.description.xacro_limits import XacroLimits
 from inertia_kit.errors import InputError, InternalError
-from inertia_kit.fixes.masses import MassChoice
+from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
 from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -116,6 +116,45 @@ def selection_for(
         config.engines if engines is None else tuple(engines),
         DEFAULT_SELECT if config.fixable is None else config.fixable,
         config.unfixable,
+    )
+
+
+def checked_selectors(
+    select: Sequence[str], ignore: Sequence[str], engines: Sequence[str] | None
+) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...] | None]:
+    """
+    The command line's ``--select`` and ``--ignore`` as codes (or prefixes) and ``--engine`` as
+    engine names, as :func:`selection_for` takes them; ``ConfigError`` for an entry that names
+    no rule or engine.
+    """
+    from inertia_kit.errors import ConfigError
+
+    known = catalog.names()
+
+    def checked(option: str, values: Sequence[str]) -> tuple[str, ...]:
+        selectors = tuple(catalog.normalize_selector(value, known) for value in values)
+        for value, selector in zip(values, selectors, strict=True):
+            if selector is None:
+                raise ConfigError(f"{option}: {catalog.selector_error(value, known)}")
+        return selectors  # type: ignore[return-value]
+
+    if engines is not None:
+        from inertia_kit.engines.vocabulary import parse_engines
+
+        try:
+            engines = parse_engines(engines)
+        except ValueError as error:
+            raise ConfigError(f"--engine: {error}") from None
+    return checked("--select", select), checked("--ignore", ignore), engines
+
+
+def mass_choice_for(config: Config) -> MassChoice:
+    """The masses and densities ``config`` gives its links (``[links.NAME]``), the others at
+    the default density."""
+    return MassChoice.checked(
+        DEFAULT_DENSITY,
+        {n: v.mass for n, v in config.links.items() if v.mass is not None},
+        {n: v.density for n, v in config.links.items() if v.density is not None},
     )
 
 

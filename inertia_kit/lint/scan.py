@@ -21,8 +21,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from inertia_kit.fixes.masses import DEFAULT_DENSITY, MassChoice
-from inertia_kit.lint.runner import Selection, selection_for
+from inertia_kit.fixes.masses import MassChoice
+from inertia_kit.lint.runner import (
+    Selection,
+    checked_selectors,
+    mass_choice_for,
+    selection_for,
+)
 from inertia_kit.lint.scan_pool import Limits, Outcome, run_limited
 
 if TYPE_CHECKING:
@@ -173,25 +178,8 @@ def _checked(options: ScanOptions) -> ScanOptions:
     no rule or engine."""
     import dataclasses
 
-    from inertia_kit.errors import ConfigError
-    from inertia_kit.lint import catalog
-
-    known = catalog.names()
-    chosen = {}
-    for option, values in (("select", options.select), ("ignore", options.ignore)):
-        chosen[option] = tuple(catalog.normalize_selector(value, known) for value in values)
-        for value, selector in zip(values, chosen[option], strict=True):
-            if selector is None:
-                raise ConfigError(f"--{option}: {catalog.selector_error(value, known)}")
-    engines = options.engines
-    if engines is not None:
-        from inertia_kit.engines.vocabulary import parse_engines
-
-        try:
-            engines = parse_engines(engines)
-        except ValueError as error:
-            raise ConfigError(f"--engine: {error}") from None
-    return dataclasses.replace(options, engines=engines, **chosen)
+    select, ignore, engines = checked_selectors(options.select, options.ignore, options.engines)
+    return dataclasses.replace(options, select=select, ignore=ignore, engines=engines)
 
 
 def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
@@ -209,11 +197,7 @@ def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
             settings[found.path] = (
                 selection_for(found, options.select, options.ignore, options.engines),
                 XacroLimits.resolve(found.xacro, options.xacro_limits),
-                MassChoice.checked(
-                    DEFAULT_DENSITY,
-                    {n: v.mass for n, v in found.links.items() if v.mass is not None},
-                    {n: v.density for n, v in found.links.items() if v.density is not None},
-                ),
+                mass_choice_for(found),
             )
         selection, limits, choice = settings[found.path]
         tasks.append(
