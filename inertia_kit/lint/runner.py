@@ -323,13 +323,7 @@ def lint_file(
     reads = dict(robot.reads)
     uses = unused.track(robot.files or (str(path),), findings + replaced, ran, reads)
     kept += unused.report(uses, selection, path)
-    if fixes != "none" and not place_fixes and any(f.wants is not None for f in kept):
-        from inertia_kit.lint.fixing import attach, plan_fixes
-
-        choice = mass_choice or MassChoice()
-        planned = plan_fixes(analysis, kept, choice, None, safe_only=fixes == "safe")
-        kept = attach(kept, planned, None)
-    elif fixes != "none" and any(f.wants is not None for f in kept):
+    if fixes != "none" and any(f.wants is not None for f in kept):
         try:
             reload = functools.partial(
                 load,
@@ -339,7 +333,7 @@ def lint_file(
                 xacro_limits=xacro_limits,
             )
             choice = mass_choice or MassChoice()
-            kept = _with_fixes(path, analysis, kept, choice, fixes == "safe", reload)
+            kept = _with_fixes(path, analysis, kept, choice, fixes == "safe", reload, place_fixes)
         except ChangedWhileEditing as error:  # the robot's lines point into another text now
             return FileResult(str(path), error=error, reads=reads)
     empty = not robot.links and not robot.joints
@@ -362,14 +356,20 @@ def _with_fixes(
     choice: MassChoice,
     safe_only: bool,
     reload: Callable[[], model.Robot] | None = None,
+    place: bool = True,
 ) -> list[Finding]:
     """
     The findings with their fixes, planned on the text of ``path`` as the load read it
-    (``ChangedWhileEditing`` when a file the fixes edit holds other bytes now).
+    (``ChangedWhileEditing`` when a file the fixes edit holds other bytes now); not ``place``:
+    their values, safety and titles without their edits (no file is read).
     """
     from inertia_kit.description.editing import Files
     from inertia_kit.lint.fixing import attach, plan_fixes
     from inertia_kit.lint.stand_in import is_stand_in
+
+    if not place:
+        planned = plan_fixes(analysis, findings, choice, None, safe_only=safe_only)
+        return attach(findings, planned, None)
 
     files = Files.for_input(
         path, dict(analysis.robot.reads), only_itself=is_stand_in(os.path.basename(path))
