@@ -64,7 +64,8 @@ RACY_SECONDS = 2.0
 ENV_DIR = "INERTIA_KIT_CACHE_DIR"
 ENV_DISABLE = "INERTIA_KIT_NO_CACHE"
 
-# the modules whose code decides the numbers, and the libraries they may call
+# the modules whose code decides the numbers (every physics module computing a mesh imports:
+# tests/physics/test_mesh_cache.py), and the libraries they may call
 _SOURCES = (
     "meshes.py",
     "mesh_formats.py",
@@ -72,6 +73,16 @@ _SOURCES = (
     "volume_moments.py",
     "polyhedra.py",
     "stl.py",
+    "collada.py",
+    "obj_soup.py",
+    "obj_polygons.py",
+    "frames.py",
+    "manifolds.py",
+    "mass.py",
+    "primitives.py",
+    "numbers.py",
+    "formatting.py",
+    "tensor_names.py",
     "mesh_cache.py",
     "mesh_cache_entries.py",
 )

@@ -607,3 +607,36 @@ def test_hit_refreshes_an_old_entry(tmp_path: Path, cache: Path) -> None:
     os.utime(entry, (1e9, 1e9))
     cached_mesh_solid(path)
     assert time.time() - entry.stat().st_mtime < 600
+
+
+def test_every_module_that_computes_a_mesh_invalidates_the_cache():
+    """A change to any physics module a mesh's computation runs (each format's reader, the
+    closure, the hull) must invalidate the cached numbers: each is in the code key's sources."""
+    import subprocess
+    import sys
+
+    code = r"""
+import sys, tempfile
+from pathlib import Path
+from kit.meshes import box_triangles, obj, write_binary_stl
+from kit.meshes import write_textured_collada
+folder = Path(tempfile.mkdtemp())
+write_binary_stl(folder / "a.stl", box_triangles((1, 2, 3)))
+write_binary_stl(folder / "open.stl", box_triangles((1, 2, 3))[1:])
+(folder / "a.obj").write_text(obj(box_triangles((1, 2, 3))))
+write_textured_collada(folder / "a.dae", box_triangles((1, 2, 3)), image=False)
+from inertia_kit.physics.meshes import mesh_solid
+for name in ("a.stl", "open.stl", "a.obj", "a.dae"):
+    mesh_solid(folder / name)
+print(" ".join(m for m in sys.modules if m.startswith("inertia_kit.physics.")))
+"""
+    tests = str(Path(__file__).resolve().parents[1])
+    done = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**os.environ, "PYTHONPATH": tests + os.pathsep + os.environ.get("PYTHONPATH", "")},
+    )
+    used = {name.rsplit(".", 1)[1] + ".py" for name in done.stdout.split()}
+    assert used - set(mesh_cache._SOURCES) == set()
