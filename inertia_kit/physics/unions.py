@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit.physics import primitives
-from inertia_kit.physics.frames import as_transform
+from inertia_kit.physics.frames import as_transform, inverse
 from inertia_kit.physics.manifolds import as_manifold, closed_mesh, manifold_moments
 from inertia_kit.physics.mass import MassProperties, second_moment_from_inertia
 from inertia_kit.physics.polyhedra import integrate
@@ -332,13 +332,13 @@ def capsules(parts: tuple[Part, ...]) -> tuple[Part, ...]:
             continue
         radius, length = part.dimensions
         tolerance = CAPSULE_RTOL * (radius + length)
-        inverse = np.linalg.inv(part.pose)
+        to_part = inverse(part.pose)
         ends = []
         for end in (0.5 * length, -0.5 * length):
             for i in spheres:
                 if i in used or i in ends:
                     continue
-                centre = inverse[:3, :3] @ parts[i].pose[:3, 3] + inverse[:3, 3]
+                centre = to_part[:3, :3] @ parts[i].pose[:3, 3] + to_part[:3, 3]
                 if abs(parts[i].dimensions[0] - radius) <= tolerance and np.all(
                     np.abs(centre - (0.0, 0.0, end)) <= tolerance
                 ):
