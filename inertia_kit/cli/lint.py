@@ -23,6 +23,7 @@ from inertia_kit.cli.stdin import command_on_stdin, stdin_filename_option
 from inertia_kit.version import __version__
 
 if TYPE_CHECKING:
+    from collections.abc import Iterable
     from pathlib import Path
 
     from inertia_kit.lint.merge import Merged
@@ -188,6 +189,9 @@ def lint(run: LintRun) -> int:
     """
     ``inertia-lint`` as ``run`` asks: the findings printed as the files are linted (the
     streamed formats), the rest at the end, then the summary; the exit code.
+
+    The findings told (printed, or kept on disk for a report written at the end) leave the
+    run's results as they are told: its memory does not grow with the number of files.
     """
     from inertia_kit.cli.discovery import show_files
     from inertia_kit.cli.progress import Progress
@@ -198,36 +202,40 @@ def lint(run: LintRun) -> int:
     if run.output_file is not None and not _may_write_report(run.output_file, run.follow_symlinks):
         return 2
     progress = Progress.for_terminal(run.quiet)
-    printed: dict[tuple, None] = {}  # the findings printed as the files were linted
-    try:
-        if run.show_files:
-            return show_files(run.paths, run.walk)
-        with linting(run.paths, on_error=_crashed, **run.linting()) as files:
-            for step in files:
-                for linted in step.ready:
-                    _as_linted(run, linted, printed, progress)
-                progress.update(step.done, step.total, step.current)
-    except ConfigError as error:
-        say(f"error: {error}")
-        return 2
-    finally:
-        progress.clear()  # also on Ctrl-C, before `interrupted`
-    if run.add_noqa:
-        from inertia_kit.cli.add_noqa import add_noqa
-        from inertia_kit.lint.paths import lint_paths
+    # --add-noqa writes a comment for every finding: it keeps them all
+    release = not run.add_noqa
+    with _Told(run) as told:
+        try:
+            if run.show_files:
+                return show_files(run.paths, run.walk)
+            with linting(run.paths, on_error=_crashed, release=release, **run.linting()) as files:
+                for step in files:
+                    for linted in step.ready:
+                        told.linted(linted, progress)
+                    progress.update(step.done, step.total, step.current)
+        except ConfigError as error:
+            say(f"error: {error}")
+            return 2
+        finally:
+            progress.clear()  # also on Ctrl-C, before `interrupted`
+        if run.add_noqa:
+            from inertia_kit.cli.add_noqa import add_noqa
+            from inertia_kit.lint.paths import lint_paths
 
-        def again() -> list[FileResult]:
-            return lint_paths(run.paths, on_error=_crashed, **run.linting())
+            def again() -> list[FileResult]:
+                return lint_paths(run.paths, on_error=_crashed, **run.linting())
 
-        return add_noqa(run.paths, files.results, again, run.quiet, run.follow_symlinks, run.diff)
-    merged = merge(files.results)
-    for level, text in merged.messages:
-        if not (run.quiet and level == "note"):
-            say(f"{level}: {text}")
-    if not files.results:
-        say(f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(run.paths)}")
-    if not _print_report(run, merged, files.results, printed):
-        return 2
+            return add_noqa(
+                run.paths, files.results, again, run.quiet, run.follow_symlinks, run.diff
+            )
+        merged = merge(files.results, files.told)
+        for level, text in merged.messages:
+            if not (run.quiet and level == "note"):
+                say(f"{level}: {text}")
+        if not files.results:
+            say(f"warning: no robot descriptions (*.urdf, *.xacro) in {', '.join(run.paths)}")
+        if not told.report(merged, files.results):
+            return 2
     if not run.quiet:
         _echo_summary(run, merged, files.results)
     if merged.errors:
@@ -256,70 +264,94 @@ def _crashed(file: Path, error: Exception) -> FileResult:
     return FileResult(str(file), error=internal(error, file))
 
 
-def _as_linted(run: LintRun, linted: Linted, printed: dict[tuple, None], progress: Any) -> None:
+class _Told:
     """
-    One file linted, with every file before it: what the environment gave its robot kept out
-    of the output (if asked), and, in the streamed formats, its settled findings printed.
+    Where a run's findings go as they are told: printed file by file (the streamed formats),
+    or kept on disk (:class:`~inertia_kit.lint.output.spool.Spool`) for the report written at
+    the end (the documents, ``--output-file``), which is then written piece by piece; a run
+    that prints statistics or a diff keeps only their counts (``Linting.told``).
     """
-    from inertia_kit.cli import printing
-    from inertia_kit.lint.output import render
 
-    result = linted.result
-    if run.redacts(result.path):
-        printing.keep_out(result.environment_values)
-    fresh = [f for f in linted.settled if _key(f) not in printed] if run.streams else []
-    if fresh:
-        printed.update(dict.fromkeys(map(_key, fresh)))
-        progress.clear()
-        text = render(
-            printing.redacted(fresh),
-            run.output_format,
-            style=click.style,
-            unsafe_fixes=result.unsafe_fixes,
-        )
-        show(text, nl=False, color=_colour(), machine=run.machine)
+    def __init__(self, run: LintRun):
+        self.run = run
+        self.spool: Any = None
+        if not (run.streams or run.statistics or run.diff or run.add_noqa):
+            from inertia_kit.cli import printing
+            from inertia_kit.lint.output.spool import Spool
 
+            # redacted as they are read back: by then every file's values are known
+            self.spool = Spool(printing.redacted)
 
-def _print_report(
-    run: LintRun, merged: Merged, results: list[FileResult], printed: dict[tuple, None]
-) -> bool:
-    """
-    The report at the end, on stdout or to ``--output-file``: the diff, the statistics, or the
-    findings not printed yet; ``False`` when it could not be written (said: exit 2).
-    """
-    from inertia_kit.cli import printing
-    from inertia_kit.lint.output import render
-    from inertia_kit.lint.output.summary import statistics
+    def __enter__(self) -> _Told:
+        return self
 
-    if run.diff:
-        # as ruff: the diff on stdout, instead of the findings
-        output = merged.diff
-    elif run.statistics:
-        output = statistics(merged.findings, as_json=run.output_format == "json")
-    else:
-        rest = [finding for finding in merged.findings if _key(finding) not in printed]
-        output = render(
-            printing.redacted(rest),
-            run.output_format,
-            errors=printing.redacted(merged.errors),
-            # a file gets no colour codes: only a terminal reads them
-            style=None if run.output_file else click.style,
-            unsafe_fixes=any(result.unsafe_fixes for result in results),
-            linted=printing.redacted(merged.linted),
-        )
-    # the machine-read formats were given redacted findings: a pass over their text could cut
-    # their syntax (a value that is also a key); statistics hold no value from a file
-    machine = run.machine and not run.diff
-    if run.output_file is None:
-        show(output, nl=False, color=_colour(), machine=machine)
-        return True
-    text = output if machine else printing.report_text(output)
-    return _write_report(run.output_file, text, run.follow_symlinks)
+    def __exit__(self, *exception: object) -> None:
+        if self.spool is not None:
+            self.spool.close()
 
+    def linted(self, linted: Linted, progress: Any) -> None:
+        """
+        One file linted, with every file before it: what the environment gave its robot kept
+        out of the output (if asked), and its settled findings printed (the streamed formats)
+        or kept for the report.
+        """
+        from inertia_kit.cli import printing
+        from inertia_kit.lint.output import render
 
-def _key(finding: Any) -> tuple:
-    """A finding as :func:`~inertia_kit.lint.merge.merge` tells it once."""
-    return (finding.path, finding.line, finding.column, finding.code, finding.message)
+        run, result = self.run, linted.result
+        if run.redacts(result.path):
+            printing.keep_out(result.environment_values)
+        if self.spool is not None:
+            self.spool.extend(linted.settled)
+        elif run.streams and linted.settled:
+            progress.clear()
+            text = render(
+                printing.redacted(linted.settled),
+                run.output_format,
+                style=click.style,
+                unsafe_fixes=result.unsafe_fixes,
+            )
+            show(text, nl=False, color=_colour(), machine=run.machine)
+
+    def report(self, merged: Merged, results: list[FileResult]) -> bool:
+        """
+        The report at the end, on stdout or to ``--output-file``: the diff, the statistics, or
+        the findings not printed yet; ``False`` when it could not be written (said: exit 2).
+        """
+        from inertia_kit.cli import printing
+        from inertia_kit.lint.output import pieces
+        from inertia_kit.lint.output.summary import statistics
+
+        run = self.run
+        if run.diff:
+            # as ruff: the diff on stdout, instead of the findings
+            output: Iterable[str] = [merged.diff]
+        elif run.statistics:
+            output = [statistics(merged.tally, as_json=run.output_format == "json")]
+        else:
+            if self.spool is not None:
+                self.spool.extend(merged.findings)
+                findings = self.spool
+            else:
+                findings = printing.redacted(merged.findings)
+            output = pieces(
+                findings,
+                run.output_format,
+                errors=printing.redacted(merged.errors),
+                # a file gets no colour codes: only a terminal reads them
+                style=None if run.output_file else click.style,
+                unsafe_fixes=any(result.unsafe_fixes for result in results),
+                linted=printing.redacted(merged.linted),
+            )
+        # the machine-read formats were given redacted findings: a pass over their text could
+        # cut their syntax (a value that is also a key); statistics hold no value from a file
+        machine = run.machine and not run.diff
+        if run.output_file is None:
+            for piece in output:
+                show(piece, nl=False, color=_colour(), machine=machine)
+            return True
+        texts = output if machine else map(printing.report_text, output)
+        return _write_report(run.output_file, texts, run.follow_symlinks)
 
 
 def _may_write_report(path: str, follow_symlinks: bool) -> bool:
@@ -336,8 +368,9 @@ def _may_write_report(path: str, follow_symlinks: bool) -> bool:
     return True
 
 
-def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool:
-    """Write the report to ``path`` atomically; on failure say why (the exit is then 2)."""
+def _write_report(path: str, output: Iterable[str], follow_symlinks: bool = False) -> bool:
+    """Write the report (its text in pieces) to ``path`` atomically; on failure say why (the
+    exit is then 2)."""
     from inertia_kit.description.edits import write_atomic
     from inertia_kit.errors import InputError
 
@@ -345,7 +378,7 @@ def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool
         return False
     try:
         # a file name that is no UTF-8 (github's file=) is written as its own bytes, as stdout does
-        data = output.encode("utf-8", "surrogateescape")
+        data = (piece.encode("utf-8", "surrogateescape") for piece in output)
         write_atomic(path, data, create=True, follow_symlinks=follow_symlinks)
     except InputError as error:
         say(f"error: --output-file: {error}")
@@ -356,15 +389,15 @@ def _write_report(path: str, output: str, follow_symlinks: bool = False) -> bool
 def _echo_summary(run: LintRun, merged: Merged, results: list[FileResult]) -> None:
     """The summary line on stderr (``Found ...``, ``No findings ...``)."""
     from inertia_kit.errors import InternalError
-    from inertia_kit.lint.applying import applicable
     from inertia_kit.lint.output.summary import summary
 
     crashes = sum(isinstance(error, InternalError) for error in merged.errors)
     unsafe = any(result.unsafe_fixes for result in results)
-    fixable = 0 if run.diff else sum(applicable(f, unsafe) for f in merged.findings)
+    tally = merged.tally
+    fixable = 0 if run.diff else tally.fixable_unsafe if unsafe else tally.fixable
     click.echo(
         summary(
-            merged.findings,
+            tally,
             merged.checked,
             len(merged.errors) - crashes,
             crashes,

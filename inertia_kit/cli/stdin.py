@@ -73,7 +73,7 @@ def on_stdin(
     if output_file is not None:
         from inertia_kit.cli.lint import _write_report
 
-        if not _write_report(output_file, "".join(report), follow_symlinks):
+        if not _write_report(output_file, report, follow_symlinks):
             return 2
     if text is not None:
         _write_bytes(text)

@@ -230,7 +230,7 @@ def real_target(path: str | Path) -> Path:
 
 def write_atomic(
     path: str | Path,
-    data: bytes,
+    data: bytes | Iterable[bytes],
     *,
     expected: bytes | None = None,
     create: bool = False,
@@ -239,7 +239,9 @@ def write_atomic(
     """
     Replace ``path``'s content with ``data`` atomically (temporary file in the same folder,
     ``fsync``, ``os.replace``), keeping its permission bits (and its owner and group where
-    the system lets us). Writes nothing when the bytes are already ``data``.
+    the system lets us). Writes nothing when the bytes are already ``data``. ``data`` may
+    come in pieces (an iterable of bytes, written as they come, without all of it in memory:
+    a long report); then the file is always written.
 
     A symbolic link is followed (through a chain of links) and the file it points to is
     replaced, with the temporary file beside that file; the link itself is left as it is. A
@@ -299,7 +301,8 @@ def _write_set(
     the files of ``unchanged`` must still hold the bytes of their digests."""
     states = []
     for target, path, data, expected in planned:
-        current, mode = _state(target, create, path)
+        # pieces are not compared: the file's bytes need not be read
+        current, mode = _state(target, create, path, isinstance(data, bytes) or bool(expected))
         if _may_write(target, current, mode, data, expected, path):
             states.append((target, path, data, expected, current, mode))
     prepared: list[tuple[Path, str | Path, bytes | None, str, Any]] = []
@@ -347,7 +350,9 @@ def _check_unchanged(unchanged: Mapping[str, str | None]) -> None:
             raise ChangedWhileEditing(CHANGED, name)
 
 
-def _prepare(target: Path, path: str | Path, data: bytes, current: bytes | None, mode: int):
+def _prepare(
+    target: Path, path: str | Path, data: bytes | Iterable[bytes], current: bytes | None, mode: int
+):
     """``data`` in a new temporary file beside ``target``, synced, with ``target``'s mode and
     owner: its name and the open stream (kept open, and locked, until the rename)."""
     remove_stale_temporaries(target.parent)
@@ -363,7 +368,8 @@ def _prepare(target: Path, path: str | Path, data: bytes, current: bytes | None,
     # our temporary file meanwhile sees that it is in use (remove_stale_temporaries)
     stream = os.fdopen(handle, "wb")
     try:
-        stream.write(data)
+        for piece in [data] if isinstance(data, bytes) else data:
+            stream.write(piece)
         stream.flush()
         os.fsync(stream.fileno())
         if current is not None:
@@ -547,8 +553,11 @@ def _set_mode(handle: int, name: str, mode: int) -> None:
         os.chmod(name, mode)
 
 
-def _state(target: Path, create: bool, shown: str | Path) -> tuple[bytes | None, int]:
-    """The file's bytes (``None``: to be created) and the permission bits to write with."""
+def _state(
+    target: Path, create: bool, shown: str | Path, read: bool = True
+) -> tuple[bytes | None, int]:
+    """The file's bytes (``None``: to be created; empty when not ``read``) and the permission
+    bits to write with."""
     if os.path.isdir(target):
         raise InputError("is a folder, not a file; nothing was written", shown)
     if create and not os.path.exists(target):
@@ -558,17 +567,17 @@ def _state(target: Path, create: bool, shown: str | Path) -> tuple[bytes | None,
         os.umask(umask)
         return None, 0o666 & ~umask
     try:
-        current = target.read_bytes()
+        current = target.read_bytes() if read else b""
+        return current, target.stat().st_mode & 0o7777
     except OSError as error:
         raise InputError(f"cannot read: {error.strerror or error}", shown) from None
-    return current, target.stat().st_mode & 0o7777
 
 
 def _may_write(
     target: Path,
     current: bytes | None,
     mode: int,
-    data: bytes,
+    data: bytes | Iterable[bytes],
     expected: bytes | None,
     shown: str | Path,
 ) -> bool:

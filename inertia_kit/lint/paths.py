@@ -63,6 +63,7 @@ def linting(
     jobs: int | None = 1,
     follow_symlinks: bool = False,
     place_fixes: bool = True,
+    release: bool = False,
 ) -> Linting:
     """
     Lint files and folders as the command line does: each file with its configuration (the
@@ -98,6 +99,11 @@ def linting(
 
     ``jobs`` (``-j``): how many processes lint (``None`` or 0: the usable cores, when there
     are several files); ``--fix`` always lints in this process (:func:`_workers` says why).
+
+    ``release``: the caller tells each step's settled findings as it gets them (a report
+    streamed to its writer); once told, they leave the results, counted in
+    :attr:`Linting.told` and in each result's ``told``, so that the run's memory does not grow
+    with its findings.
     """
     from inertia_kit.lint.config_files import ConfigFinder
 
@@ -137,7 +143,7 @@ def linting(
                 place_fixes,
             )
         )
-    return Linting(tasks, chosen, _workers(tasks, jobs), on_error)
+    return Linting(tasks, chosen, _workers(tasks, jobs), on_error, release)
 
 
 @dataclass(frozen=True)
@@ -172,6 +178,8 @@ class Linting:
     is linted; :attr:`results` holds the final results once it is over (suppression comments
     in shared files judged over all their robots, given fragments told through their robots).
     Use it in a ``with`` block: leaving the block early ends the worker processes.
+    With ``release``, the settled findings of each step leave the results once the step is
+    consumed: :attr:`told` counts them.
     """
 
     def __init__(
@@ -180,8 +188,13 @@ class Linting:
         chosen: Any,
         workers: int,
         on_error: Callable[[Path, Exception], FileResult] | None,
+        release: bool = False,
     ):
+        from inertia_kit.lint.merge import Tally
+
         self.tasks, self.chosen, self.workers, self.on_error = tasks, chosen, workers, on_error
+        self.release = release
+        self.told = Tally()  # the findings released (told by the caller), counted
         self._results: list[FileResult] | None = None
         self._steps = self._run()
 
@@ -208,6 +221,19 @@ class Linting:
         result.fail_on = task.fail_on
         return result
 
+    def _release(self, linted: Linted) -> None:
+        """A file's settled findings, told by the caller, out of its result (counted), and
+        with them what only the telling needed."""
+        result = linted.result
+        result.environment_values, result.reads = (), {}
+        if not linted.settled:
+            return
+        self.told.add(linted.settled, result.unsafe_fixes)
+        told = {id(finding) for finding in linted.settled}
+        result.told += len(told)
+        result.told_failing |= any(f.severity >= result.fail_on for f in linted.settled)
+        result.findings = [f for f in result.findings if id(f) not in told]
+
     def _run(self) -> Generator[Step, None, None]:
         from inertia_kit.lint import parallel, unused
 
@@ -222,6 +248,9 @@ class Linting:
                     ready.append(Linted(result, settled(result, tasks[index].target, chosen)))
                 current = tasks[step.first].target.robot if step.first < len(tasks) else None
                 yield Step(tuple(ready), step.done, len(tasks), current)
+                if self.release:
+                    for linted in ready:
+                        self._release(linted)
         unused.judge_shared(results)
         self._results = _through_robots(results, chosen)
 

@@ -261,6 +261,10 @@ class FileResult:
     # real path -> digest of the bytes the load read (description.reads): what fixes and
     # suppression comments are placed in
     reads: dict[str, str | None] = field(default_factory=dict)
+    # findings already told and dropped from ``findings`` (a run that streams its report:
+    # lint.paths.Linting with ``release``): how many, and whether one fails the run
+    told: int = 0
+    told_failing: bool = False
 
     @property
     def failing(self) -> list[Finding]:

@@ -13,6 +13,7 @@ for. A comment in a file several robots include is judged over all of them
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from types import ModuleType
 from typing import TYPE_CHECKING
@@ -121,7 +122,12 @@ def judge_shared(results: Sequence[FileResult]) -> None:
         return
     combined = combine(result.uses for result in judged)
     scoped = {rule.CODE for rule in suppression_rules(catalog.RULES)}
+    robots = Counter(key for result in judged for key in result.uses)
     for result in judged:
+        if all(robots[key] == 1 for key in result.uses):
+            # no other robot has its comments: judged as they were (a streamed report may
+            # have told those findings already: lint.paths.settled)
+            continue
         assert result.selection is not None
         mine = {key: combined[key] for key in result.uses}
         again = report(mine, result.selection, result.path)

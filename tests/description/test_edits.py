@@ -90,6 +90,39 @@ def test_write_atomic_writes_nothing_when_unchanged(tmp_path):
     assert path.stat().st_mtime_ns == before
 
 
+def test_write_atomic_writes_pieces_as_they_come(tmp_path):
+    # a long report is written from pieces, never held whole in memory
+    path = tmp_path / "report.json"
+    path.write_bytes(b"old")
+    path.chmod(0o640)
+    made = []
+
+    def pieces():
+        for n in range(3):
+            made.append(n)
+            yield f"[{n}]".encode()
+
+    assert write_atomic(path, pieces(), create=True)
+    assert path.read_bytes() == b"[0][1][2]" and made == [0, 1, 2]
+    assert stat.S_IMODE(path.stat().st_mode) == 0o640
+    assert write_atomic(tmp_path / "new.json", iter([b"a", b"b"]), create=True)
+    assert (tmp_path / "new.json").read_bytes() == b"ab"
+
+
+def test_pieces_that_fail_midway_leave_the_file_as_it_was(tmp_path):
+    path = tmp_path / "report.json"
+    path.write_bytes(b"old")
+
+    def pieces():
+        yield b"new"
+        raise RuntimeError("a bug while rendering")
+
+    with pytest.raises(RuntimeError):
+        write_atomic(path, pieces(), create=True)
+    assert path.read_bytes() == b"old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["report.json"]
+
+
 def test_a_file_changed_meanwhile_is_not_overwritten(tmp_path):
     path = tmp_path / "r.urdf"
     path.write_bytes(b"changed by someone else")

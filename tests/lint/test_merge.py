@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.merge import merge
+from inertia_kit.lint.merge import Tally, merge
 from inertia_kit.lint.runner import FileResult
 
 
@@ -77,3 +77,38 @@ def test_linted_files_and_those_that_gave_findings():
     merged = merge(results)
     assert merged.linted == ("a.xacro", "b.urdf", "c.urdf", "macros.xacro")
     assert (merged.checked, merged.flagged) == (4, 3)
+
+
+def test_a_tally_counts_by_severity_rule_and_fix():
+    findings = [
+        finding("a.urdf", 1, severity=Severity.ERROR),
+        finding("a.urdf", 2),
+        finding("b.urdf", 3, severity=Severity.INFO),
+    ]
+    tally = Tally.of(findings)
+    assert tally.total == 3
+    assert dict(tally.by_severity) == {Severity.ERROR: 1, Severity.WARNING: 1, Severity.INFO: 1}
+    assert dict(tally.by_rule) == {("IN099", "stub"): 3}
+    assert (tally.fixable, tally.fixable_unsafe, tally.hidden) == (0, 0, 0)
+    both = tally + Tally.of(findings[:1])
+    assert (both.total, both.by_severity[Severity.ERROR], tally.total) == (4, 2, 3)
+
+
+def test_findings_told_before_the_merge_count_as_if_they_were_merged():
+    told = [finding("a.urdf", 1, severity=Severity.ERROR)]
+    kept = [finding("a.urdf", 2)]
+    whole = merge([FileResult("a.urdf", told + kept), FileResult("b.urdf")])
+    released = FileResult("a.urdf", kept, told=1, told_failing=True)
+    streamed = merge([released, FileResult("b.urdf")], Tally.of(told))
+    assert streamed.findings == kept
+    assert streamed.tally == whole.tally
+    assert (streamed.failing, streamed.checked, streamed.flagged, streamed.linted) == (
+        whole.failing,
+        whole.checked,
+        whole.flagged,
+        whole.linted,
+    )
+    # every finding told: the file still counts as linted and flagged, and fails the run
+    all_told = merge([FileResult("a.urdf", told=2, told_failing=True)], Tally.of(told + kept))
+    assert (all_told.findings, all_told.flagged, all_told.failing) == ([], 1, True)
+    assert all_told.tally.total == 2

@@ -23,7 +23,9 @@ and removed by the caller when the output is no terminal. Adding a format: a mod
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import importlib
+from collections.abc import Iterable, Iterator, Sequence
+from itertools import islice
 
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding
@@ -48,34 +50,74 @@ def render(
     files, internal errors) are in the machine-read formats; ``linted`` (the files linted)
     gives ``junit`` a passing test for each file without findings.
     """
+    return "".join(
+        pieces(
+            findings,
+            output_format,
+            errors=errors,
+            style=style,
+            unsafe_fixes=unsafe_fixes,
+            linted=linted,
+        )
+    )
+
+
+#: how many findings a text format renders at a time when it is written in pieces
+_BATCH = 256
+
+
+def pieces(
+    findings: Sequence[Finding],
+    output_format: str,
+    *,
+    errors: Sequence[InputError] = (),
+    style: Style | None = None,
+    unsafe_fixes: bool = False,
+    linted: Iterable[str] = (),
+) -> Iterator[str]:
+    """
+    :func:`render`'s text in pieces, each written as soon as it is made, so that a report of
+    any length is written in bounded memory when ``findings`` are read one at a time from disk
+    (a :class:`~inertia_kit.lint.output.spool.Spool`).
+    """
     # each format is imported when chosen: a lint run pays for its own format only
     style = style or plain
-    if output_format == "full":
-        from inertia_kit.lint.output import full
-
-        return full.render(findings, style, unsafe_fixes)
-    if output_format == "concise":
-        from inertia_kit.lint.output import concise
-
-        return concise.render(findings, style, unsafe_fixes)
-    if output_format == "json":
-        from inertia_kit.lint.output import json as json_array
-
-        return json_array.render(findings, errors)
-    if output_format == "github":
-        from inertia_kit.lint.output import github
-
-        return github.render(findings, errors)
-    if output_format == "sarif":
-        from inertia_kit.lint.output import sarif
-
-        return sarif.render(findings, errors)
+    if output_format in ("json", "sarif", "gitlab"):
+        module = importlib.import_module(f"inertia_kit.lint.output.{output_format}")
+        return module.pieces(findings, errors)  # type: ignore[no-any-return]
     if output_format == "junit":
         from inertia_kit.lint.output import junit
 
-        return junit.render(findings, errors, linted)
-    if output_format == "gitlab":
-        from inertia_kit.lint.output import gitlab
+        return junit.pieces(findings, errors, linted)
+    if output_format not in FORMATS:
+        raise ValueError(f"unknown output format {output_format!r}; known: {', '.join(FORMATS)}")
+    return _text_pieces(findings, output_format, errors, style, unsafe_fixes)
 
-        return gitlab.render(findings, errors)
-    raise ValueError(f"unknown output format {output_format!r}; known: {', '.join(FORMATS)}")
+
+def _text_pieces(
+    findings: Sequence[Finding],
+    output_format: str,
+    errors: Sequence[InputError],
+    style: Style,
+    unsafe_fixes: bool,
+) -> Iterator[str]:
+    """The line-by-line formats, whose text is that of each finding in turn."""
+    if output_format == "github":
+        from inertia_kit.lint.output import github
+
+        for batch in _batches(findings):
+            yield github.render(batch)
+        yield github.render((), errors)
+        return
+    if output_format == "full":
+        from inertia_kit.lint.output import full as module
+    else:
+        from inertia_kit.lint.output import concise as module
+    for batch in _batches(findings):
+        yield module.render(batch, style, unsafe_fixes)
+
+
+def _batches(findings: Iterable[Finding]) -> Iterator[list[Finding]]:
+    found = iter(findings)
+    while batch := list(islice(found, _BATCH)):
+        yield batch

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.findings import Finding, Severity
@@ -55,6 +55,33 @@ def dumps(value: Any) -> str:
     text = json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False)
     # outside strings JSON is ASCII: every such character stands inside a string
     return UNPRINTABLE_ABOVE_C0.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
+
+
+#: stands for the entries of a list written one by one (:func:`dumps_streamed`): a string no
+#: report holds (XML, where every name and value comes from, cannot hold a NUL)
+ENTRIES = "\x00inertia-kit:entries"
+
+
+def dumps_streamed(document: Any, entries: Iterable[Any]) -> Iterator[str]:
+    """
+    ``dumps(document) + "\n"`` in pieces, where the one list ``[ENTRIES]`` in ``document``
+    (:data:`ENTRIES`) stands for ``entries``, each dumped as it comes: the same text, without
+    every entry in memory at once.
+    """
+    text = dumps(document) + "\n"
+    quoted = json.dumps(ENTRIES)
+    at = text.index(quoted)
+    start = text.rindex("\n", 0, at)  # the list's opening bracket ends the line before
+    indent = text[start + 1 : at]
+    head, tail = text[:start], text[at + len(quoted) :]
+    separator = "\n"
+    for entry in entries:
+        yield head + separator + indent + dumps(entry).replace("\n", "\n" + indent)
+        head, separator = "", ",\n"
+    if head:  # no entries: the empty list, as dumps writes it
+        yield text[:start] + "]" + tail[tail.index("]") + 1 :]
+    else:
+        yield tail
 
 
 def finite(value: Any) -> Any:

@@ -14,12 +14,18 @@ from __future__ import annotations
 
 import hashlib
 import os
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import UNLINTED, dumps, message, unlinted_name
+from inertia_kit.lint.output.common import (
+    ENTRIES,
+    UNLINTED,
+    dumps_streamed,
+    message,
+    unlinted_name,
+)
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
@@ -31,28 +37,37 @@ UNLINTED_SEVERITY = "critical"
 
 
 def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalError] = ()) -> str:
+    return "".join(pieces(findings, errors))
+
+
+def pieces(
+    findings: Iterable[Finding], errors: Sequence[InputError | InternalError] = ()
+) -> Iterator[str]:
+    """:func:`render`'s text in pieces, a finding at a time."""
+    return dumps_streamed([ENTRIES], _issues(findings, errors))
+
+
+def _issues(
+    findings: Iterable[Finding], errors: Sequence[InputError | InternalError]
+) -> Iterator[dict[str, Any]]:
     root = os.environ.get("CI_PROJECT_DIR") or os.getcwd()
     seen: dict[tuple[str, str, str], str] = {}
-    issues = []
     for finding in findings:
         subject = finding.link or finding.joint or ""
-        issues.append(
-            _issue(
-                finding.code,
-                f"{finding.code}: {message(finding)}",
-                _SEVERITIES[finding.severity],
-                relative(finding.path, root),
-                finding.line,
-                subject,
-                seen,
-            )
+        yield _issue(
+            finding.code,
+            f"{finding.code}: {message(finding)}",
+            _SEVERITIES[finding.severity],
+            relative(finding.path, root),
+            finding.line,
+            subject,
+            seen,
         )
     for error in errors:
         path = relative(error.path, root) if error.path else ""
         name = unlinted_name(error)
         text = f"{UNLINTED}: {name}: {error.message}"
-        issues.append(_issue(UNLINTED, text, UNLINTED_SEVERITY, path, error.line, name, seen))
-    return dumps(issues) + "\n"
+        yield _issue(UNLINTED, text, UNLINTED_SEVERITY, path, error.line, name, seen)
 
 
 def relative(path: str, root: str) -> str:

@@ -7,20 +7,29 @@ object of the same keys for each file that could not be linted: ``code`` ``IN000
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from itertools import chain
 from typing import TYPE_CHECKING, Any
 
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import UNLINTED, dumps, finite, unlinted_name
+from inertia_kit.lint.output.common import ENTRIES, UNLINTED, dumps_streamed, finite, unlinted_name
 
 if TYPE_CHECKING:
     from inertia_kit.errors import InputError, InternalError
 
 
 def render(findings: Sequence[Finding], errors: Sequence[InputError | InternalError] = ()) -> str:
-    entries = [finite(finding.to_json()) for finding in findings]
-    entries += [_unlinted(error) for error in errors]
-    return dumps(entries) + "\n"
+    return "".join(pieces(findings, errors))
+
+
+def pieces(
+    findings: Iterable[Finding], errors: Sequence[InputError | InternalError] = ()
+) -> Iterator[str]:
+    """:func:`render`'s text in pieces, a finding at a time."""
+    entries = chain(
+        (finite(finding.to_json()) for finding in findings), (_unlinted(e) for e in errors)
+    )
+    return dumps_streamed([ENTRIES], entries)
 
 
 def _unlinted(error: InputError | InternalError) -> dict[str, Any]:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 import xml.etree.ElementTree as ET
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import PurePath
 from typing import TYPE_CHECKING
 
@@ -38,29 +38,51 @@ def render(
     errors: Sequence[InputError | InternalError] = (),
     linted: Sequence[str] = (),
 ) -> str:
-    cases: dict[str, list[ET.Element]] = {}
-    for finding in findings:
-        cases.setdefault(finding.path, []).append(_failure(finding))
+    return "".join(pieces(findings, errors, linted))
+
+
+def pieces(
+    findings: Sequence[Finding],
+    errors: Sequence[InputError | InternalError] = (),
+    linted: Iterable[str] = (),
+) -> Iterator[str]:
+    """
+    :func:`render`'s text in pieces, a test suite (a file) at a time: the suites come sorted by
+    path with the totals before them, so the findings are first only counted, by path, then
+    read by position (``findings`` is indexed) as each suite is written.
+    """
+    at: dict[str, list[int]] = {}
+    for position, finding in enumerate(findings):
+        at.setdefault(finding.path, []).append(position)
+    unlinted: dict[str, list[InputError | InternalError]] = {}
     for error in errors:
-        cases.setdefault(error.path or "", []).append(_error(error))
-    for path in linted:
-        cases.setdefault(path, [])
+        unlinted.setdefault(error.path or "", []).append(error)
+    paths = set(at) | set(unlinted) | set(linted)
+    if not paths:  # nothing linted: one passing test, so that a report exists (ruff's)
+        paths = {"inertia-lint"}
+    tests = sum(max(1, len(at.get(p, ())) + len(unlinted.get(p, ()))) for p in paths)
     report = ET.Element("testsuites", name="inertia-lint")
-    if not cases:  # nothing linted: one passing test, so that a report exists (ruff's)
-        cases["inertia-lint"] = []
-    for path in sorted(cases):
-        report.append(_suite(path, cases[path] or [_case(CLEAN, path)]))
-    for count in ("tests", "failures", "errors"):
-        report.set(count, str(sum(int(suite.get(count, 0)) for suite in report)))
-    _writable(report)
-    ET.indent(report, space="    ")
-    text = ET.tostring(report, "unicode")
+    report.attrib |= {"tests": str(tests), "failures": str(len(findings))}
+    report.set("errors", str(len(errors)))
+    opening = ET.tostring(report, "unicode").removesuffix(" />") + ">"
+    yield '<?xml version="1.0" encoding="UTF-8"?>\n' + opening
+    for path in sorted(paths):
+        cases = [_failure(findings[i]) for i in at.get(path, ())]
+        cases += [_error(error) for error in unlinted.get(path, ())]
+        suite = _suite(path, cases or [_case(CLEAN, path)])
+        _writable(suite)
+        ET.indent(suite, space="    ", level=1)
+        yield "\n    " + _safe(ET.tostring(suite, "unicode"))
+    yield "\n</testsuites>\n"
+
+
+def _safe(text: str) -> str:
+    """Written XML with line breaks and what a CI log must not print raw as references."""
     for stand_in, reference in _BREAKS.values():
         text = text.replace(stand_in, reference)
     # C1 controls, line separators and bidirectional controls as references too (the same
     # text once read), so that the report is safe to print in a CI log
-    text = UNPRINTABLE_ABOVE_C0.sub(lambda match: f"&#x{ord(match.group()):x};", text)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text + "\n"
+    return UNPRINTABLE_ABOVE_C0.sub(lambda match: f"&#x{ord(match.group()):x};", text)
 
 
 def _held(text: str) -> str:

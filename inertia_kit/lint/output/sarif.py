@@ -6,7 +6,7 @@ its document as help; unreadable files are the invocation's notifications.
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -15,7 +15,7 @@ from urllib.parse import quote
 from inertia_kit.errors import InputError
 from inertia_kit.lint import catalog, documents
 from inertia_kit.lint.findings import Finding, Severity
-from inertia_kit.lint.output.common import dumps, finite, message
+from inertia_kit.lint.output.common import ENTRIES, dumps_streamed, finite, message
 from inertia_kit.version import __version__
 
 SCHEMA = (
@@ -25,7 +25,7 @@ _LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: 
 
 
 def render(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> str:
-    return dumps(log(findings, errors)) + "\n"
+    return "".join(pieces(findings, errors))
 
 
 def _uri(path: str) -> str:
@@ -66,41 +66,8 @@ def _text(finding: Finding) -> str:
     return message(finding) + (f"\n\n{finding.detail}" if finding.detail else "")
 
 
-def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[str, Any]:
-    """A SARIF 2.1.0 log of one run; the rules listed are those with findings."""
-    names = dict(sorted({(f.code, f.name) for f in findings}))
-    index = {code: i for i, code in enumerate(names)}
-    results = []
-    for finding in findings:
-        result: dict[str, Any] = {
-            "ruleId": finding.code,
-            "ruleIndex": index[finding.code],
-            "level": _LEVELS[finding.severity],
-            # the first line is the claim SARIF viewers show as the result's summary
-            "message": {"text": _text(finding)},
-            "locations": [_physical(finding.path, finding.line, finding.column)],
-        }
-        if finding.macro_path is not None:
-            related = _physical(finding.macro_path, finding.macro_line, None)
-            related.update(id=0, message={"text": "the element in the macro body"})
-            result["relatedLocations"] = [related]
-        properties = {
-            key: value
-            for key, value in (
-                ("severity", str(finding.severity)),
-                ("link", finding.link),
-                ("joint", finding.joint),
-                ("expected", finite(finding.expected)),
-                ("detail", finding.detail),
-                ("help", finding.help),
-                ("via", list(finding.via) or None),
-            )
-            if value is not None
-        }
-        result["properties"] = properties
-        if finding.fix is not None:
-            result["fixes"] = [_fix(finding)]
-        results.append(result)
+def _log(names: dict[str, str], errors: Sequence[InputError], results: list[Any]) -> dict[str, Any]:
+    """A SARIF 2.1.0 log of one run, listing the rules ``names`` (those with findings)."""
     notifications = [
         {
             "level": "error",
@@ -136,6 +103,52 @@ def log(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> dict[
             }
         ],
     }
+
+
+def pieces(findings: Sequence[Finding], errors: Sequence[InputError] = ()) -> Iterator[str]:
+    """:func:`render`'s text in pieces, a result at a time (``findings`` is read twice: for
+    the rules, listed before the results, then for the results)."""
+    names = _names(findings)
+    return dumps_streamed(_log(names, errors, [ENTRIES]), _results(findings, names))
+
+
+def _names(findings: Iterable[Finding]) -> dict[str, str]:
+    """The rules with findings, code -> name, by code: the order of their ``ruleIndex``."""
+    return dict(sorted({(f.code, f.name) for f in findings}))
+
+
+def _results(findings: Iterable[Finding], names: dict[str, str]) -> Iterator[dict[str, Any]]:
+    index = {code: i for i, code in enumerate(names)}
+    for finding in findings:
+        result: dict[str, Any] = {
+            "ruleId": finding.code,
+            "ruleIndex": index[finding.code],
+            "level": _LEVELS[finding.severity],
+            # the first line is the claim SARIF viewers show as the result's summary
+            "message": {"text": _text(finding)},
+            "locations": [_physical(finding.path, finding.line, finding.column)],
+        }
+        if finding.macro_path is not None:
+            related = _physical(finding.macro_path, finding.macro_line, None)
+            related.update(id=0, message={"text": "the element in the macro body"})
+            result["relatedLocations"] = [related]
+        properties = {
+            key: value
+            for key, value in (
+                ("severity", str(finding.severity)),
+                ("link", finding.link),
+                ("joint", finding.joint),
+                ("expected", finite(finding.expected)),
+                ("detail", finding.detail),
+                ("help", finding.help),
+                ("via", list(finding.via) or None),
+            )
+            if value is not None
+        }
+        result["properties"] = properties
+        if finding.fix is not None:
+            result["fixes"] = [_fix(finding)]
+        yield result
 
 
 def _fix(finding: Finding) -> dict[str, Any]:

@@ -2,16 +2,17 @@
 
 from __future__ import annotations
 
-from collections import Counter
 from collections.abc import Iterable, Sequence
 
 from inertia_kit.lint.findings import Finding, Severity
+from inertia_kit.lint.merge import Tally
 from inertia_kit.lint.output.common import dumps
 
 
-def statistics(findings: Iterable[Finding], as_json: bool = False) -> str:
-    """``count  CODE  name`` per rule, most frequent first (or a JSON array)."""
-    counts = Counter((f.code, f.name) for f in findings)
+def statistics(findings: Iterable[Finding] | Tally, as_json: bool = False) -> str:
+    """``count  CODE  name`` per rule, most frequent first (or a JSON array); ``findings``, or
+    their :class:`~inertia_kit.lint.merge.Tally`."""
+    counts = (findings if isinstance(findings, Tally) else Tally.of(findings)).by_rule
     rows = sorted(counts.items(), key=lambda item: (-item[1], item[0][0]))
     if as_json:
         return dumps([{"code": code, "name": name, "count": n} for (code, name), n in rows]) + "\n"
@@ -24,7 +25,7 @@ def _count(n: int, word: str, plural: str | None = None) -> str:
 
 
 def summary(
-    findings: Sequence[Finding],
+    findings: Sequence[Finding] | Tally,
     checked: int,
     unreadable: int = 0,
     internal: int = 0,
@@ -42,14 +43,17 @@ def summary(
     then the files that could not be read or met an internal error (a bug). With fixes:
     ``Fixed 2 findings; 1 error remains in 1 of 6 files.`` or ``Fixed 2 findings; no findings
     remain in 6 files.``, and a line counting the fixes ``--fix`` (``fixable``) or
-    ``--unsafe-fixes`` (``hidden``) would apply.
+    ``--unsafe-fixes`` (``hidden``) would apply. ``findings``: the findings, or their
+    :class:`~inertia_kit.lint.merge.Tally` (then ``flagged`` is needed).
     """
     if flagged is None:
+        assert not isinstance(findings, Tally), "a tally does not know the files: give flagged"
         flagged = len({f.path for f in findings})
+    by_severity = (findings if isinstance(findings, Tally) else Tally.of(findings)).by_severity
+    total = sum(by_severity.values())
     # a finding always comes from a linted file: never "in 2 of 1 files"
     checked = max(checked, flagged)
-    if findings:
-        by_severity = Counter(f.severity for f in findings)
+    if total:
         words = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "info"}
         parts = ", ".join(
             _count(by_severity[level], word, "info" if level is Severity.INFO else None)
@@ -61,7 +65,7 @@ def summary(
         where = f"in {some}{_count(checked, 'file')}"
         text = f"Found {parts} {where}"
         if fixed:
-            verb = "remains" if len(findings) == 1 else "remain"
+            verb = "remains" if total == 1 else "remain"
             text = f"Fixed {_count(fixed, 'finding')}; {parts} {verb} {where}"
     else:
         text = f"No findings in {_count(checked, 'file')}"

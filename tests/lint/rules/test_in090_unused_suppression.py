@@ -199,6 +199,20 @@ def test_a_comment_in_a_fragment_is_judged_over_every_robot_that_includes_it(tmp
     assert lint(tmp_path / "parts.xacro") == (0, [])
 
 
+def test_robots_with_comments_of_their_own_are_each_judged_once(tmp_path):
+    # each robot's findings are told as it is linted (a streamed report); judging the comments
+    # shared by several robots at the end must not judge, and tell, these again
+    for name in ("a", "b"):
+        (tmp_path / f"{name}.urdf").write_text(CLEAN.format(comment=COMMENT.format("IN012")))
+    for output_format in ("json", "concise"):
+        result = CliRunner().invoke(lint_main, ["--output-format", output_format, str(tmp_path)])
+        assert result.exit_code == 1, result.output
+        assert result.stdout.count("IN090") == 2
+    _, findings = lint(tmp_path)
+    for finding in unused(findings):
+        assert fixed(Path(finding["file"]), finding) == CLEAN.replace("  {comment}\n", "")
+
+
 def test_a_disabled_file_is_not_judged(tmp_path):
     path = tmp_path / "r.urdf"
     text = CLEAN.format(comment=COMMENT.format("IN012"))
