@@ -17,5 +17,17 @@ NOT_FOR_PLAIN_URDF = (
     # a file given by name with no exclude patterns compiles none; stdin's helpers wait for `-`
     "pathspec",
     "secrets",
+    # issue 23: what only a misspelling, a mesh, a repository scan or a suppression comment
+    # needs (difflib's suggestions, the mesh readers and unions, the include cache, the markup
+    # scanner); and hashlib, which loads OpenSSL: description.reads takes BLAKE2 from _blake2
+    "difflib",
+    "hashlib",
+    "inertia_kit.analysis.mesh_units",
+    "inertia_kit.physics.mesh_formats",
+    "inertia_kit.physics.manifolds",
+    "inertia_kit.lint.include_cache",
+    "inertia_kit.lint.markup",
+    # the machine-read formats' encoder: a run that prints text needs none
+    "json",
 )
 NOT_FOR_WARM_CACHE = ("trimesh", "manifold3d", "collada")

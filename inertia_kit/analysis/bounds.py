@@ -256,6 +256,19 @@ class Hull:
         u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
         return self.support(u) - u @ np.asarray(point, dtype=np.float64)
 
+    def spans(
+        self, point: ArrayLike, directions: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """
+        :meth:`half_widths` along ``-u`` and along ``u``: the same numbers, from one product
+        with the points, since negation is exact in floating point (``(-u)·x`` is ``-(u·x)``
+        to the bit). The local search of :func:`_along` asks for both sides of every trial.
+        """
+        u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
+        along = u @ self.points.T
+        centre = u @ np.asarray(point, dtype=np.float64)
+        return (self.radii - along).max(axis=1) + centre, (along + self.radii).max(axis=1) - centre
+
 
 def _part_corners(part: Part) -> NDArray[np.float64]:
     from inertia_kit.physics.tessellate import half_extents
@@ -428,7 +441,7 @@ def _along(
         return None
 
     def ratios(u: NDArray[np.float64]) -> NDArray[np.float64]:
-        high, low = hull.half_widths(com, u), hull.half_widths(com, -u)
+        low, high = hull.spans(com, u)
         inside = np.minimum(low, high) > _ON_BOUNDARY * (low + high)
         values = np.einsum("ij,jk,ik->i", u, second, u)
         with np.errstate(over="ignore", divide="ignore", invalid="ignore"):

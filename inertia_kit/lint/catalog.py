@@ -15,7 +15,6 @@ code (``IN012``), a code prefix (``IN01``, ``IN0``) or a rule name (``inertia-to
 
 from __future__ import annotations
 
-import difflib
 import re
 from collections.abc import Iterable, Mapping
 from types import ModuleType
@@ -187,6 +186,8 @@ def suggestions(text: str, known: Mapping[str, str]) -> list[str]:
     if re.fullmatch(r"(?i)IN[0-9]{1,2}", text):
         padded = "IN" + text[2:].zfill(3)
         return [padded] if padded in known else []
+    import difflib  # an unknown name only: not imported by every run
+
     return difflib.get_close_matches(text, list(known.values()), n=3, cutoff=0.75)
 
 

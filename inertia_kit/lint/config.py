@@ -44,7 +44,6 @@ and the key (the command exits 2).
 
 from __future__ import annotations
 
-import difflib
 import functools
 import os
 import re
@@ -277,6 +276,8 @@ class _Where:
         allowed = tuple(allowed)
         for key in table:
             if key not in allowed:
+                import difflib  # a misspelt key only: not imported by every run
+
                 close = difflib.get_close_matches(key, allowed, n=1)
                 hint = f" (did you mean `{close[0]}`?)" if close else ""
                 expected = ", ".join(f"`{a}`" for a in allowed) or "none"

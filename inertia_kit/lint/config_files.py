@@ -17,11 +17,6 @@ from typing import Any
 from inertia_kit.errors import ConfigError, InputError
 from inertia_kit.lint.config import Config, parse_config
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - exercised on Python 3.10 only
-    import tomli as tomllib
-
 CONFIG_NAME = ".inertia-kit.toml"
 PYPROJECT = "pyproject.toml"
 #: A configuration file larger than this is refused unread (the largest real pyproject.toml
@@ -45,6 +40,12 @@ def load_config(path: str | Path) -> Config:
 
 
 def _read_toml(path: Path) -> dict[str, Any]:
+    # imported here: most runs find no configuration, or a pyproject.toml without ours
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - exercised on Python 3.10 only
+        import tomli as tomllib
+
     from inertia_kit.reading import read_regular
 
     if not path.exists():

@@ -28,10 +28,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from inertia_kit.lint.include_cache import Entry, Stamp, load_entries, save_entries, stamp
-
 if TYPE_CHECKING:
     from inertia_kit.description.xacro_limits import XacroLimits
+    from inertia_kit.lint.include_cache import Entry, Stamp
 
 # what a file that reads another file must name (xacro:include, xacro.load_yaml)
 _READS_OTHERS = re.compile(rb"include|load_yaml")
@@ -73,7 +72,9 @@ def include_graph(
     they were (each robot file's size and mtime, and those of every file it read), re-scanned
     where they are not; the cache is then brought up to date.
     """
+    # the cache (and json) only when a repository is scanned: not for a plain URDF
     from inertia_kit.lint.discovery import expand_paths
+    from inertia_kit.lint.include_cache import Entry, load_entries, save_entries
 
     root = Path(real(root))
     options = {
@@ -116,6 +117,7 @@ def _scan(
     from inertia_kit.description.loader import files_read, needs_expansion
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.errors import InputError
+    from inertia_kit.lint.include_cache import Entry, stamp
 
     own = stamp(path)
     if own is None:
@@ -144,6 +146,8 @@ def _scan(
 
 def _stamped(files: Iterable[str]) -> tuple[tuple[str, Stamp], ...] | None:
     """Each file read, by real path, with its stamp; ``None`` if one is gone already."""
+    from inertia_kit.lint.include_cache import stamp
+
     reads: dict[str, Stamp] = {}
     for name in files:
         key = real(name)

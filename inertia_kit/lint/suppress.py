@@ -21,10 +21,14 @@ import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from inertia_kit.errors import InputError
-from inertia_kit.lint import catalog, markup
+from inertia_kit.lint import catalog
 from inertia_kit.lint.findings import Finding
+
+if TYPE_CHECKING:
+    from inertia_kit.lint import markup
 
 _DIRECTIVE = re.compile(r"\s*inertia-lint\s*:\s*(.*?)\s*\Z", re.DOTALL)
 _IGNORE = re.compile(r"ignore\s*\[([^\]]*)\](.*)\Z", re.DOTALL)
@@ -171,6 +175,8 @@ def _read(path: str, data: bytes) -> Directives:
         text = decode_source(data, path).text
     except InputError:  # an encoding we cannot edit in: read as libxml2 does then, as UTF-8
         text = data.decode("utf-8", "replace")
+    from inertia_kit.lint import markup  # its scanner (a large regex) only for a directive
+
     return _scan(path, markup.layout(text))
 
 

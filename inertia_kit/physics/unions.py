@@ -18,7 +18,8 @@ do not overlap and carries only the (second-order) tessellation error of the ove
 Parts whose bounding boxes touch no other part's never reach manifold3d; the meshes that do
 pass through :mod:`.manifolds`.
 
-manifold3d is imported inside the functions that use it, so importing this module stays cheap.
+manifold3d is imported inside the functions that use it, so importing this module stays cheap;
+so are :mod:`.manifolds` and :mod:`.polyhedra`, which a link of primitives alone never needs.
 """
 
 from __future__ import annotations
@@ -32,15 +33,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit.physics import primitives
 from inertia_kit.physics.frames import as_transform, inverse
-from inertia_kit.physics.manifolds import as_manifold, closed_mesh, manifold_moments
 from inertia_kit.physics.mass import MassProperties, second_moment_from_inertia
-from inertia_kit.physics.polyhedra import integrate
 from inertia_kit.physics.primitives import body_mass
 from inertia_kit.physics.tessellate import half_extents, primitive_mesh
-from inertia_kit.physics.volume_moments import VolumeMoments
 
 if TYPE_CHECKING:
     import manifold3d
+
+    from inertia_kit.physics.volume_moments import VolumeMoments
 
 # segments around each curved primitive's axis: at 96 the overlap of two cylinders or of a
 # cylinder and a sphere is within 1e-5 of the closed form, for ~10 ms per union
@@ -147,6 +147,9 @@ class Part:
           On bad shapes, non-finite coordinates, a surface that is not closed even after
           manifold3d merges its open edges, or one that bounds no positive volume.
         """
+        from inertia_kit.physics.manifolds import closed_mesh
+        from inertia_kit.physics.polyhedra import integrate
+
         points, triangles = closed_mesh(vertices, faces)
         moments = integrate(points[triangles]).moments
         if not moments.volume > 0:
@@ -217,6 +220,8 @@ class Part:
 
     def to_manifold(self, segments: int = DEFAULT_SEGMENTS) -> manifold3d.Manifold:
         """:meth:`tessellation` as a ``manifold3d.Manifold``."""
+        from inertia_kit.physics.manifolds import as_manifold
+
         return as_manifold(*self.tessellation(segments))
 
 
@@ -373,6 +378,8 @@ def _overlap_corrected(
     """
     import manifold3d
 
+    from inertia_kit.physics.manifolds import manifold_moments
+
     corners = np.array([part.bounds for part in group])
     origin = 0.5 * (corners[:, 0].min(axis=0) + corners[:, 1].max(axis=0))
     solids = [part.to_manifold(segments) for part in group]
@@ -393,6 +400,8 @@ def _overlap_corrected(
 
 def _as_moments(unit: MassProperties, origin: NDArray[np.float64]) -> VolumeMoments:
     """Volume integrals about ``origin`` of a body at unit density (mass = volume)."""
+    from inertia_kit.physics.volume_moments import VolumeMoments
+
     offset = unit.com - origin
     second = second_moment_from_inertia(unit.inertia) + unit.mass * np.outer(offset, offset)
     return VolumeMoments(unit.mass, unit.mass * offset, second, origin)

@@ -6,7 +6,6 @@ formats call a file that could not be linted.
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable, Iterable, Iterator
 from typing import TYPE_CHECKING, Any
@@ -52,6 +51,8 @@ def dumps(value: Any) -> str:
     C1 control, line separator or bidirectional control raw in it), which a lone surrogate (an
     undecodable file name) cannot make unwritable.
     """
+    import json  # the machine-read formats only: not imported by a run that prints text
+
     text = json.dumps(value, indent=2, ensure_ascii=False, allow_nan=False)
     # outside strings JSON is ASCII: every such character stands inside a string
     return UNPRINTABLE_ABOVE_C0.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
@@ -68,6 +69,8 @@ def dumps_streamed(document: Any, entries: Iterable[Any]) -> Iterator[str]:
     (:data:`ENTRIES`) stands for ``entries``, each dumped as it comes: the same text, without
     every entry in memory at once.
     """
+    import json
+
     text = dumps(document) + "\n"
     quoted = json.dumps(ENTRIES)
     at = text.index(quoted)

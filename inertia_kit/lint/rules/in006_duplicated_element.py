@@ -3,15 +3,19 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import lines
 from inertia_kit.description.edits import Edit, read_source
 from inertia_kit.description.model import Duplicate, Source
-from inertia_kit.description.xmlspan import Span, element_span, tokens
 from inertia_kit.errors import InputError
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
+
+if TYPE_CHECKING:
+    # the markup scanner (a large regular expression) only to remove a duplicate
+    from inertia_kit.description.xmlspan import Span
 
 CODE = "IN006"
 NAME = "duplicated-element"
@@ -148,6 +152,8 @@ def _removal(duplicate: Duplicate) -> Fix | None:
         read.line, read.column, ignored.line, ignored.column,
     ):  # fmt: skip
         return None
+    from inertia_kit.description.xmlspan import element_span
+
     try:
         source = read_source(ignored.path)
         text = source.text
@@ -180,6 +186,8 @@ def _siblings(text: str, first: Span, second: Span) -> bool:
     of them inside an ``<xacro:if>`` the other is outside of (a configuration without the
     first would lose the element with the second).
     """
+    from inertia_kit.description.xmlspan import tokens
+
     if second.start < first.end:
         return False
     depth = 0

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import os
 from collections.abc import Iterator
 from pathlib import Path
@@ -181,6 +180,8 @@ def _named_in(folder: Path, name: str) -> Path | None:
 
 def _similar(path: Path) -> Path | None:
     """A mesh file in the same folder with a close name (one listing, no recursion)."""
+    import difflib  # a missing mesh only: not imported by every run
+
     names = [e.name for e in folder_entries(path.parent) if entry_is_file(e)]
     suffix = path.suffix.lower()
     candidates = [n for n in names if Path(n).suffix.lower() == suffix]

@@ -6,6 +6,7 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,19 +14,15 @@ from inertia_kit.analysis.declared import declared_mass
 from inertia_kit.analysis.describe import describe_geometry
 from inertia_kit.analysis.geometry import Solid
 from inertia_kit.analysis.links import LinkAnalysis
-from inertia_kit.analysis.mesh_units import (
-    SLIPS,
-    VIOLATION,
-    Evidence,
-    density_evidence,
-    size_evidence,
-    suspected_unit,
-)
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt, xml_number
+
+if TYPE_CHECKING:
+    # imported where a mesh is judged: a robot of primitives needs none of it
+    from inertia_kit.analysis.mesh_units import Evidence
 
 CODE = "IN031"
 NAME = "mesh-units"
@@ -112,6 +109,8 @@ def _describe(solid: Solid) -> str:
 def _evidence(
     link: LinkAnalysis, solid: Solid, peers: list[Solid], ctx: RuleContext
 ) -> list[Evidence]:
+    from inertia_kit.analysis.mesh_units import Evidence, density_evidence, size_evidence
+
     mesh = solid.mesh
     assert mesh is not None
     extent = _extent(solid)
@@ -173,6 +172,8 @@ class Verdict:
 
 
 def _judge(link: LinkAnalysis, solid: Solid, peers: list[Solid], ctx: RuleContext) -> Verdict:
+    from inertia_kit.analysis.mesh_units import suspected_unit
+
     evidence = _evidence(link, solid, peers, ctx)
     suspicion = suspected_unit(evidence, int(ctx.option("min_evidence")))
     return Verdict(solid, suspicion.slip, tuple(evidence), suspicion.others)
@@ -227,6 +228,8 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
 
 
 def _finding(link: LinkAnalysis, verdict: Verdict, ctx: RuleContext) -> Finding:
+    from inertia_kit.analysis.mesh_units import SLIPS, VIOLATION
+
     solid, slip = verdict.solid, verdict.slip
     assert slip is not None and solid.mesh is not None
     element = solid.shape.geometry

@@ -9,7 +9,6 @@ from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.description import model
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
-from inertia_kit.physics.mesh_formats import FORMATS
 
 CODE = "IN034"
 NAME = "mesh-unreadable"
@@ -26,6 +25,9 @@ def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
         kind = solid.shape.kind
         if solid.problem is None or solid.problem[0] != "mesh-unreadable":
             continue
+        # the mesh readers only for an unreadable mesh: a robot of primitives needs none
+        from inertia_kit.physics.mesh_formats import FORMATS
+
         mesh = solid.shape.geometry
         assert isinstance(mesh, model.Mesh)
         suffix = Path(mesh.path or mesh.filename).suffix.lower()

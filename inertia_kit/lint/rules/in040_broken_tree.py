@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 from collections import Counter
 from collections.abc import Iterator
 
@@ -41,6 +40,8 @@ def _line(source: model.Source) -> str:
 
 
 def _guess(name: str, options: list[str]) -> str:
+    import difflib  # a broken tree only: not imported by every run
+
     close = difflib.get_close_matches(name, options, n=1, cutoff=0.6)
     return f" (did you mean `{close[0]}`?)" if close else ""
 

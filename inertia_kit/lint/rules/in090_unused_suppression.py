@@ -11,11 +11,11 @@ from inertia_kit.description.edits import Edit, read_source
 from inertia_kit.description.model import Source
 from inertia_kit.description.reads import digest
 from inertia_kit.errors import InputError
-from inertia_kit.lint import markup
 from inertia_kit.lint.findings import Finding, Fix, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
 
 if TYPE_CHECKING:
+    from inertia_kit.lint import markup
     from inertia_kit.lint.comment_use import CommentUse
 
 CODE = "IN090"
@@ -66,6 +66,9 @@ def _fix(path: str, line: int, unused: set[str], read: str | None) -> tuple[Fix,
         return None
     if read is None or digest(source.original) != read:
         return None  # the comment's line is one of another text: no edit computed on this one
+    # the markup scanner (a large regular expression) only when there is a comment to edit
+    from inertia_kit.lint import markup
+
     text = source.text
     found = markup.layout(text)
     comment = found.comment_on(line)
