@@ -457,18 +457,20 @@ def _along(
     u, value = starts[best], float(found[best])
     step = _FIRST_STEP
     offsets = np.array([[1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]])
+    tangent = None
     for _ in range(_MAX_STEPS):
         if step < _LAST_STEP:
             break
-        tangent = np.linalg.svd(u[None, :])[2][1:]  # two unit vectors perpendicular to u
-        trial = u + step * (offsets @ tangent)
+        if tangent is None:  # two unit vectors perpendicular to u, again only when u moves
+            tangent = offsets @ np.linalg.svd(u[None, :])[2][1:]
+        trial = u + step * tangent
         trial /= np.linalg.norm(trial, axis=1)[:, None]
         scores = ratios(trial)
         if not np.isfinite(scores).all():
             return None
         i = int(np.argmax(scores))
         if scores[i] > value:
-            u, value = trial[i], float(scores[i])
+            u, value, tangent = trial[i], float(scores[i]), None
         else:
             step /= 2.0
     named = [a for a, r in zip(axes, found[:3], strict=True) if r > 1.0 + BOUND_RTOL]
