@@ -75,9 +75,7 @@ def classify(
     if integrator.closed:
         return _oriented(path, integrator, "exact")
     assert triangles is not None
-    points, corners = np.unique(
-        np.asarray(triangles, dtype=np.float64).reshape(-1, 3), axis=0, return_inverse=True
-    )
+    points, corners = unique_rows(np.asarray(triangles, dtype=np.float64).reshape(-1, 3))
     extent = _extent(integrator.bounds)
     for rtol in WELD_RTOLS:
         faces = weld(points, rtol * extent)[corners.reshape(-1, 3)]
@@ -98,6 +96,26 @@ def classify(
         if closed.closed:
             return _oriented(path, closed, method)
     return _convex_hull(path, triangles, integrator)
+
+
+def unique_rows(rows: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """
+    ``np.unique(rows, axis=0, return_inverse=True)`` (the distinct rows in lexicographic order,
+    and each row's index among them) for finite rows (k, 3), two to three times faster: one
+    ``lexsort`` of the columns instead of a sort of the rows as records. Non-finite rows are
+    left to ``np.unique``.
+    """
+    if not np.isfinite(rows).all():
+        points, inverse = np.unique(rows, axis=0, return_inverse=True)
+        return points, inverse.reshape(-1)
+    order = np.lexsort((rows[:, 2], rows[:, 1], rows[:, 0]))
+    ranked = rows[order]
+    first = np.empty(len(rows), dtype=bool)
+    first[:1] = True
+    first[1:] = (ranked[1:] != ranked[:-1]).any(axis=1)
+    inverse = np.empty(len(rows), dtype=np.intp)
+    inverse[order] = np.cumsum(first) - 1
+    return ranked[first], inverse
 
 
 def closure(faces: NDArray[np.int64]) -> tuple[bool, bool]:

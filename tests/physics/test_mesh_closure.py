@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from inertia_kit.physics.manifolds import canonical_triangles
+from inertia_kit.physics.mesh_closure import unique_rows
 from inertia_kit.physics.polyhedra import integrate
 
 
@@ -284,3 +285,27 @@ def test_cell_ids_group_the_rows_as_numpy_unique_does(rows):
     # the same partition of the rows: each of our ids is one of numpy's, and back
     assert len(set(zip(ours.tolist(), numpys.tolist(), strict=True))) == len(set(ours.tolist()))
     assert len(set(ours.tolist())) == len(set(numpys.tolist()))
+
+
+@given(
+    st.lists(
+        st.tuples(*[st.sampled_from([0.0, -1.5, 2.25, 1e-300, 3e12, 0.1])] * 3),
+        min_size=0,
+        max_size=40,
+    )
+)
+def test_unique_rows_is_numpys_unique_of_rows(rows):
+    array = np.array(rows, dtype=np.float64).reshape(-1, 3)
+    points, inverse = unique_rows(array)
+    expected, expected_inverse = np.unique(array, axis=0, return_inverse=True)
+    assert np.array_equal(points, expected)
+    assert np.array_equal(inverse, expected_inverse.reshape(-1))
+    assert np.array_equal(points[inverse], array)
+
+
+def test_unique_rows_leaves_non_finite_rows_to_numpy():
+    array = np.array([[np.nan, 0, 0], [1, 2, 3], [np.nan, 0, 0], [np.inf, 1, 1]])
+    points, inverse = unique_rows(array)
+    expected, expected_inverse = np.unique(array, axis=0, return_inverse=True)
+    assert np.array_equal(points, expected, equal_nan=True)
+    assert np.array_equal(inverse, expected_inverse.reshape(-1))
