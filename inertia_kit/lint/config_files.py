@@ -62,10 +62,11 @@ def _read_toml(path: Path) -> dict[str, Any]:
         raise ConfigError(f"{path}: invalid TOML: {error}") from None
 
 
-def find_config(folder: str | Path) -> Path | None:
-    """The configuration file that applies in ``folder``: the nearest, looking upward."""
+def find_config(folder: str | Path, upward: bool = True) -> Path | None:
+    """The configuration file that applies in ``folder``: the nearest, looking upward (or, not
+    ``upward``, in ``folder`` itself)."""
     folder = Path(os.path.abspath(folder))
-    for candidate in (folder, *folder.parents):
+    for candidate in (folder, *folder.parents) if upward else (folder,):
         # os.path.isfile: False for a folder we may not search (Path.is_file raises there)
         own = candidate / CONFIG_NAME
         if _is_config_file(own):
@@ -115,6 +116,17 @@ class ConfigFinder:
         self._by_folder: dict[str, Path | None] = {}
         self._by_file: dict[Path, Config] = {}
 
+    def _nearest(self, folder: str) -> Path | None:
+        """:func:`find_config` of ``folder``, each folder on the way up looked at once: an asset
+        library's thousand folders share their parents' answer."""
+        if folder not in self._by_folder:
+            own = find_config(folder, upward=False)
+            parent = os.path.dirname(folder)
+            if own is None and parent != folder:
+                own = self._nearest(parent)
+            self._by_folder[folder] = own
+        return self._by_folder[folder]
+
     def for_file(self, path: str | Path) -> Config:
         return self.for_folder(os.path.dirname(os.path.abspath(path)))
 
@@ -122,10 +134,7 @@ class ConfigFinder:
         """The configuration of the files in ``folder`` (and of its walk)."""
         if self.explicit is not None:
             return self.explicit
-        folder = os.path.abspath(folder)
-        if folder not in self._by_folder:
-            self._by_folder[folder] = find_config(folder)
-        found = self._by_folder[folder]
+        found = self._nearest(os.path.abspath(folder))
         if found is None:
             return Config()
         if found not in self._by_file:

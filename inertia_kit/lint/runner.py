@@ -68,12 +68,8 @@ class Selection:
         return catalog.selects(patterns, rule.CODE, rule.NAME)
 
     def enabled(self, rules: Sequence[ModuleType]) -> list[ModuleType]:
-        return [rule for rule in rules if self._runs(rule)]
-
-    def _runs(self, rule: ModuleType) -> bool:
-        engine = catalog.engine(rule)
-        chosen = engine in self.engines if engine is not None else self.matches(rule, self.select)
-        return chosen and not self.matches(rule, self.ignore)
+        chosen = (tuple(self.select), tuple(self.ignore), tuple(self.engines))
+        return [rule for rule in rules if _runs(rule, *chosen)]
 
     def ignored(self, finding: Finding, linted: str | Path) -> bool:
         """
@@ -88,6 +84,19 @@ class Selection:
             for entry in self.per_file_ignores
             for file in files
         )
+
+
+@functools.lru_cache(maxsize=4096)
+def _runs(
+    rule: ModuleType, select: tuple[str, ...], ignore: tuple[str, ...], engines: tuple[str, ...]
+) -> bool:
+    """Whether ``rule`` runs under a selection's ``select``, ``ignore`` and ``engines``: asked
+    for every rule of every file, answered once (a run has a selection or a few)."""
+    engine = catalog.engine(rule)
+    chosen = (
+        engine in engines if engine is not None else catalog.selects(select, rule.CODE, rule.NAME)
+    )
+    return chosen and not catalog.selects(ignore, rule.CODE, rule.NAME)
 
 
 def selection_for(

@@ -42,6 +42,7 @@ candidates); finding packages (rules 1 to 4, :data:`~.package_lookup.RULES`) is
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote
@@ -185,15 +186,16 @@ class PackageResolver(PackageFinder):
     ) -> Resolution:
         """Rules ``next-to-file`` then (with ``search``) ``search-path``."""
         how = "package:// stripped, as PyBullet and Pinocchio read it; " if stripped else ""
-        places = [(base, "next-to-file", "next to the file")]
-        if search:
-            places += [
-                (folder, "search-path", f"search path ({label})")
-                for folder, label in self.search_path(base)
-            ]
+
+        def places() -> Iterator[tuple[Path, str, str]]:
+            yield base, "next-to-file", "next to the file"
+            if search:  # looked for only past the file's own folder: most meshes are there
+                for folder, label in self.search_path(base):
+                    yield folder, "search-path", f"search path ({label})"
+
         searched: list[str] = []
         first: Path | None = None
-        for folder, rule, label in places:
+        for folder, rule, label in places():
             path = normal(folder / text)
             if is_file(path):
                 return Resolution(path, None, rule, f"{how}{label}", tuple(searched))

@@ -17,8 +17,10 @@ Files that could not be read, and internal errors (a bug), are in every machine-
 :mod:`.summary` adds the statistics and the summary line. Paths are shown as the findings carry
 them (as given on the command line, or as xacro included them). Colour is added by ``style``,
 and removed by the caller when the output is no terminal. Adding a format: a module with its
-``render``, a branch in :func:`render`, and its name in :data:`FORMATS` and in the CLI's
-``--output-format`` choices.
+``render`` (and its ``pieces`` when it is one document), a branch in :func:`pieces`, and its
+name in :data:`FORMATS` and in the CLI's ``--output-format`` choices. :func:`pieces` gives a
+report in pieces, for a run that writes it as it is made (from a
+:class:`~inertia_kit.lint.output.spool.Spool`), in bounded memory.
 """
 
 from __future__ import annotations
