@@ -105,6 +105,9 @@ def _has_section(pyproject: Path) -> bool:
     return "inertia-kit" in _read_toml(pyproject).get("tool", {})
 
 
+_DEFAULT = Config()
+
+
 class ConfigFinder:
     """
     The configuration of each linted file: ``--config`` for all, else the nearest file,
@@ -136,7 +139,7 @@ class ConfigFinder:
             return self.explicit
         found = self._nearest(os.path.abspath(folder))
         if found is None:
-            return Config()
+            return _DEFAULT  # one for every file without a configuration
         if found not in self._by_file:
             self._by_file[found] = load_config(found)
         return self._by_file[found]

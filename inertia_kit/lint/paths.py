@@ -121,14 +121,22 @@ def linting(
     chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery, walked)
     plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
     limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
+    # one selection and mass choice per configuration, shared by its files: a run over many
+    # files holds one task each
+    shared: dict[int, tuple[Selection, MassChoice]] = {}
     tasks = []
     for target, found in plan:
         unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
-        choice = mass_choice_for(found)
+        if id(found) not in shared:
+            shared[id(found)] = (
+                selection_for(found, select, ignore, engines),
+                mass_choice_for(found),
+            )
+        selection, choice = shared[id(found)]
         tasks.append(
             _Task(
                 target,
-                selection_for(found, select, ignore, engines),
+                selection,
                 xacro_args,
                 tuple(package_paths),
                 load_mesh,
