@@ -291,6 +291,7 @@ def lint_file(
     mass_choice: MassChoice | None = None,
     fixes: str = "all",
     place_fixes: bool = True,
+    loaded: Callable[[model.Robot], object] | None = None,
 ) -> FileResult:
     """
     Lint one file; an unreadable one gives a result with ``error`` set, not an exception.
@@ -300,6 +301,8 @@ def lint_file(
     values from the geometry with ``mass_choice`` (default: 1000 kg/m³, declared masses kept);
     with their edits placed in the files, unless ``place_fixes`` is false (a run that neither
     applies, shows nor writes out the edits: each fix's values, safety and title only).
+    ``loaded(robot)`` is told the robot as loaded, before it is linted (what the caller reads of
+    it besides the findings needs no second load: the dataset mode's declared values).
     """
     from inertia_kit.description.loader import load
     from inertia_kit.lint import unused
@@ -315,6 +318,8 @@ def lint_file(
         return FileResult(str(path), error=error, environment_values=error.environment_values)
     if robot.fragment:
         return FileResult(str(path), fragment=True)
+    if loaded is not None:
+        loaded(robot)
     notes = [
         f"{found.path}{'' if line is None else f':{line}'}: inertia-lint comment ignored: {text}"
         for found in map(directives, robot.files or (str(path),))

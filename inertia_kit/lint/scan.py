@@ -258,6 +258,7 @@ def lint_asset(task: AssetTask) -> dict[str, Any]:
     from inertia_kit.lint.runner import lint_file
 
     os.environ.update(task.environment)
+    robots: list[model.Robot] = []  # the model the lint loaded, for the declared values
     result = lint_file(
         task.path,
         task.selection,
@@ -267,10 +268,11 @@ def lint_asset(task: AssetTask) -> dict[str, Any]:
         mass_choice=task.mass_choice,
         fixes="all",
         place_fixes=True,  # as the json format: each fix's edits
+        loaded=robots.append,
     )
     if result.error is not None:
         return {"status": "unreadable", "error": str(result.error), "files": _hashes(result.reads)}
-    robot = None if result.fragment or result.disabled else _loaded(task)
+    robot = None if result.fragment or result.disabled or not robots else robots[0]
     notes = list(result.notes)
     notes += ["a xacro fragment: nothing to lint on its own"] if result.fragment else []
     notes += ["inertia-lint: disable-file"] if result.disabled else []
@@ -282,22 +284,6 @@ def lint_asset(task: AssetTask) -> dict[str, Any]:
         "files": _hashes([*result.reads, *meshes]),
         "notes": notes,
     }
-
-
-def _loaded(task: AssetTask) -> model.Robot | None:
-    """The asset's model, for its declared values (``lint_file`` keeps its own)."""
-    from inertia_kit.description.loader import load
-    from inertia_kit.errors import InputError
-
-    try:
-        return load(
-            task.path,
-            xacro_args=task.xacro_args,
-            package_paths=task.package_paths,
-            xacro_limits=task.xacro_limits,
-        )
-    except InputError:  # changed since it was linted: the findings stand, without links
-        return None
 
 
 def declared_links(robot: model.Robot) -> list[dict[str, Any]]:
