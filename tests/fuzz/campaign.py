@@ -1,7 +1,8 @@
 """
 A fuzz campaign: inputs ``0 .. N-1`` of a seed, each generated from ``random.Random(f"{seed}/
 {index}")`` (fuzz.seeds, fuzz.mutate), run through its plan (fuzz.plan, fuzz.procedures) in
-worker processes forked from a harness that imported everything once; failures shrunk
+worker processes (fresh from a forkserver, each importing everything once, then forking a run
+per invocation: a run's peak memory is its own, whatever the caller holds); failures shrunk
 (fuzz.shrink) and saved as reproducer folders; a summary by class and signature, with the
 runs' peak time and memory and the inputs per second.
 """
@@ -226,6 +227,7 @@ _WORKER: dict = {}
 
 
 def _start_worker(seed, profile: Profile, base: str, out: str | None) -> None:
+    execute.preload()  # a worker starts fresh (forkserver): imports once, before any run
     execute.become_subreaper()
     _WORKER.update(
         seed=seed,
@@ -370,7 +372,10 @@ def run_campaign(
             results = map(_work, indices)
             pool = None
         else:
-            pool = multiprocessing.get_context("fork").Pool(
+            # workers from a fresh forkserver, not forked from this process: a run's peak
+            # memory counts the pages it inherits, and a pytest worker that ran other tests
+            # before may hold a gigabyte (every run then "over 1 GB", by another test's heap)
+            pool = multiprocessing.get_context("forkserver").Pool(
                 workers,
                 initializer=_start_worker,
                 initargs=(seed, profile, str(base), str(out) if out else None),
