@@ -39,13 +39,30 @@ class Spool(Sequence[Finding]):
             self._file = None
 
     def extend(self, findings: Iterable[Finding]) -> None:
-        if self._file is None:
-            self._kept.extend(findings)
-            return
-        self._file.seek(0, 2)
-        for finding in findings:
-            self._offsets.append(self._file.tell())
-            pickle.dump(finding, self._file, pickle.HIGHEST_PROTOCOL)
+        findings = list(findings)
+        written = 0
+        if self._file is not None:
+            try:
+                self._file.seek(0, 2)
+                for finding in findings:
+                    at = self._file.tell()
+                    pickle.dump(finding, self._file, pickle.HIGHEST_PROTOCOL)
+                    self._offsets.append(at)
+                    written += 1
+                return
+            except OSError:  # the temporary folder is full (or gone): the rest in memory
+                self._to_memory()
+        self._kept.extend(findings[written:])
+
+    def _to_memory(self) -> None:
+        """Every finding written so far read back into memory; the file dropped."""
+        assert self._file is not None
+        kept = []
+        self._file.seek(0)
+        for _ in range(len(self._offsets)):
+            kept.append(pickle.load(self._file))
+        self._file.close()
+        self._file, self._kept = None, kept
 
     def __len__(self) -> int:
         return len(self._kept) if self._file is None else len(self._offsets)

@@ -123,3 +123,29 @@ def test_a_document_dumped_in_pieces_is_the_document_dumped_whole(entries, aroun
         text = "".join(dumps_streamed(document, iter(entries)))
         assert text == dumps(whole) + "\n"
         assert json.loads(text) == json.loads(dumps(whole))
+
+
+def test_a_spool_whose_disk_fills_up_keeps_the_rest_in_memory(monkeypatch):
+    import pickle as pickling
+
+    listed = findings(10)
+    real_dump = pickling.dump
+    written = []
+
+    def dump_until_full(value, file, *args):
+        if len(written) == 3:  # the 4th of the second batch
+            file.write(b"\x80partial")  # a record cut short by the full disk
+            raise OSError(28, "No space left on device")
+        written.append(value)
+        return real_dump(value, file, *args)
+
+    with Spool() as spool:
+        spool.extend(listed[:4])
+        monkeypatch.setattr(pickling, "dump", dump_until_full)
+        spool.extend(listed[4:])
+        assert list(spool) == listed
+        assert spool[7] == listed[7] and len(spool) == 10
+        assert len(written) == 3  # the rest went to memory, not to the full disk
+        spool.extend(listed[:1])  # in memory from now on
+        assert len(spool) == 11 and len(written) == 3
+        assert "".join(pieces(spool, "json")) == render([*listed, listed[0]], "json")
