@@ -404,7 +404,7 @@ def _echo_summary(run: LintRun, merged: Merged, results: list[FileResult]) -> No
             flagged=merged.flagged,
             fixed=merged.fixed,
             fixable=fixable,
-            hidden=0 if run.diff else merged.hidden,
+            hidden=0 if run.diff else tally.hidden,
         ),
         err=True,
     )

@@ -89,7 +89,6 @@ class Merged:
     checked: int
     fixed: int = 0  # findings whose fix was applied (``--fix``)
     diff: str = ""  # ``--diff``: the fixes' unified diff, each file once
-    hidden: int = 0  # fixes that ``--unsafe-fixes`` would enable
     linted: tuple[str, ...] = ()
     flagged: int = 0
     tally: Tally = field(default_factory=Tally)
@@ -120,9 +119,11 @@ def merge(results: Sequence[FileResult], told: Tally | None = None) -> Merged:
                 both = first.via and finding.via
                 via = tuple(dict.fromkeys(first.via + finding.via)) if both else ()
                 findings[where] = dataclasses.replace(first, via=via)
-    tally = Tally() if told is None else told + Tally()
+    tally = Tally()
     for where, finding in findings.items():
         tally.add([finding], unsafe[where])
+    if told is not None:
+        tally = told + tally
     linted = [r for r in results if r.error is None and not r.disabled]
     linted = [r for r in linted if not r.fragment or r.findings or r.told]
     return Merged(
@@ -133,7 +134,6 @@ def merge(results: Sequence[FileResult], told: Tally | None = None) -> Merged:
         len(linted),
         sum(result.fixed for result in results),
         "".join(dict.fromkeys(result.diff for result in results if result.diff)),
-        tally.hidden,
         tuple(result.path for result in linted),
         sum(1 for result in linted if result.findings or result.told),
         tally,
