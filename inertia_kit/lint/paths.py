@@ -23,9 +23,8 @@ from inertia_kit.lint.runner import (
     FileResult,
     Selection,
     checked_selectors,
+    file_settings,
     lint_file,
-    mass_choice_for,
-    selection_for,
 )
 
 if TYPE_CHECKING:
@@ -119,20 +118,16 @@ def linting(
             parallel.start_early()  # it imports the linter while repositories are scanned
 
     chosen = _targets(paths, xacro_args, package_paths, xacro_limits, discovery, walked)
-    plan = [(target, finder.for_file(target.robot)) for target in chosen.targets]
-    limits = {found.path: XacroLimits.resolve(found.xacro, xacro_limits) for _, found in plan}
-    # one selection and mass choice per configuration, shared by its files: a run over many
-    # files holds one task each
-    shared: dict[int, tuple[Selection, MassChoice]] = {}
+    # one selection, limits and mass choice per configuration, shared by its files: a run
+    # over many files holds one task each
+    settings: dict[Any, tuple[Selection, XacroLimits, MassChoice]] = {}
     tasks = []
-    for target, found in plan:
+    for target in chosen.targets:
+        found = finder.for_file(target.robot)
         unsafe = bool(found.unsafe_fixes if unsafe_fixes is None else unsafe_fixes)
-        if id(found) not in shared:
-            shared[id(found)] = (
-                selection_for(found, select, ignore, engines),
-                mass_choice_for(found),
-            )
-        selection, choice = shared[id(found)]
+        if found.path not in settings:
+            settings[found.path] = file_settings(found, select, ignore, engines, xacro_limits)
+        selection, limits, choice = settings[found.path]
         tasks.append(
             _Task(
                 target,
@@ -140,7 +135,7 @@ def linting(
                 xacro_args,
                 tuple(package_paths),
                 load_mesh,
-                limits[found.path],
+                limits,
                 choice,
                 unsafe,
                 diff or bool(found.fix if fix is None else fix),

@@ -14,7 +14,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -62,10 +62,6 @@ class Selection:
         return catalog.selects(self.fixable, finding.code, finding.name) and not catalog.selects(
             self.unfixable, finding.code, finding.name
         )
-
-    @staticmethod
-    def matches(rule: ModuleType, patterns: Iterable[str]) -> bool:
-        return catalog.selects(patterns, rule.CODE, rule.NAME)
 
     def enabled(self, rules: Sequence[ModuleType]) -> list[ModuleType]:
         chosen = (tuple(self.select), tuple(self.ignore), tuple(self.engines))
@@ -155,6 +151,25 @@ def checked_selectors(
         except ValueError as error:
             raise ConfigError(f"--engine: {error}") from None
     return checked("--select", select), checked("--ignore", ignore), engines
+
+
+def file_settings(
+    config: Config,
+    select: Sequence[str],
+    ignore: Sequence[str],
+    engines: Sequence[str] | None,
+    xacro_limits: Mapping[str, float] | None,
+) -> tuple[Selection, XacroLimits, MassChoice]:
+    """
+    What linting a file under ``config`` takes from it, with the command line's selectors
+    (:func:`selection_for`) and ``--xacro-limit`` on top: its selection, xacro limits and mass
+    choice. The same for every file of a configuration: a run makes them once for all.
+    """
+    return (
+        selection_for(config, select, ignore, engines),
+        XacroLimits.resolve(config.xacro, xacro_limits),
+        mass_choice_for(config),
+    )
 
 
 def mass_choice_for(config: Config) -> MassChoice:

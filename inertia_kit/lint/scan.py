@@ -22,12 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from inertia_kit.fixes.masses import MassChoice
-from inertia_kit.lint.runner import (
-    Selection,
-    checked_selectors,
-    mass_choice_for,
-    selection_for,
-)
+from inertia_kit.lint.runner import Selection, checked_selectors, file_settings
 from inertia_kit.lint.scan_pool import Limits, Outcome, run_limited
 
 if TYPE_CHECKING:
@@ -184,7 +179,6 @@ def _checked(options: ScanOptions) -> ScanOptions:
 
 def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
     """Each asset's task, its configuration read once per configuration file."""
-    from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.lint.config_files import ConfigFinder
 
     finder = options.config or ConfigFinder()
@@ -194,10 +188,8 @@ def _tasks(assets: Sequence[Asset], options: ScanOptions) -> list[AssetTask]:
     for asset in assets:
         found = finder.for_file(asset.path)
         if found.path not in settings:
-            settings[found.path] = (
-                selection_for(found, options.select, options.ignore, options.engines),
-                XacroLimits.resolve(found.xacro, options.xacro_limits),
-                mass_choice_for(found),
+            settings[found.path] = file_settings(
+                found, options.select, options.ignore, options.engines, options.xacro_limits
             )
         selection, limits, choice = settings[found.path]
         tasks.append(
