@@ -61,9 +61,13 @@ def pieces(
     if not paths:  # nothing linted: one passing test, so that a report exists (ruff's)
         paths = {"inertia-lint"}
     tests = sum(max(1, len(at.get(p, ())) + len(unlinted.get(p, ()))) for p in paths)
-    report = ET.Element("testsuites", name="inertia-lint")
-    report.attrib |= {"tests": str(tests), "failures": str(len(findings))}
-    report.set("errors", str(len(errors)))
+    report = ET.Element(
+        "testsuites",
+        name="inertia-lint",
+        tests=str(tests),
+        failures=str(len(findings)),
+        errors=str(len(errors)),
+    )
     opening = ET.tostring(report, "unicode").removesuffix(" />") + ">"
     yield '<?xml version="1.0" encoding="UTF-8"?>\n' + opening
     for path in sorted(paths):
