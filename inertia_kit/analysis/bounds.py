@@ -204,9 +204,8 @@ class Hull:
           m²; negative when ``point`` lies outside the hull's extent along a direction (no
           distribution inside the hull has that centre of mass).
         """
-        u = np.atleast_2d(np.asarray(directions, dtype=np.float64))
-        centre = u @ np.asarray(point, dtype=np.float64)
-        return (self.support(u) - centre) * (centre + self.support(-u))
+        low, high = self.spans(point, directions)
+        return high * low
 
     def moment_bound(self, point: ArrayLike, frame: ArrayLike) -> NDArray[np.float64]:
         """
