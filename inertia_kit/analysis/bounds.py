@@ -358,6 +358,8 @@ def moment_excess(
         return None
     tensor = 0.5 * tensor + 0.5 * tensor.T  # no overflow near the largest float
     about = None if kind == "along" else _about(declared, tensor, hull)
+    if kind is None and about.ratio > 1.0 + BOUND_RTOL:
+        return about  # reported in preference to any direction: the search would be wasted
     along = None if kind == "about" else _along(declared, tensor, hull)
     if about is None or along is None:
         return about or along

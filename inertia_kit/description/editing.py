@@ -48,6 +48,7 @@ class Files:
     _positions: dict[int, tuple[str, int, int]] = field(default_factory=dict)  # id -> where
     _macros: dict[str, list[etree._Element]] | None = field(default=None, repr=False)
     _expanded: dict[tuple[int, ...], Robot | None] = field(default_factory=dict, repr=False)
+    _real: dict[str, str] = field(default_factory=dict, repr=False)  # path -> real path
     # the robot loaded again, as the load did, under an overlay of changed texts
     # (:mod:`~inertia_kit.description.overlay`): how a fix tells which branch of a xacro
     # conditional the given arguments expand (:mod:`.conditionals`); ``None``: cannot tell
@@ -76,8 +77,17 @@ class Files:
         the one file of :attr:`only` when there is one, and can be read as text to edit."""
         return self._inside(path) and self._undecodable(path) is None
 
+    def real(self, path: str | Path) -> str:
+        """``path`` absolute, symbolic links resolved (``Path.resolve``): resolved once per
+        path, for the many questions a plan asks of each file."""
+        name = os.fspath(path)
+        found = self._real.get(name)
+        if found is None:
+            found = self._real[name] = os.path.realpath(name)
+        return found
+
     def _inside(self, path: str) -> bool:
-        resolved = Path(path).resolve()
+        resolved = Path(self.real(path))
         if self.only is not None:
             return resolved == self.only
         return resolved.is_relative_to(self.root)
@@ -113,14 +123,14 @@ class Files:
         """
         from inertia_kit.description.reads import as_loaded
 
-        resolved = str(Path(path).resolve())
+        resolved = self.real(path)
         if resolved not in self.sources:
             self.sources[resolved] = as_loaded(path, self.reads)
         return self.sources[resolved]
 
     def add(self, source: SourceText) -> None:
         """Use ``source`` for its path (the text a plan was made from)."""
-        self.sources[str(Path(source.path).resolve())] = source
+        self.sources[self.real(source.path)] = source
 
     def offset(self, where: Source, tag: str) -> int | None:
         """The offset of the ``<`` of the element written at ``where`` (``None``: not found)."""
@@ -159,7 +169,7 @@ class Files:
         """The parsed element written at ``where`` (for reading a macro's attributes)."""
         from inertia_kit.description.xmlparse import parse_xml, start_tag_positions
 
-        resolved = str(Path(where.path).resolve())
+        resolved = self.real(where.path)
         if resolved not in self._elements:
             try:
                 source = self.source(where.path)
@@ -188,7 +198,7 @@ class Files:
             self._macros = {}
             for path in self.reads:
                 self.element(Source(path, None, None))  # parses it
-                for element in self._elements.get(str(Path(path).resolve()), {}).values():
+                for element in self._elements.get(self.real(path), {}).values():
                     if is_xacro(element, "macro") and element.get("name"):
                         self._macros.setdefault(element.get("name"), []).append(element)
         return self._macros

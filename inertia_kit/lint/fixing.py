@@ -29,7 +29,6 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from inertia_kit.description.placement import Target
@@ -309,8 +308,7 @@ def _edit_place(edit: Edit, files: Files) -> EditPlace | None:
     """Lines, columns and byte offsets of an edit in the text it was made on."""
     import bisect
 
-    resolved = str(Path(edit.path).resolve())
-    source = files.sources.get(resolved)
+    source = files.sources.get(files.real(edit.path))
     if source is None:
         return None
     starts = source.line_starts

@@ -79,7 +79,7 @@ class Targets:
 
     def read_by_robots(self, target: Target) -> bool:
         """Whether ``target`` is a given file that robots include (so they are its check)."""
-        return not target.changed and real(target.robot) in self.fragments
+        return not target.changed and bool(self.fragments) and real(target.robot) in self.fragments
 
     def through(self, robot: str) -> tuple[str, ...]:
         """The given files ``robot`` is linted or filled for (empty: as itself)."""

@@ -369,13 +369,20 @@ def settled(result: FileResult, target: Any, chosen: Any) -> list[Finding]:
     own = real(result.path)
     if own in chosen.fragments:
         return []
-    shared_comments = any(real(path) != own for path, _ in (result.uses or {}))
+    reals = {str(result.path): own}  # a file's findings name it by one path: resolved once
+
+    def is_own(path: str) -> bool:
+        if path not in reals:
+            reals[path] = real(path)
+        return reals[path] == own
+
+    shared_comments = any(not is_own(path) for path, _ in (result.uses or {}))
     scoped = {rule.CODE for rule in catalog.RULES if rule.SCOPE == SCOPE}
     return [
         finding
         for finding in result.findings
         if finding.path
-        and real(finding.path) == own
+        and is_own(finding.path)
         and not (shared_comments and finding.code in scoped)
     ]
 
