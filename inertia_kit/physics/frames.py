@@ -34,7 +34,13 @@ def rpy_matrix(rpy: ArrayLike) -> NDArray[np.float64]:
     rotation : (3, 3) float
       Columns are the rotated frame's axes expressed in the parent frame.
     """
-    roll, pitch, yaw = as_vector3(rpy, "rpy")
+    angles = as_vector3(rpy, "rpy")
+    if not angles.any() and not np.signbit(angles).any():
+        return _UNTURNED.copy()  # most origins: the formula's result at +0, signed zeros too
+    return _rotation(*angles)
+
+
+def _rotation(roll: float, pitch: float, yaw: float) -> NDArray[np.float64]:
     cr, sr = np.cos(roll), np.sin(roll)
     cp, sp = np.cos(pitch), np.sin(pitch)
     cy, sy = np.cos(yaw), np.sin(yaw)
@@ -45,6 +51,9 @@ def rpy_matrix(rpy: ArrayLike) -> NDArray[np.float64]:
             [-sp, cp * sr, cp * cr],
         ]
     )
+
+
+_UNTURNED = _rotation(np.float64(0.0), np.float64(0.0), np.float64(0.0))
 
 
 def matrix_rpy(rotation: ArrayLike) -> NDArray[np.float64]:

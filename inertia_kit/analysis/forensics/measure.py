@@ -77,10 +77,24 @@ class Metric:
 
     def __init__(self, reference: ArrayLike):
         self.reference = symmetric(reference)
-        floor = FLOOR * float(np.linalg.eigvalsh(self.reference).max())
+        self.largest_moment = float(np.linalg.eigvalsh(self.reference).max())
+        floor = FLOOR * self.largest_moment
         # the denominator's tensor: nᵀ R n + FLOOR λmax(R) = nᵀ (R + FLOOR λmax(R) E) n
         self.denominator = self.reference + floor * np.eye(3)
         self.inverse = np.linalg.inv(np.linalg.cholesky(self.denominator))
+
+    def reach(self, tolerance: float) -> float:
+        """
+        The largest entry, in magnitude and in any axes, of a tensor within ``tolerance``: a
+        search whose candidates keep the declared values' magnitudes or moments (a rotation,
+        signs, values moved among the six attributes) is skipped when one is larger.
+
+        Within it, ``-tol (R + f λ E) <= T - R <= tol (R + f λ E)`` (``λ`` the reference's
+        largest moment, ``f`` :data:`FLOOR`), so every moment of ``T`` is at most
+        ``(1 + tol (1 + f)) λ`` in magnitude, and no entry exceeds the largest moment; widened
+        by :data:`BOUND_MARGIN`, far more than the computed deviation's rounding.
+        """
+        return (1.0 + tolerance * (1.0 + FLOOR)) * self.largest_moment * (1.0 + BOUND_MARGIN)
 
     def __call__(self, tensors: ArrayLike) -> NDArray[np.float64]:
         difference = symmetric(tensors) - self.reference

@@ -143,6 +143,8 @@ def search(
     ``tolerance`` (the others cannot be chosen), in that order.
     """
     declared = case.declared
+    if np.abs(declared.inertia).max() > case.metric.reach(tolerance):
+        return []  # every candidate is the declared tensor turned: its moments, too large
     named = [np.asarray(r, dtype=np.float64) for _, r in rotations]
     # each named frame on its own (any layout), the permutations all at once: the same
     # products either way, each tensor's own

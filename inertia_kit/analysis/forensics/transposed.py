@@ -126,6 +126,8 @@ def search(case: Case, tolerance: float) -> list[Transposed]:
     rotation."""
     written = case.written
     values = np.array([written[INDEX[name]] for name in TENSOR])
+    if np.abs(values).max() > case.metric.reach(tolerance):
+        return []  # every candidate holds each value, in axes turned by at most a rotation
     orders = ORDERS[distinct_orders(values)]
     candidates = values[orders]  # (k, 6)
     keep = ~np.all(candidates == values, axis=1)

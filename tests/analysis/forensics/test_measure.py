@@ -60,3 +60,37 @@ def test_lower_bound_skips_nothing_where_the_deviation_could_overflow():
     metric = Metric(np.eye(3))
     assert metric.lower_bound(np.diag([1e301, 1.0, 1.0])[None]).tolist() == [0.0]
     assert metric.lower_bound(np.diag([np.nan, 1.0, 1.0])[None]).tolist() == [0.0]
+
+
+_TOLERANCES = st.sampled_from([0.02, 0.1, float(np.expm1(0.92))])
+
+
+_MOMENT = st.floats(1e-3, 10.0)
+
+
+@given(st.lists(_MOMENT, min_size=3, max_size=3), st.floats(0.9, 1.2), _TOLERANCES, _MATRIX)
+def test_no_tensor_within_the_tolerance_has_an_entry_beyond_the_reach(
+    moments, stretch, tolerance, turn
+):
+    """The searches that keep the declared magnitudes are skipped past ``reach``: a tensor with a
+    larger entry deviates beyond the tolerance, so the skip drops no candidate the search would
+    keep. Here the reference's largest moment is stretched about the bound (either side), in
+    its own axes, where an entry is that moment; and the same, both turned (entries smaller)."""
+    reference = np.diag(moments)
+    largest = max(moments)
+    stretched = np.diag(
+        [m * (1.0 + tolerance * 1.05) * stretch if m == largest else m for m in moments]
+    )
+    rotation = np.linalg.qr(turn + 4.0 * np.eye(3))[0]  # orthonormal
+    for axes in (np.eye(3), rotation):
+        metric = Metric(axes @ reference @ axes.T)
+        tensor = axes @ stretched @ axes.T
+        if np.abs(tensor).max() > metric.reach(tolerance):
+            assert metric(tensor[None])[0] > tolerance
+
+
+def test_reach_of_a_sphere():
+    """Within 2 % of the unit tensor (floor 5 %), no moment exceeds 1 + 0.02 * 1.05."""
+    metric = Metric(np.eye(3))
+    assert metric.reach(0.02) == pytest.approx(1.021, rel=1e-5)
+    assert metric(np.diag([1.0, 1.0, 1.0215])[None])[0] > 0.02
