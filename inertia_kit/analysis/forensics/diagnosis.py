@@ -167,7 +167,7 @@ def diagnose(
     if not _finite(declared):
         return None
     try:
-        metric = Metric(expected.inertia)
+        metric = Metric.of(expected.inertia)
     except np.linalg.LinAlgError:
         return None  # the geometry's tensor is not positive definite: nothing to compare with
     plain = float(metric(declared.inertia))
@@ -258,8 +258,8 @@ def _part_case(
     if not _finite(declared):
         return None
     try:
-        metric = Metric(expected.inertia)
-        logs = LogMetric(expected.inertia)
+        metric = Metric.of(expected.inertia)
+        logs = LogMetric.of(expected.inertia)
     except np.linalg.LinAlgError:
         return None
     frame = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)

@@ -79,21 +79,24 @@ def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
             points.append((label, xyz))
     rotations: list[tuple[str, ArrayLike]] = []
     for shape in (*link.link.collisions, *link.link.visuals):
-        # the shape's kind as the report table names it: box, cylinder, mesh, …
-        kind = describe_geometry(shape.geometry, TABLE).split(" ")[0]
-        what = f"the {shape.kind} {kind}"
+
+        def what(shape=shape) -> str:  # the shape's kind as the report table names it
+            return f"the {shape.kind} {describe_geometry(shape.geometry, TABLE).split(' ')[0]}"
+
         xyz = shape.origin.xyz
         mesh = isinstance(shape.geometry, model.Mesh) and isinstance(xyz, tuple)
         if mesh and all(isinstance(v, float) for v in xyz) and any(xyz):  # type: ignore[union-attr]
             filename = shape.geometry.filename  # type: ignore[union-attr]
             label = Label(
-                f"the origin of {what} `{filename}`", f"{what}'s origin", "a mesh's origin"
+                f"the origin of {what()} `{filename}`", f"{what()}'s origin", "a mesh's origin"
             )
             points.append((label, xyz))
-        rotation = _origin_rotation(shape.origin)
+        angles = shape.origin.rpy
+        turned = isinstance(angles, tuple) and any(angles)  # rpy 0 0 0: no frame to name
+        rotation = _origin_rotation(shape.origin) if turned else None
         if rotation is not None and not np.allclose(rotation, np.eye(3)):
             rpy = rpy_text(shape.origin.rpy)  # type: ignore[arg-type]
-            label = Label(f'{what}\'s own axes (<origin rpy="{rpy}">)', f"{what}'s axes")
+            label = Label(f'{what()}\'s own axes (<origin rpy="{rpy}">)', f"{what()}'s axes")
             rotations.append((label, _snapped(rotation)))
     return points, rotations
 

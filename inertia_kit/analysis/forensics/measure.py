@@ -24,7 +24,9 @@ declared tensor from the geometry's has the quantiles 50 % 0.30, 90 % 0.61, 95 %
 
 from __future__ import annotations
 
+import functools
 import math
+from typing import TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -72,7 +74,24 @@ def symmetric(tensor: ArrayLike) -> NDArray[np.float64]:
     return 0.5 * (t + t.swapaxes(-1, -2))
 
 
-class Metric:
+_Kind = TypeVar("_Kind", bound="_Made")
+
+
+class _Made:
+    @classmethod
+    def of(cls: type[_Kind], reference: ArrayLike) -> _Kind:
+        """The metric from ``reference``, made once for equal tensors: a link's diagnoses (exact,
+        loose, likely) each judge against its geometry's tensor. Raises as the constructor does."""
+        array = np.ascontiguousarray(reference, dtype=np.float64)
+        return _made(cls, array.tobytes(), array.shape)
+
+
+@functools.lru_cache(maxsize=64)
+def _made(kind: type[_Kind], data: bytes, shape: tuple[int, ...]) -> _Kind:
+    return kind(np.frombuffer(data, dtype=np.float64).reshape(shape))
+
+
+class Metric(_Made):
     """:func:`deviation` from one reference tensor, vectorised over candidate tensors."""
 
     def __init__(self, reference: ArrayLike):
@@ -135,7 +154,7 @@ class Metric:
         return (np.abs(difference) / np.diagonal(self.denominator)).max(axis=-1)
 
 
-class LogMetric:
+class LogMetric(_Made):
     """
     The log distance of tensors from one reference: the largest
     ``|ln((nᵀTn + f λ) / (nᵀRn + f λ))|`` over unit axes ``n``, ``λ`` the reference's largest
@@ -170,4 +189,4 @@ def deviation(tensor: ArrayLike, reference: ArrayLike) -> float:
     be positive definite; ``tensor`` may be anything symmetric (a transposed one often is not
     positive definite).
     """
-    return float(Metric(reference)(tensor))
+    return float(Metric.of(reference)(tensor))
