@@ -86,6 +86,10 @@ class Files:
             found = self._real[name] = os.path.realpath(name)
         return found
 
+    def key(self, source: Source) -> Key:
+        """Where ``source`` is written (:func:`key`), its path resolved once (:meth:`real`)."""
+        return (self.real(source.path), source.line, source.column)
+
     def _inside(self, path: str) -> bool:
         resolved = Path(self.real(path))
         if self.only is not None:

@@ -27,7 +27,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from inertia_kit.description.editing import Files, key, location
+from inertia_kit.description.editing import Files, location
 from inertia_kit.description.urdf.placement.values import (
     ZERO,
     differing,
@@ -161,7 +161,7 @@ def chain(name: str, body: etree._Element, target: Target, users, files: Files) 
     assert inertial is not None
     tag, attribute = _ELEMENT.get(name, ("inertia", name))
     element = child(body, tag)
-    slots = [Slot(element, attribute, tuple(users.body[key(inertial.source)]))]
+    slots = [Slot(element, attribute, tuple(users.body[files.key(inertial.source)]))]
     calls = inertial.source.calls
     index, macro, here = len(calls) - 1, enclosing_macro(body), slots[0]
     while here.text is not None and index >= 0 and macro is not None:
@@ -187,7 +187,7 @@ def chain(name: str, body: etree._Element, target: Target, users, files: Files) 
         call = files.element(calls[index])
         if call is None:
             break
-        made = tuple(users.chain.get(key(calls[index]), ()))
+        made = tuple(users.chain.get(files.key(calls[index]), ()))
         here = Slot(call, parameter, made, call=True, has_default=names[parameter])
         slots.append(here)
         index, macro = index - 1, enclosing_macro(call)
@@ -216,7 +216,9 @@ def _same_scope(a: etree._Element, b: etree._Element, files: Files) -> bool:
     where_a, where_b = files.where(a), files.where(b)
     if where_a is None or where_b is None:
         return False
-    return key(where_a)[0] == key(where_b)[0] and enclosing_macro(a) is enclosing_macro(b)
+    return files.key(where_a)[0] == files.key(where_b)[0] and enclosing_macro(a) is enclosing_macro(
+        b
+    )
 
 
 def text_at(
@@ -235,7 +237,7 @@ def text_at(
     if shape is None:
         return number, None
     copies = [decisions.get(user) for user in users]
-    same = {key(d.copied[name]) if d and name in d.copied else None for d in copies}
+    same = {files.key(d.copied[name]) if d and name in d.copied else None for d in copies}
     shape_element = files.element(shape)
     text = None if shape_element is None else shape_element.get(name)
     if text is None or len(same) != 1:

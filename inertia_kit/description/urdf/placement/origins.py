@@ -11,7 +11,6 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from inertia_kit.description.editing import key
 from inertia_kit.description.urdf.placement.attributes import (
     DEFAULT_ORIGIN,
     Decision,
@@ -50,7 +49,7 @@ def write_origin(
     decision = decisions[target.name]
     assert decision is not None
     files = writer.files
-    sharers = tuple(users.body[key(inertial.source)])
+    sharers = tuple(users.body[files.key(inertial.source)])
     origin = child(body, "origin")
     if all(users_agree(sharers, name, decisions) for name in absent):
         texts = {n: text_at(body, n, decision, sharers, decisions, files) for n in absent}
@@ -70,7 +69,7 @@ def write_origin(
     call = None if not calls else files.element(calls[-1])
     if macro is None or call is None:
         return shared_words(Slot(body, absent[0], sharers), absent[0], target, files)
-    made = tuple(users.chain.get(key(calls[-1]), ()))
+    made = tuple(users.chain.get(files.key(calls[-1]), ()))
     if not all(users_agree(made, name, decisions) for name in absent):
         return shared_words(Slot(call, absent[0], made), absent[0], target, files)
     # the same new parameters for every link the body makes, whichever asks first

@@ -30,7 +30,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 from inertia_kit.description import model
-from inertia_kit.description.editing import Files, Key, insert_first_child, key, location
+from inertia_kit.description.editing import Files, Key, insert_first_child, location
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.placement import Placement, Target
 from inertia_kit.description.urdf.placement.attributes import (
@@ -58,7 +58,7 @@ def place(
     """
     wanted = {t.name: t for t in targets}
     decisions = Decisions({t.name: decide(t) for t in targets})
-    users = _Users(links)
+    users = _Users(links, files)
     placements: dict[str, Placement] = {}
     for target in targets:
         placements[target.name] = _place(target, wanted, decisions, users, files)
@@ -73,22 +73,24 @@ class _Users:
     them (a macro body 1667 links share, asked by each: quadratic).
     """
 
-    def __init__(self, links: Sequence[model.Link]):
+    def __init__(self, links: Sequence[model.Link], files: Files):
         body: dict[Key, list[str]] = {}
         made: dict[Key, list[str]] = {}
         chain: dict[Key, list[str]] = {}
         call: dict[tuple[Key, Key], list[str]] = {}
         for link in links:
-            made.setdefault(key(link.source), []).append(link.name)
+            made.setdefault(files.key(link.source), []).append(link.name)
             inertial = link.inertial
             if inertial is None:
                 continue
-            body_key = key(inertial.source)
+            body_key = files.key(inertial.source)
             body.setdefault(body_key, []).append(link.name)
             for site in inertial.source.calls:
-                chain.setdefault(key(site), []).append(link.name)
+                chain.setdefault(files.key(site), []).append(link.name)
             if inertial.source.calls:
-                call.setdefault((key(inertial.source.calls[-1]), body_key), []).append(link.name)
+                call.setdefault((files.key(inertial.source.calls[-1]), body_key), []).append(
+                    link.name
+                )
         self.body = {k: tuple(v) for k, v in body.items()}
         self.link = {k: tuple(v) for k, v in made.items()}
         self.chain = {k: tuple(v) for k, v in chain.items()}
@@ -122,7 +124,7 @@ def _place(
     link = target.link
     inertial = link.inertial
     if inertial is None:
-        sharers = users.link[key(link.source)]
+        sharers = users.link[files.key(link.source)]
         held = _conditional_inertials(files.element(link.source), files)
         if held and not users.agree(sharers, wanted):
             # what to do is the arguments, not a parameter: a block beside the condition
@@ -147,7 +149,7 @@ def _place(
         if result.problem is None:
             return result
     # the first way's reason: the others (whole blocks) fail for the same sharing
-    sharers = users.body[key(inertial.source)]
+    sharers = users.body[files.key(inertial.source)]
     advice = _advice(inertial.source, sharers, target, decisions, files)
     return Placement(problem=written + advice)
 
@@ -290,7 +292,7 @@ def _replace_body(target: Target, wanted, users: _Users, files: Files) -> Placem
     """Way 1: the ``<inertial>`` where it is written."""
     inertial = target.link.inertial
     assert inertial is not None
-    sharers = users.body[key(inertial.source)]
+    sharers = users.body[files.key(inertial.source)]
     if not users.agree(sharers, wanted):
         return Placement(problem=_shared_words(inertial.source, sharers, "<inertial>"))
     placed = _replace_element(target, inertial.source, "inertial", files)
@@ -323,7 +325,7 @@ def _replace_call(target: Target, wanted, users: _Users, files: Files) -> Placem
         macro = None if element is None else macro_of(element)
         if macro is None or [c for c in macro if isinstance(c.tag, str)] != [element]:
             continue  # the macro makes more than this element
-        if not users.agree(users.chain.get(key(call), ()), wanted):
+        if not users.agree(users.chain.get(files.key(call), ()), wanted):
             continue
         call_element = files.element(call)
         if call_element is None:
