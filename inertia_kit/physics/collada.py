@@ -65,6 +65,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from inertia_kit.errors import MeshError
+from inertia_kit.physics.decimal_text import plain_decimals, small_integers
 from inertia_kit.physics.frames import transformed_points
 
 #: The largest file read (as :data:`.mesh_formats.MAX_MESH_BYTES`).
@@ -153,17 +154,61 @@ def _parse(data: bytes):
     return root
 
 
-def _ints(text: str | None, what: str) -> NDArray[np.int64]:
-    """Non-negative integers, whitespace-separated."""
+def _ints(
+    text: str | None, what: str, stride: int = 1, offset: int = 0
+) -> tuple[NDArray[np.int64], int]:
+    """
+    Non-negative integers, whitespace-separated: every ``stride``-th from ``offset`` (the
+    position input of a ``<p>``), and how many the text holds. Every one is read, or checked
+    as :func:`_column` says, alike.
+    """
     if text is None:
-        return np.empty(0, dtype=np.int64)
+        return np.empty(0, dtype=np.int64), 0
     raw = text.encode("ascii", "replace")
     if raw.translate(None, _DIGITS + _SPACE):
         raise _Refused(f"{what} holds something other than non-negative integers")
+    if stride > 1:
+        found = _column(raw, stride, offset)
+        if found is not None:
+            return found
     values = np.fromstring(raw, dtype=np.int64, sep=" ")
     if values.size and values.max() == np.iinfo(np.int64).max:
         raise _Refused(f"{what} holds an integer too large")
-    return values
+    return (values[offset::stride] if stride > 1 else values), values.size
+
+
+def _column(raw: bytes, stride: int, offset: int) -> tuple[NDArray[np.int64], int] | None:
+    """
+    :func:`_ints` of ``raw`` (digits and whitespace only) when it is laid out as exporters write
+    a ``<p>``: one blank between numbers, none at either end, no number over 8 digits (none of
+    the others can be too large); ``None`` otherwise. Only the wanted numbers are read (SWAR,
+    :func:`.decimal_text.small_integers`): with a ``NORMAL`` input too, half of them.
+    """
+    body = np.frombuffer(raw, dtype=np.uint8)
+    if not len(body) or body[0] <= 32 or body[-1] <= 32:
+        return None
+    blanks = np.flatnonzero(body <= 32)
+    count = len(blanks) + 1
+    if len(blanks):
+        # a digit after every blank: one blank between numbers; each of at most 8 digits
+        if not ((body[blanks + 1] - np.uint8(48)) < 10).all():
+            return None
+        widest = max(int(blanks[0]), len(body) - 1 - int(blanks[-1]))
+        if len(blanks) > 1:
+            widest = max(widest, int((blanks[1:] - blanks[:-1]).max()) - 1)
+        if widest > 8:
+            return None
+    elif len(body) > 8:
+        return None
+    starts = blanks[offset - 1 :: stride] + 1 if offset else blanks[stride - 1 :: stride] + 1
+    if not offset:
+        starts = np.concatenate(([0], starts))
+    stops = np.append(blanks, len(body))[offset::stride]
+    starts = starts[: len(stops)]
+    values = small_integers(body, starts, stops)
+    if values is None:  # pragma: no cover - every number has at most 8 digits
+        return None
+    return values, count
 
 
 def _floats(text: str | None) -> NDArray[np.float32]:
@@ -185,6 +230,9 @@ def _floats(text: str | None) -> NDArray[np.float32]:
     if text is None:
         return np.empty(0, dtype=np.float32)
     raw = text.encode("ascii", "replace")
+    exact = plain_decimals(raw, exponents=True)  # the usual text, read exactly: far faster
+    if exact is not None:
+        return exact.astype(np.float32)
     if raw.translate(None, _FLOAT_BYTES):
         return _floats_numpy(raw)
     buffer = b" " + raw + b"  "
@@ -457,10 +505,9 @@ class _Document:
             where = f"<{kind}> of geometry `{ident}`"
             stride, offset, source = self._position_input(primitive, sources, vertices, where)
             positions = self._positions(source, where)
-            corners = self._corners(primitive, kind, stride, where)
-            if corners is None or not len(corners):
+            index = self._corners(primitive, kind, stride, offset, where)
+            if index is None or not len(index):
                 continue
-            index = corners[:, :, offset]
             if index.size and index.max() >= len(positions):
                 raise _Refused(f"{where} names vertex {int(index.max())} of {len(positions)}")
             result.append((positions, index))
@@ -536,37 +583,38 @@ class _Document:
         self.sources[source] = positions
         return positions
 
-    def _corners(self, primitive, kind, stride, where) -> NDArray[np.int64] | None:
-        """(n, 3, stride) index of each triangle's corners."""
+    def _corners(self, primitive, kind, stride, offset, where) -> NDArray[np.int64] | None:
+        """(n, 3) position index (the input at ``offset`` of ``stride``) of each triangle."""
         p_tag = self.tag("p")
         if kind == "triangles":
             first = primitive.find(p_tag)
             if first is None:
                 raise _Refused(f"{where} has no <p>")
-            index = _ints(first.text, f"the <p> of {where}")
-            if index.size % (3 * stride):
+            index, size = _ints(first.text, f"the <p> of {where}", stride, offset)
+            if size % (3 * stride):
                 raise _Refused(f"the <p> of {where} is not whole triangles")
-            return index.reshape(-1, 3, stride)
+            return index.reshape(-1, 3)
         if kind == "polylist":
             first = primitive.find(p_tag)
             vcount = primitive.find(self.tag("vcount"))
             if first is None or vcount is None:
                 raise _Refused(f"{where} has no <p> or <vcount>")
-            index = _ints(first.text, f"the <p> of {where}")
-            counts = _ints(vcount.text, f"the <vcount> of {where}")
-            return _fanned(index, counts, stride, where)
+            index, size = _ints(first.text, f"the <p> of {where}", stride, offset)
+            counts, _ = _ints(vcount.text, f"the <vcount> of {where}")
+            return _fanned(index, size, counts, stride, where)
         rows = [_ints(p.text, f"a <p> of {where}") for p in primitive.iterfind(p_tag)]
-        for row in rows:
-            if row.size % stride:
+        for _, size in rows:
+            if size % stride:
                 raise _Refused(f"a <p> of {where} is not whole vertices")
         if kind == "polygons":
             if not rows:
                 return None
-            counts = np.array([row.size // stride for row in rows], dtype=np.int64)
-            return _fanned(np.concatenate(rows), counts, stride, where)
+            counts = np.array([size // stride for _, size in rows], dtype=np.int64)
+            index = np.concatenate([row for row, _ in rows])
+            return _fanned(index[offset::stride], index.size, counts, stride, where)
         parts = []
-        for row in rows:
-            corners = row.reshape(-1, stride)
+        for row, _ in rows:
+            corners = row[offset::stride]
             n = len(corners)
             if n < 3:
                 raise _Refused(f"a <p> of {where} has fewer than 3 vertices")
@@ -583,17 +631,21 @@ class _Document:
         return np.concatenate(parts)
 
 
-def _fanned(index, counts, stride, where) -> NDArray[np.int64]:
-    """Polygons of ``counts`` vertices, fanned from each one's first vertex, as pycollada."""
-    if index.size % stride:
+def _fanned(corners, size, counts, stride, where) -> NDArray[np.int64]:
+    """Polygons of ``counts`` vertices (``corners``: their positions, of a ``<p>`` of ``size``
+    numbers), fanned from each one's first vertex, as pycollada."""
+    if size % stride:
         raise _Refused(f"the <p> of {where} is not whole vertices")
-    corners = index.reshape(-1, stride)
     if int(counts.sum()) != len(corners):
         raise _Refused(
             f"the <vcount> of {where} adds up to {int(counts.sum())} vertices, "
             f"its <p> holds {len(corners)}"
         )
     fans = np.maximum(counts - 2, 0)
+    if (fans == 1).all():  # triangles only
+        return corners.reshape(-1, 3)
+    if (counts == 4).all():  # quads only: (0, 1, 2), (0, 2, 3)
+        return corners.reshape(-1, 4)[:, [0, 1, 2, 0, 2, 3]].reshape(-1, 3)
     total = int(fans.sum())
     starts = np.cumsum(counts) - counts
     first = np.repeat(starts, fans)

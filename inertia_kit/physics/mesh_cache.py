@@ -75,6 +75,7 @@ _SOURCES = (
     "stl.py",
     "collada.py",
     "obj_soup.py",
+    "decimal_text.py",
     "obj_polygons.py",
     "frames.py",
     "manifolds.py",

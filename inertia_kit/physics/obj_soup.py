@@ -61,6 +61,7 @@ import itertools
 import numpy as np
 from numpy.typing import NDArray
 
+from inertia_kit.physics.decimal_text import plain_decimals, small_integers
 from inertia_kit.physics.obj_polygons import quoted_line
 
 _SPACE, _NEWLINE, _SLASH = ord(" "), ord("\n"), ord("/")
@@ -245,10 +246,10 @@ def _read_rows(
         joined = joined.replace(b"+e", b"e").replace(b"-e", b"e")
     first = joined[: joined.index(b"\n")]
     per_row = len(first.split())
-    if skip > 2 and _decimals(joined, values=False) == len(offsets) * per_row:
+    if skip > 2 and plain_decimals(joined, values=False) == len(offsets) * per_row:
         return per_row
     try:
-        numbers = _decimals(joined)
+        numbers = plain_decimals(joined)
         if numbers is None:
             numbers = np.fromstring(joined, dtype=np.float64, sep=" ")
     except ValueError:
@@ -268,63 +269,6 @@ def _read_rows(
     except ValueError as error:  # pragma: no cover - numpy read every number already
         raise ValueError(f"a `{keyword}` line: {error}") from None
     return rows if skip == 2 else rows.shape[1]
-
-
-#: the bytes of plain decimal numbers and their separators
-_PLAIN = b"0123456789.+- \t\n\r\x0b\x0c"
-#: the most digits read exactly as an integer (below 2**53) and scaled by one division
-_EXACT_DIGITS = 15
-
-
-def _decimals(joined: bytes, values: bool = True) -> NDArray[np.float64] | int | None:
-    """
-    The numbers of ``joined`` as ``np.fromstring(joined, sep=" ")`` reads them, when each is a
-    plain decimal (``[+-]digits[.digits]``, ``[+-].digits``) of at most 15 digits; ``None``
-    otherwise. Such a number is its digits as an integer ``m`` (exact) over ``10**k`` (exact):
-    IEEE division rounds ``m / 10**k`` correctly, as ``strtod`` does; about four times faster.
-    ``values=False``: only whether every number is a plain decimal (their count, or ``None``).
-    """
-    if not joined or joined.translate(None, _PLAIN):
-        return None
-    body = np.frombuffer(joined, dtype=np.uint8)
-    space = body <= _SPACE
-    opens = np.flatnonzero(space[:-1] & ~space[1:]) + 1  # the text opens with a blank
-    closes = np.flatnonzero(~space[:-1] & space[1:]) + 1  # and ends with a newline
-    if not space[0] or not space[-1] or len(opens) != len(closes):
-        return None
-    dots = np.flatnonzero(body == ord("."))
-    if len(dots) == len(opens) and (dots < closes).all() and (dots > opens).all():
-        owner = np.arange(len(dots))  # a dot in every number, as usual
-    else:
-        owner = np.searchsorted(opens, dots, side="right") - 1
-        if len(dots) and (np.diff(owner) == 0).any():  # two dots in a number
-            return None
-    signed = b"-" in joined or b"+" in joined
-    signs = np.flatnonzero((body == ord("+")) | (body == ord("-"))) if signed else dots[:0]
-    signed = np.searchsorted(opens, signs)
-    if len(signs) and not np.array_equal(opens[np.minimum(signed, len(opens) - 1)], signs):
-        return None  # a sign inside a number
-    count = closes - opens
-    count[signed] -= 1
-    count[owner] -= 1
-    if count.min(initial=1) < 1:
-        return None  # a number of no digit: "-", "."
-    if not values:
-        return len(opens)
-    if count.max(initial=0) > _EXACT_DIGITS:
-        return None
-    digits = np.fromstring(joined.translate(None, b".+-"), dtype=np.int64, sep=" ")
-    if len(digits) != len(opens):  # pragma: no cover - every number has a digit
-        return None
-    scale = np.zeros(len(opens), dtype=np.intp)
-    scale[owner] = closes[owner] - dots - 1
-    numbers = digits.astype(np.float64) / _POWERS[scale]
-    if len(signs):
-        numbers[signed[body[signs] == ord("-")]] *= -1.0
-    return numbers
-
-
-_POWERS = 10.0 ** np.arange(_EXACT_DIGITS + 1)
 
 
 def _face_lines(text, starts, ends, heads, opening):
@@ -411,6 +355,10 @@ def _group_faces(
     """The triangles (vertex indices as written: 1-based, ``0`` and negative ones Python
     indices) of one material's face lines, ``body`` (as :func:`_bodies` gives them)."""
     lasts = offsets + lengths - 1
+    faces = _layout_indices(body, joined, offsets, lasts)
+    if faces is not None:
+        _check_range(faces, count)
+        return _polygons(faces)
     slashed = b"/" in joined
     separator = body <= _SPACE  # the control characters left are whitespace
     if slashed:
@@ -419,17 +367,7 @@ def _group_faces(
     if (columns == columns[0]).all():
         faces = _flat_faces(joined, slashed, offsets, lasts, int(columns[0]))
         _check_range(faces, count)
-        size = faces.shape[1]
-        if size == 3:
-            return faces
-        if size == 4:
-            return np.concatenate((faces[:, [0, 1, 2]], faces[:, [2, 3, 0]]))
-        if size < 3:
-            return np.zeros((0, 3), np.int64)
-        fan = np.stack(
-            [np.zeros(size - 2, np.intp), np.arange(1, size - 1), np.arange(2, size)], axis=1
-        )
-        return faces[:, fan].reshape(-1, 3)
+        return _polygons(faces)
     faces = _mixed_faces(body, offsets, lasts)
     if not len(faces) and normals:
         # trimesh then gives its empty mesh the file's normals, and numpy fails on them
@@ -439,6 +377,88 @@ def _group_faces(
         )
     _check_range(faces, count)
     return faces
+
+
+def _polygons(faces: NDArray[np.int64]) -> NDArray[np.int64]:
+    """The triangles of polygons of one size (rows of ``faces``): a quad ``(0, 1, 2), (2, 3,
+    0)``, a larger polygon a fan ``(0, i + 1, i + 2)``; none for rows of 1-2 vertices."""
+    size = faces.shape[1]
+    if size == 3:
+        return faces
+    if size == 4:
+        return np.concatenate((faces[:, [0, 1, 2]], faces[:, [2, 3, 0]]))
+    if size < 3:
+        return np.zeros((0, 3), np.int64)
+    fan = np.stack(
+        [np.zeros(size - 2, np.intp), np.arange(1, size - 1), np.arange(2, size)], axis=1
+    )
+    return faces[:, fan].reshape(-1, 3)
+
+
+#: the bytes of face lines laid out as exporters write them (the keyword blanked)
+_LAYOUT_BYTES = b"0123456789/ \n"
+#: the longest number :func:`_layout_indices` reads (``np.fromstring`` reads up to 18 digits
+#: exactly; a longer one is the general path's)
+_LONGEST = 18
+
+
+def _layout_indices(body, joined: bytes, offsets, lasts) -> NDArray[np.int64] | None:
+    """
+    The vertex indices :func:`_flat_faces` reads, without reading the other numbers, when
+    every face line is laid out alike, as exporters write them: single spaces, only digits
+    and slashes, every token of the same shape as the first (``v``, ``v/vt``, ``v//vn``,
+    ``v/vt/vn``: its slashes and the empty runs between them, e.g. ``1//2``, alike), starting
+    with a digit, no number over 18 digits. Then every line has the same count of numbers,
+    and the first line's layout takes each token's first number: the digits before its first
+    slash. ``None`` for any other text (the general path reads it).
+    """
+    lines = len(offsets)
+    if not lines or joined.translate(None, _LAYOUT_BYTES):
+        return None
+    spaces = np.flatnonzero(body == _SPACE)
+    per_line = int(np.searchsorted(spaces, lasts[0]))
+    # each line: the blanked keyword and its space, then one space before each token
+    if per_line < 4 or len(spaces) != per_line * lines:
+        return None
+    spaces = spaces.reshape(lines, per_line)
+    if not (np.array_equal(spaces[:, 0], offsets) and np.array_equal(spaces[:, 1], offsets + 1)):
+        return None
+    starts = (spaces[:, 1:] + 1).reshape(-1)
+    ends = np.empty((lines, per_line - 1), dtype=spaces.dtype)
+    ends[:, :-1] = spaces[:, 2:]
+    ends[:, -1] = lasts
+    ends = ends.reshape(-1)
+    del spaces
+    if not ((body[starts] - np.uint8(48)) < 10).all():  # a double space, a slash first
+        return None
+    if b"/" in joined:
+        slashes = np.flatnonzero(body == _SLASH)
+        shape = int(np.searchsorted(slashes, ends[0]))  # the slashes of a token
+        if not shape or len(slashes) != shape * len(starts):
+            return None
+        slashes = slashes.reshape(len(starts), shape)
+        # each token holds `shape` slashes (the runs interleave with the tokens)
+        if not ((slashes[:, 0] > starts).all() and (slashes[:, -1] < ends).all()):
+            return None
+        # and the same runs, each empty where the first token's is: every line has the same
+        # count of numbers, the first token's layout
+        for k in range(shape + 1):
+            left = starts - 1 if k == 0 else slashes[:, k - 1]
+            right = slashes[:, k] if k < shape else ends
+            run = right - left - 1
+            empty = run[0] == 0
+            if (run.any() if empty else not (run > 0).all()) or run.max() > _LONGEST:
+                return None
+        stops = np.ascontiguousarray(slashes[:, 0])
+        del slashes
+    else:
+        stops = ends
+        if (stops - starts).max() > _LONGEST:
+            return None
+    values = small_integers(body, starts, stops)
+    if values is None:
+        return None
+    return values.reshape(lines, per_line - 1)
 
 
 def _token_counts(separator: NDArray[np.bool_], offsets) -> NDArray[np.intp]:

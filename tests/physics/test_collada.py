@@ -12,9 +12,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from inertia_kit.errors import MeshError
-from inertia_kit.physics.collada import read_collada
+from inertia_kit.physics.collada import _column, _floats, _ints, read_collada
 from inertia_kit.physics.mesh_formats import _read_scene
 from inertia_kit.physics.polyhedra import integrate
 
@@ -501,3 +503,67 @@ def test_no_triangles_is_empty(tmp_path):
     with pytest.raises(MeshError) as refused:
         read_collada(path.read_bytes(), path)
     assert refused.value.kind == "empty"
+
+
+# --- the fast paths: against the general path and trimesh ------------------------------------
+
+
+def test_normal_input_and_quads_as_exporters_write_them(tmp_path):
+    """Blender's and SolidWorks' layout (VERTEX and NORMAL at offsets 0 and 1; 7 significant
+    digits, exponents among them) for <triangles>, and a <polylist> of quads."""
+    corners = [float(f"{v * 1.234567:.7g}") for v in CUBE]
+    corners[1] = 1.234567e-05
+    normals = source("cube-n", [0.0, 0.0, 1.0])
+    quads = " ".join(f"{i} 0" for q in QUADS for i in q)
+    tris = " ".join(f"{i} 0" for i in TRIS)
+    inputs = (
+        '<input semantic="VERTEX" source="#V" offset="0"/>'
+        '<input semantic="NORMAL" source="#cube-n" offset="1"/>'
+    )
+    for primitive in (
+        f"<triangles count='12'>{inputs}<p>{tris}</p></triangles>",
+        f"<polylist count='6'>{inputs}<vcount>{' 4' * 6}</vcount><p>{quads}</p></polylist>",
+    ):
+        geometry = cube_geometry(primitive=primitive).replace("<vertices", normals + "<vertices")
+        geometry = geometry.replace(
+            " ".join(repr(float(v)) for v in CUBE), " ".join(map(repr, corners))
+        )
+        ours, _ = compare(write(tmp_path, document(geometry, node(instance()))))
+        assert len(ours) == 12
+
+
+@settings(max_examples=500, deadline=None)
+@given(
+    st.lists(st.integers(0, 10**9), min_size=1, max_size=40),
+    st.sampled_from([" ", "  ", "\n", " \t", "\r\n"]),
+    st.sampled_from(["", " ", "\n "]),
+    st.integers(1, 4),
+    st.data(),
+)
+def test_p_column_read_as_every_number_is(numbers, separator, edge, stride, data):
+    """_ints of one input of a <p>: the numbers the whole reading gives, and their count."""
+    offset = data.draw(st.integers(0, stride - 1))
+    text = edge + separator.join(map(str, numbers)) + edge
+    column, size = _ints(text, "p", stride, offset)
+    every, total = _ints(text, "p")
+    assert size == total == len(numbers)
+    np.testing.assert_array_equal(column, every[offset::stride])
+    if separator == " " and not edge and numbers and max(numbers) < 10**8 and stride > 1:
+        assert _column(text.encode(), stride, offset) is not None  # the fast path read it
+
+
+@settings(max_examples=500, deadline=None)
+@given(
+    st.lists(
+        st.floats(-1e6, 1e6, allow_nan=False).map(lambda v: f"{v:.7g}")
+        | st.sampled_from(
+            ["-0", "+.5", "1.", "1e-30", "1E+3", "-1.5e22", "1.2e-5", "0.30000000000000004"]
+        ),
+        min_size=1,
+        max_size=20,
+    )
+)
+def test_floats_bit_for_bit_as_pycollada(values):
+    text = " ".join(values)
+    expected = np.fromstring(text, dtype=np.float32, sep=" ")
+    assert _floats(text).tobytes() == expected.tobytes()

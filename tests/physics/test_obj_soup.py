@@ -14,7 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from inertia_kit.physics.mesh_formats import _scene_parts
-from inertia_kit.physics.obj_soup import _decimals, obj_soup
+from inertia_kit.physics.obj_soup import _flat_faces, _layout_indices, obj_soup
 from inertia_kit.physics.polyhedra import integrate, reference_point
 
 trimesh = pytest.importorskip("trimesh")
@@ -242,42 +242,6 @@ def test_random_texts_match_trimesh(data):
     assert_agrees(data)
 
 
-@st.composite
-def decimal_texts(draw):
-    digits = st.text("0123456789", min_size=0, max_size=9)
-    numbers = []
-    for _ in range(draw(st.integers(1, 12))):
-        sign = draw(st.sampled_from(["", "", "-", "+"]))
-        whole, fraction = draw(digits), draw(digits)
-        dot = draw(st.sampled_from([".", ".", ""]))
-        numbers.append(sign + whole + dot + fraction if (whole or fraction) else sign + "0")
-    separators = st.sampled_from([" ", "  ", "\t", "\n", " \r\n"])
-    return (" " + "".join(n + draw(separators) for n in numbers) + "\n").encode()
-
-
-@settings(max_examples=500, deadline=None)
-@given(decimal_texts())
-def test_plain_decimals_read_as_numpy_reads_them(text):
-    """The fast path for coordinates gives np.fromstring's numbers, bit for bit, or declines."""
-    fast = _decimals(text)
-    if fast is not None:
-        exact = np.fromstring(text, dtype=np.float64, sep=" ")
-        assert fast.tobytes() == exact.tobytes(), (text, fast, exact)
-
-
-def test_decimals_decline_what_they_do_not_read():
-    for text in (
-        b" 1e5\n",
-        b" nan\n",
-        b" 1.2.3\n",
-        b" 1-2\n",
-        b" -\n",
-        b" .\n",
-        b" 1234567890.1234567\n",
-    ):
-        assert _decimals(text) is None, text
-
-
 NOISY_LINES = [
     "v 0 0 0",
     "v 1 0 0",
@@ -403,3 +367,70 @@ def test_installed_objs_match_trimesh():
     assert count > 0
     assert not failures, "\n".join(failures[:20])
     assert worst <= 1e-12, worst
+
+
+# --- the fast paths: each against the general path and against trimesh ---------------------
+
+
+@st.composite
+def exporter_faces(draw):
+    """Face lines as exporters write them, sometimes with one slip the fast path must leave
+    to the general path (a double space, a tab, another token shape, a leading zero, ...)."""
+    count = draw(st.integers(3, 12))
+    layout = draw(st.sampled_from(["{}", "{}/{}", "{}//{}", "{}/{}/{}", "{}/", "{}//"]))
+    size = draw(st.integers(3, 5))
+    lines = []
+    for _ in range(draw(st.integers(1, 8))):
+        tokens = []
+        for _ in range(size):
+            index = draw(st.integers(-count, count + 1))
+            tokens.append(layout.format(index, draw(st.integers(1, 99)), 1))
+        lines.append("f " + " ".join(tokens))
+    slip = draw(
+        st.sampled_from(
+            ["", "", "", "  ", "\t", " 0", "/", "//", " x", " 123456789012", " 00000000001"]
+        )
+    )
+    if slip:
+        at = draw(st.integers(0, len(lines) - 1))
+        line = lines[at]
+        where = draw(st.integers(2, len(line)))
+        lines[at] = line[:where] + slip + line[where:]
+    vertices = [f"v {k} {k % 3} {k * k % 5}" for k in range(count)]
+    return ("\n".join([*vertices, "vn 0 0 1", "vt 0 0", *lines]) + "\n").encode()
+
+
+@settings(max_examples=400, deadline=None)
+@given(exporter_faces())
+def test_exporter_layouts_match_trimesh(data):
+    assert_agrees(data)
+
+
+@settings(max_examples=400, deadline=None)
+@given(exporter_faces())
+def test_layout_fast_path_reads_as_the_general_path(data):
+    """_layout_indices gives _flat_faces' indices wherever it reads the lines at all."""
+    face_lines = [line for line in data.split(b"\n") if line.startswith(b"f")]
+    joined = b"".join(b" " + line[1:] + b"\n" for line in face_lines)
+    body = np.frombuffer(joined, dtype=np.uint8).copy()
+    lengths = np.array([len(line) + 1 for line in face_lines])
+    offsets = np.cumsum(lengths) - lengths
+    lasts = offsets + lengths - 1
+    fast = _layout_indices(body, joined, offsets, lasts)
+    if fast is None:
+        return
+    columns = len(joined[: int(lasts[0])].replace(b"/", b" ").split())
+    general = _flat_faces(joined, b"/" in joined, offsets, lasts, columns)
+    np.testing.assert_array_equal(fast, general)
+
+
+def test_layout_fast_path_reads_exporter_files():
+    """The layouts Blender and trimesh write take the fast path (and give trimesh's soup)."""
+    vertices = b"".join(b"v %d 0 %d\n" % (k, k % 2) for k in range(1, 13))
+    for face in (b"f 1 2 3\n", b"f 1/1 2/2 3/3\n", b"f 1//1 2//1 3//1\n", b"f 1/2/3 4/5/6 7/8/9\n"):
+        lines = face * 3
+        body = np.frombuffer(b" " + lines[1:].replace(b"\nf", b"\n "), dtype=np.uint8).copy()
+        lengths = np.array([len(face)] * 3)
+        offsets = np.cumsum(lengths) - lengths
+        assert _layout_indices(body, body.tobytes(), offsets, offsets + lengths - 1) is not None
+        assert_agrees(vertices + b"vt 0 0\nvn 0 0 1\n" + lines)
