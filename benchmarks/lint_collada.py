@@ -163,7 +163,7 @@ def report(dae: list[Path], stl: list[Path], triangles: int, runs: int) -> list[
     count = triangles * len(dae)
     readers = [
         ("binary STL: mesh_solid (ours, no trimesh)", mesh_solid, stl),
-        ("DAE: mesh_solid (trimesh.load_scene, as shipped)", mesh_solid, dae),
+        ("DAE: mesh_solid (ours, no trimesh)", mesh_solid, dae),
         ("DAE: read only, trimesh.load_scene(process=False)", trimesh_scene, dae),
         ("DAE: read only, pycollada parse alone", pycollada_parse, dae),
         ("DAE: read only, pycollada bound triangles", pycollada_triangles, dae),
