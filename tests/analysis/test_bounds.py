@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from inertia_kit.analysis.bounds import RIM_SIDES, Hull, moment_excess
+from inertia_kit.analysis.bounds import BOUND_RTOL, RIM_SIDES, Hull, moment_excess
 from inertia_kit.analysis.tensors import axis_name
 from inertia_kit.physics.frames import rpy_matrix, transform
 from inertia_kit.physics.mass import MassProperties, second_moment_from_inertia
@@ -325,3 +325,39 @@ def test_extreme_values_give_no_second_moment_bound_and_no_warning(inertia, com)
         warnings.simplefilter("error", RuntimeWarning)
         found = moment_excess(declared, hull, "along")
     assert found is None or found.moment == 0.0
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    hull_and_masses(),
+    st.floats(0.01, 3.0),
+    arrays(np.float64, (3, 3), elements=_UNIT),
+    arrays(np.float64, (3,), elements=st.floats(0.0, 1.0)),
+)
+def test_either_kind_is_the_worse_of_the_two_searched_alone(case, scale, turn, spread):
+    """Without a kind, the moment about an axis wins when it is beyond its bound (the search
+    along directions is then skipped) or when the second moment comes no closer: the result is
+    what the two searches, each run alone, give by that rule. Second moments of any shape, the
+    hull's size squared times ``scale``: within the bounds and beyond them, either kind worse."""
+    hull, points, masses = case
+    body = sum(MassProperties(m, p) for m, p in zip(masses, points, strict=True))
+    axes = np.linalg.qr(turn + 3.0 * np.eye(3))[0]
+    size = float(np.ptp(hull.points, axis=0).max() + 2.0 * hull.radii.max())
+    second = body.mass * scale * size**2 * (axes @ np.diag(spread) @ axes.T)
+    declared = MassProperties(body.mass, body.com, np.trace(second) * np.eye(3) - second)
+    about = moment_excess(declared, hull, "about")
+    along = moment_excess(declared, hull, "along")
+    expected = (
+        about
+        if along is None or about.ratio > 1.0 + BOUND_RTOL or not along.ratio > about.ratio
+        else along
+    )
+    found = moment_excess(declared, hull)
+    assert (found is None) == (expected is None)
+    if found is not None:
+        assert (found.kind, found.moment, found.bound) == (
+            expected.kind,
+            expected.moment,
+            expected.bound,
+        )
+        assert np.array_equal(found.axis, expected.axis)
