@@ -206,7 +206,7 @@ def _column(raw: bytes, stride: int, offset: int) -> tuple[NDArray[np.int64], in
     stops = np.append(blanks, len(body))[offset::stride]
     starts = starts[: len(stops)]
     values = small_integers(body, starts, stops)
-    if values is None:  # pragma: no cover - every number has at most 8 digits
+    if values is None:  # a text under 8 bytes (every number has at most 8 digits)
         return None
     return values, count
 
