@@ -355,11 +355,13 @@ def _group_faces(
     """The triangles (vertex indices as written: 1-based, ``0`` and negative ones Python
     indices) of one material's face lines, ``body`` (as :func:`_bodies` gives them)."""
     lasts = offsets + lengths - 1
-    faces = _layout_indices(body, joined, offsets, lasts)
+    slashed = b"/" in joined
+    # only the vertex indices of `v/vt/vn` tokens: faster than reading every number; plain
+    # `f a b c` lines are read as fast by np.fromstring (_flat_faces)
+    faces = _layout_indices(body, joined, offsets, lasts) if slashed else None
     if faces is not None:
         _check_range(faces, count)
         return _polygons(faces)
-    slashed = b"/" in joined
     separator = body <= _SPACE  # the control characters left are whitespace
     if slashed:
         separator |= body == _SLASH
