@@ -10,8 +10,8 @@ XML.
   counted once; ``union_cache``: those of overlapping primitives, cached on disk.
 - ``meshes``: mesh files as mass properties (``mesh_formats`` reads them, ``stl`` fast, without
   trimesh, and ``obj_soup`` and ``collada`` as trimesh would, without it, their numbers through
-  ``decimal_text``; ``obj_polygons``: an OBJ as MuJoCo reads it; ``mesh_closure`` decides how the volume is integrated; ``polyhedra`` and
-  ``volume_moments`` are the integration kernel); ``mesh_cache`` (with ``mesh_cache_entries``):
-  the on-disk cache.
+  ``decimal_text``; ``obj_polygons``: an OBJ as MuJoCo reads it; ``mesh_closure`` decides how
+  the volume is integrated; ``polyhedra`` and ``volume_moments`` are the integration kernel);
+  ``mesh_cache`` (with ``mesh_cache_entries``): the on-disk cache.
 - ``formatting``: numbers, vectors and tensors as text; ``tensor_names``: ``ixx``…``izz``.
 """

@@ -68,6 +68,11 @@ def _named_frames(link: LinkAnalysis) -> tuple[list, list]:
     return _FRAMES[link]
 
 
+def _named(shape: model.Shape) -> str:
+    """``the collision box``: the shape's kind as the report table names it (box, mesh, …)."""
+    return f"the {shape.kind} {describe_geometry(shape.geometry, TABLE).split(' ')[0]}"
+
+
 def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
     # each named as a finding's detail says it, with how its one-line message does (Label)
     points: list[tuple[str, ArrayLike]] = [("the link origin", (0.0, 0.0, 0.0))]
@@ -79,16 +84,14 @@ def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
             points.append((label, xyz))
     rotations: list[tuple[str, ArrayLike]] = []
     for shape in (*link.link.collisions, *link.link.visuals):
-
-        def what(shape=shape) -> str:  # the shape's kind as the report table names it
-            return f"the {shape.kind} {describe_geometry(shape.geometry, TABLE).split(' ')[0]}"
-
         xyz = shape.origin.xyz
         mesh = isinstance(shape.geometry, model.Mesh) and isinstance(xyz, tuple)
         if mesh and all(isinstance(v, float) for v in xyz) and any(xyz):  # type: ignore[union-attr]
             filename = shape.geometry.filename  # type: ignore[union-attr]
             label = Label(
-                f"the origin of {what()} `{filename}`", f"{what()}'s origin", "a mesh's origin"
+                f"the origin of {_named(shape)} `{filename}`",
+                f"{_named(shape)}'s origin",
+                "a mesh's origin",
             )
             points.append((label, xyz))
         angles = shape.origin.rpy
@@ -96,7 +99,8 @@ def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
         rotation = _origin_rotation(shape.origin) if turned else None
         if rotation is not None and not np.allclose(rotation, np.eye(3)):
             rpy = rpy_text(shape.origin.rpy)  # type: ignore[arg-type]
-            label = Label(f'{what()}\'s own axes (<origin rpy="{rpy}">)', f"{what()}'s axes")
+            what = _named(shape)
+            label = Label(f'{what}\'s own axes (<origin rpy="{rpy}">)', f"{what}'s axes")
             rotations.append((label, _snapped(rotation)))
     return points, rotations
 

@@ -216,9 +216,8 @@ def _same_scope(a: etree._Element, b: etree._Element, files: Files) -> bool:
     where_a, where_b = files.where(a), files.where(b)
     if where_a is None or where_b is None:
         return False
-    return files.key(where_a)[0] == files.key(where_b)[0] and enclosing_macro(a) is enclosing_macro(
-        b
-    )
+    same_file = files.real(where_a.path) == files.real(where_b.path)
+    return same_file and enclosing_macro(a) is enclosing_macro(b)
 
 
 def text_at(
