@@ -197,6 +197,7 @@ def lint(run: LintRun) -> int:
     from inertia_kit.cli.progress import Progress
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.merge import merge
+    from inertia_kit.lint.parallel import settle_start_up
     from inertia_kit.lint.paths import linting
 
     if run.output_file is not None and not _may_write_report(run.output_file, run.follow_symlinks):
@@ -213,6 +214,8 @@ def lint(run: LintRun) -> int:
                     for linted in step.ready:
                         told.linted(linted, progress)
                     progress.update(step.done, step.total, step.current)
+                    if step.done == 1:
+                        settle_start_up()
         except ConfigError as error:
             say(f"error: {error}")
             return 2

@@ -28,6 +28,8 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from inertia_kit.lint.parallel import settle_start_up
+
 #: seconds past the time limit the CPU backstop allows (the parent's deadline comes first)
 GRACE = 5.0
 #: what the forkserver imports once, before forking workers: an import inside an item would
@@ -214,6 +216,7 @@ def _serve(connection: Any, work: Callable[[Any], Any], limits: Limits) -> None:
         except (EOFError, OSError):
             return
         outcome = _measured(work, item, limits)
+        settle_start_up()
         try:
             connection.send(outcome)
         except (OSError, ValueError):

@@ -156,3 +156,30 @@ def test_a_script_read_from_stdin_is_worked_on_in_this_process(tmp_path):
         [sys.executable, "-"], input=script, capture_output=True, text=True, cwd=tmp_path
     )
     assert (done.returncode, done.stdout) == (0, "[1, 2, 3]\n"), done.stderr
+
+
+def test_the_heap_is_settled_once_and_never_by_the_api(monkeypatch, tmp_path):
+    """settle_start_up freezes what the process holds once (later calls add nothing); the API
+    (lint_paths) never calls it: an API caller's heap is its own."""
+    import gc
+
+    from inertia_kit.lint import parallel
+    from inertia_kit.lint.paths import lint_paths
+
+    monkeypatch.setattr(parallel, "_settled", False)
+    gc.unfreeze()  # a command run in this process before (CliRunner) may have settled it
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/></robot>')
+    lint_paths([robot])
+    assert not parallel._settled
+    assert gc.get_freeze_count() == 0
+    try:
+        parallel.settle_start_up()
+        frozen = gc.get_freeze_count()
+        assert frozen > 0
+        kept = [[k] for k in range(1000)]  # tracked objects made after it
+        parallel.settle_start_up()
+        assert gc.get_freeze_count() == frozen
+        assert kept
+    finally:
+        gc.unfreeze()
