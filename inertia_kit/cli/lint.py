@@ -197,7 +197,6 @@ def lint(run: LintRun) -> int:
     from inertia_kit.cli.progress import Progress
     from inertia_kit.errors import ConfigError
     from inertia_kit.lint.merge import merge
-    from inertia_kit.lint.parallel import settle_start_up
     from inertia_kit.lint.paths import linting
 
     if run.output_file is not None and not _may_write_report(run.output_file, run.follow_symlinks):
@@ -214,8 +213,6 @@ def lint(run: LintRun) -> int:
                     for linted in step.ready:
                         told.linted(linted, progress)
                     progress.update(step.done, step.total, step.current)
-                    if step.done == 1:
-                        settle_start_up()
         except ConfigError as error:
             say(f"error: {error}")
             return 2
@@ -296,10 +293,13 @@ class _Told:
         """
         One file linted, with every file before it: what the environment gave its robot kept
         out of the output (if asked), and its settled findings printed (the streamed formats)
-        or kept for the report.
+        or kept for the report. After the first, the heap start-up made is settled (once).
         """
         from inertia_kit.cli import printing
         from inertia_kit.lint.output import render
+        from inertia_kit.lint.parallel import settle_start_up
+
+        settle_start_up()
 
         run, result = self.run, linted.result
         if run.redacts(result.path):
