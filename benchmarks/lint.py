@@ -82,7 +82,7 @@ def torus(index: int) -> tuple[np.ndarray, np.ndarray]:
         np.broadcast_arrays(radial * np.cos(u), 0.7 * radial * np.sin(u), 1.4 * minor * np.sin(v)),
         axis=-1,
     ).reshape(-1, 3)
-    tilt = _rotation((0.3 + 0.05 * index, -0.2, 0.5))
+    tilt = rotation((0.3 + 0.05 * index, -0.2, 0.5))
     # every vertex computed once, in float32, and shared bit for bit: closed, as exporters write
     points = (local @ tilt.T + (0.01, -0.005, 0.1)).astype(np.float32)
     i = np.arange(RINGS)[:, None]
@@ -95,7 +95,8 @@ def torus(index: int) -> tuple[np.ndarray, np.ndarray]:
     return points, faces
 
 
-def _rotation(rpy) -> np.ndarray:
+def rotation(rpy) -> np.ndarray:
+    """URDF roll-pitch-yaw as a matrix (the benchmarks' own, not the package's)."""
     r, p, y = rpy
     rx = np.array([[1, 0, 0], [0, np.cos(r), -np.sin(r)], [0, np.sin(r), np.cos(r)]])
     ry = np.array([[np.cos(p), 0, np.sin(p)], [0, 1, 0], [-np.sin(p), 0, np.cos(p)]])

@@ -59,6 +59,8 @@ import warnings  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
+from lint import rotation  # noqa: E402  (benchmarks/, this script's folder)
+from lint import write_stl as write_triangles  # noqa: E402
 
 try:
     import resource
@@ -74,8 +76,6 @@ TEXT_FILES = ("blender.obj", "plain.obj", "triangles.dae", "polylist.dae")
 RATE = 5e6  # triangles/s, in process, at 1M (issue 23, item 1)
 CLI_RATIO = 3.0  # the CLI on OBJ/DAE over the same on STL, at 1M
 TOLERANCE = 1e-12  # relative, against trimesh
-
-RECORD = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attribute", "<u2")])
 
 
 # --- the meshes ---------------------------------------------------------------------------------
@@ -98,7 +98,7 @@ def torus(rings: int, segments: int):
     normal = np.stack(
         np.broadcast_arrays(np.cos(v) * np.cos(u), np.cos(v) * np.sin(u), np.sin(v)), axis=-1
     ).reshape(-1, 3)
-    tilt = _rotation((0.3, -0.2, 0.5))
+    tilt = rotation((0.3, -0.2, 0.5))
     points = local @ tilt.T + (0.12, -0.05, 0.2)
     normals = normal @ tilt.T
     i = np.arange(rings)[:, None]
@@ -120,14 +120,6 @@ def torus(rings: int, segments: int):
     )
     uvs = np.stack([uu, vv], -1).reshape(-1, 2)
     return points, normals, uvs, quads, uv_quads
-
-
-def _rotation(rpy) -> np.ndarray:
-    r, p, y = rpy
-    rx = np.array([[1, 0, 0], [0, np.cos(r), -np.sin(r)], [0, np.sin(r), np.cos(r)]])
-    ry = np.array([[np.cos(p), 0, np.sin(p)], [0, 1, 0], [-np.sin(p), 0, np.cos(p)]])
-    rz = np.array([[np.cos(y), -np.sin(y), 0], [np.sin(y), np.cos(y), 0], [0, 0, 1]])
-    return rz @ ry @ rx
 
 
 def triangles_of(quads: np.ndarray) -> np.ndarray:
@@ -241,19 +233,7 @@ def _source(ident: str, values: np.ndarray) -> str:
 
 def write_stl(path: Path, mesh) -> None:
     points, _, _, quads, _ = mesh
-    triangles = points.astype(np.float32)[triangles_of(quads)]
-    records = np.zeros(len(triangles), dtype=RECORD)
-    records["vertices"] = triangles
-    edges = triangles[:, 1:] - triangles[:, :1]
-    normals = np.cross(edges[:, 0], edges[:, 1])
-    records["normal"] = normals / np.linalg.norm(normals, axis=1, keepdims=True)
-    partial = path.with_suffix(".partial")
-    partial.write_bytes(
-        b"inertia-kit text_meshes benchmark".ljust(80, b" ")
-        + np.uint32(len(triangles)).tobytes()
-        + records.tobytes()
-    )
-    partial.replace(path)
+    write_triangles(path, points.astype(np.float32)[triangles_of(quads)])
 
 
 def _write(path: Path, text: str) -> None:
