@@ -51,7 +51,6 @@ os.environ["INERTIA_KIT_NO_CACHE"] = "1"  # every run reads its mesh
 
 import argparse  # noqa: E402
 import platform  # noqa: E402
-import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
@@ -59,13 +58,8 @@ import warnings  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
-from lint import rotation  # noqa: E402  (benchmarks/, this script's folder)
+from lint import Failure, best, console_script, rotation  # noqa: E402  (this folder's)
 from lint import write_stl as write_triangles  # noqa: E402
-
-try:
-    import resource
-except ImportError:  # Windows: wall times only
-    resource = None  # type: ignore[assignment]
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / ".data" / "text-v1"  # bump with the generators
@@ -318,42 +312,13 @@ def difference(mine, reference, size: float) -> float:
 # --- whole processes ----------------------------------------------------------------------------
 
 
-def console_script(name: str) -> str:
-    """The script installed with this Python: a shim (pyenv, asdf) would add its own start-up."""
-    folder = Path(sys.executable).parent
-    for candidate in (folder / name, folder / f"{name}.exe"):
-        if candidate.is_file():
-            return str(candidate)
-    found = shutil.which(name)
-    if found is None:
-        sys.exit(f"`{name}` is not installed: pip install -e {ROOT}")
-    return found
-
-
-def _cpu_of_children() -> float | None:
-    if resource is None:
-        return None
-    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return usage.ru_utime + usage.ru_stime
-
-
-def run_once(command: list[str]) -> tuple[float, float | None]:
-    cpu = _cpu_of_children()
-    start = time.perf_counter()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    wall = time.perf_counter() - start
-    after = _cpu_of_children()
-    if done.returncode:
-        stderr = done.stderr.decode(errors="replace").strip()
-        sys.exit(f"`{' '.join(command)}` exited {done.returncode}: {stderr[-2000:]}")
-    return wall, None if cpu is None or after is None else after - cpu
-
-
 def best_process(command: list[str], runs: int) -> tuple[float, float | None]:
-    """Best wall and best CPU seconds of ``runs`` runs, after an untimed one."""
-    run_once(command)
-    walls, cpus = zip(*(run_once(command) for _ in range(runs)), strict=True)
-    return min(walls), None if None in cpus else min(cpus)
+    """Best wall and best CPU seconds of ``runs`` runs, after an untimed one (lint.py's)."""
+    try:
+        timing = best(command, runs, lambda _: dict(os.environ), ok=(0,))
+    except Failure as failure:
+        sys.exit(str(failure))
+    return timing.wall, timing.cpu
 
 
 def trimesh_script(path: Path) -> list[str]:
