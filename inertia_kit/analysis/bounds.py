@@ -376,15 +376,20 @@ def _about(declared: MassProperties, tensor: NDArray[np.float64], hull: Hull) ->
     written in the file.
     """
     mass, com = declared.mass, declared.com
-    candidates: list[MomentExcess] = []
-    for frame in (np.eye(3), declared.principal_axes):
+
+    def about_axes(frame: NDArray[np.float64]) -> list[MomentExcess]:
         bounds = mass * hull.moment_bound(com, frame)
         reach = hull.farthest_from_axes(com, frame.T)
-        for i in range(3):
-            axis = frame[:, i]
-            candidates.append(
-                MomentExcess(axis, float(axis @ tensor @ axis), float(bounds[i]), float(reach[i]))
-            )
+        return [
+            MomentExcess(axis, float(axis @ tensor @ axis), float(bound), float(far))
+            for axis, bound, far in zip(frame.T, bounds, reach, strict=True)
+        ]
+
+    link_axes = about_axes(np.eye(3))
+    named = [c for c in link_axes if c.ratio > 1.0 + BOUND_RTOL]
+    if named:  # reported in preference to any other axis: none other is looked at
+        return max(named, key=lambda c: c.ratio)
+    candidates = [*link_axes, *about_axes(declared.principal_axes)]
     reach = hull.farthest_from_axes(com, _DIRECTIONS)
     moments = np.einsum("ij,jk,ik->i", _DIRECTIONS, tensor, _DIRECTIONS)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -397,8 +402,7 @@ def _about(declared: MassProperties, tensor: NDArray[np.float64], hull: Hull) ->
             float(reach[worst]),
         )
     )
-    named = [c for c in candidates[:3] if c.ratio > 1.0 + BOUND_RTOL]
-    return max(named or candidates, key=lambda c: c.ratio)
+    return max(candidates, key=lambda c: c.ratio)
 
 
 # the local search of the worst direction (:func:`_along`): first step and smallest step, rad

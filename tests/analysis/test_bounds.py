@@ -361,3 +361,37 @@ def test_either_kind_is_the_worse_of_the_two_searched_alone(case, scale, turn, s
             expected.bound,
         )
         assert np.array_equal(found.axis, expected.axis)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    hull_and_masses(),
+    st.floats(0.01, 3.0),
+    arrays(np.float64, (3, 3), elements=_UNIT),
+    arrays(np.float64, (3,), elements=st.floats(0.0, 1.0)),
+)
+def test_about_axes_is_the_rule_over_every_axis_checked(case, scale, turn, spread):
+    """The moment about an axis: the worst link axis beyond its bound when there is one (the
+    other axes then go unchecked), else the worst of the link axes, the principal axes and the
+    fixed directions, every one computed."""
+    from inertia_kit.analysis.bounds import _DIRECTIONS
+
+    hull, points, masses = case
+    body = sum(MassProperties(m, p) for m, p in zip(masses, points, strict=True))
+    axes = np.linalg.qr(turn + 3.0 * np.eye(3))[0]
+    size = float(np.ptp(hull.points, axis=0).max() + 2.0 * hull.radii.max())
+    second = body.mass * scale * size**2 * (axes @ np.diag(spread) @ axes.T)
+    declared = MassProperties(body.mass, body.com, np.trace(second) * np.eye(3) - second)
+    tensor = 0.5 * declared.inertia + 0.5 * declared.inertia.T
+    ratios = []
+    for frame in (np.eye(3), declared.principal_axes):
+        bounds = declared.mass * hull.moment_bound(declared.com, frame)
+        ratios += [float(u @ tensor @ u) / b for u, b in zip(frame.T, bounds, strict=True)]
+    reach = hull.farthest_from_axes(declared.com, _DIRECTIONS)
+    moments = np.einsum("ij,jk,ik->i", _DIRECTIONS, tensor, _DIRECTIONS)
+    ratios.append(float(np.max(moments / (declared.mass * reach**2))))
+    named = [r for r in ratios[:3] if r > 1.0 + BOUND_RTOL]
+    found = moment_excess(declared, hull, "about")
+    assert found.ratio == pytest.approx(max(named or ratios), rel=1e-12)
+    if named:
+        assert np.count_nonzero(found.axis) == 1  # a link axis
