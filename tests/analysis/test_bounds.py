@@ -327,24 +327,28 @@ def test_extreme_values_give_no_second_moment_bound_and_no_warning(inertia, com)
     assert found is None or found.moment == 0.0
 
 
-@settings(max_examples=300, deadline=None)
-@given(
-    hull_and_masses(),
-    st.floats(0.01, 3.0),
-    arrays(np.float64, (3, 3), elements=_UNIT),
-    arrays(np.float64, (3,), elements=st.floats(0.0, 1.0)),
-)
-def test_either_kind_is_the_worse_of_the_two_searched_alone(case, scale, turn, spread):
-    """Without a kind, the moment about an axis wins when it is beyond its bound (the search
-    along directions is then skipped) or when the second moment comes no closer: the result is
-    what the two searches, each run alone, give by that rule. Second moments of any shape, the
-    hull's size squared times ``scale``: within the bounds and beyond them, either kind worse."""
-    hull, points, masses = case
+@st.composite
+def hull_and_declared(draw):
+    """A hull and a declared tensor about a COM inside it: second moments of any shape, the
+    hull's size squared times a scale, within the bounds and beyond them, either kind worse."""
+    hull, points, masses = draw(hull_and_masses())
+    scale = draw(st.floats(0.01, 3.0))
+    turn = draw(arrays(np.float64, (3, 3), elements=_UNIT))
+    spread = draw(arrays(np.float64, (3,), elements=st.floats(0.0, 1.0)))
     body = sum(MassProperties(m, p) for m, p in zip(masses, points, strict=True))
     axes = np.linalg.qr(turn + 3.0 * np.eye(3))[0]
     size = float(np.ptp(hull.points, axis=0).max() + 2.0 * hull.radii.max())
     second = body.mass * scale * size**2 * (axes @ np.diag(spread) @ axes.T)
-    declared = MassProperties(body.mass, body.com, np.trace(second) * np.eye(3) - second)
+    return hull, MassProperties(body.mass, body.com, np.trace(second) * np.eye(3) - second)
+
+
+@settings(max_examples=300, deadline=None)
+@given(hull_and_declared())
+def test_either_kind_is_the_worse_of_the_two_searched_alone(case):
+    """Without a kind, the moment about an axis wins when it is beyond its bound (the search
+    along directions is then skipped) or when the second moment comes no closer: the result is
+    what the two searches, each run alone, give by that rule."""
+    hull, declared = case
     about = moment_excess(declared, hull, "about")
     along = moment_excess(declared, hull, "along")
     expected = (
@@ -364,24 +368,14 @@ def test_either_kind_is_the_worse_of_the_two_searched_alone(case, scale, turn, s
 
 
 @settings(max_examples=200, deadline=None)
-@given(
-    hull_and_masses(),
-    st.floats(0.01, 3.0),
-    arrays(np.float64, (3, 3), elements=_UNIT),
-    arrays(np.float64, (3,), elements=st.floats(0.0, 1.0)),
-)
-def test_about_axes_is_the_rule_over_every_axis_checked(case, scale, turn, spread):
+@given(hull_and_declared())
+def test_about_axes_is_the_rule_over_every_axis_checked(case):
     """The moment about an axis: the worst link axis beyond its bound when there is one (the
     other axes then go unchecked), else the worst of the link axes, the principal axes and the
     fixed directions, every one computed."""
     from inertia_kit.analysis.bounds import _DIRECTIONS
 
-    hull, points, masses = case
-    body = sum(MassProperties(m, p) for m, p in zip(masses, points, strict=True))
-    axes = np.linalg.qr(turn + 3.0 * np.eye(3))[0]
-    size = float(np.ptp(hull.points, axis=0).max() + 2.0 * hull.radii.max())
-    second = body.mass * scale * size**2 * (axes @ np.diag(spread) @ axes.T)
-    declared = MassProperties(body.mass, body.com, np.trace(second) * np.eye(3) - second)
+    hull, declared = case
     tensor = 0.5 * declared.inertia + 0.5 * declared.inertia.T
     ratios = []
     for frame in (np.eye(3), declared.principal_axes):
