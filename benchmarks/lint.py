@@ -73,26 +73,42 @@ def torus_triangles(index: int) -> np.ndarray:
 
 def torus(index: int) -> tuple[np.ndarray, np.ndarray]:
     """The torus' (n, 3) float32 vertices and (50000, 3) triangles, indices into them."""
-    u = np.linspace(0.0, 2.0 * np.pi, RINGS, endpoint=False)[:, None]
-    v = np.linspace(0.0, 2.0 * np.pi, SEGMENTS, endpoint=False)[None, :]
     grow = 1.0 + 0.04 * index
-    major, minor = 0.06 * grow, 0.018 * grow
-    radial = major + minor * np.cos(v)
-    local = np.stack(
-        np.broadcast_arrays(radial * np.cos(u), 0.7 * radial * np.sin(u), 1.4 * minor * np.sin(v)),
-        axis=-1,
-    ).reshape(-1, 3)
+    _, _, local = torus_surface(RINGS, SEGMENTS, 0.06 * grow, 0.018 * grow)
     tilt = rotation((0.3 + 0.05 * index, -0.2, 0.5))
     # every vertex computed once, in float32, and shared bit for bit: closed, as exporters write
     points = (local @ tilt.T + (0.01, -0.005, 0.1)).astype(np.float32)
-    i = np.arange(RINGS)[:, None]
-    j = np.arange(SEGMENTS)[None, :]
-    a = i * SEGMENTS + j
-    b = (i + 1) % RINGS * SEGMENTS + j
-    c = (i + 1) % RINGS * SEGMENTS + (j + 1) % SEGMENTS
-    d = i * SEGMENTS + (j + 1) % SEGMENTS
-    faces = np.stack([np.stack([a, b, c], -1), np.stack([a, c, d], -1)], 2).reshape(-1, 3)
+    faces = torus_quads(RINGS, SEGMENTS)[:, [0, 1, 2, 0, 2, 3]].reshape(-1, 3)
     return points, faces
+
+
+def torus_surface(rings: int, segments: int, major: float, minor: float):
+    """
+    ``(u, v, points)``: the angles round the ring, ``(rings, 1)``, and round the tube,
+    ``(1, segments)``, and the ``(rings * segments, 3)`` vertices of an elliptical tube round an
+    elliptical ring, centred, untilted (the benchmarks' tori: every product of inertia non-zero
+    once tilted).
+    """
+    u = np.linspace(0.0, 2.0 * np.pi, rings, endpoint=False)[:, None]
+    v = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)[None, :]
+    radial = major + minor * np.cos(v)
+    points = np.stack(
+        np.broadcast_arrays(radial * np.cos(u), 0.7 * radial * np.sin(u), 1.4 * minor * np.sin(v)),
+        axis=-1,
+    ).reshape(-1, 3)
+    return u, v, points
+
+
+def torus_quads(rings: int, segments: int) -> np.ndarray:
+    """``(rings * segments, 4)`` vertex indices ``(a, b, c, d)`` of each quad of
+    :func:`torus_surface`, wound outwards; ``(a, b, c), (a, c, d)`` its two triangles."""
+    i = np.arange(rings)[:, None]
+    j = np.arange(segments)[None, :]
+    a = i * segments + j
+    b = (i + 1) % rings * segments + j
+    c = (i + 1) % rings * segments + (j + 1) % segments
+    d = i * segments + (j + 1) % segments
+    return np.stack([a, b, c, d], -1).reshape(-1, 4)
 
 
 def rotation(rpy) -> np.ndarray:

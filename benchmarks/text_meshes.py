@@ -58,7 +58,14 @@ import warnings  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
-from lint import Failure, best, console_script, rotation  # noqa: E402  (this folder's)
+from lint import (  # noqa: E402  (this folder's)
+    Failure,
+    best,
+    console_script,
+    rotation,
+    torus_quads,
+    torus_surface,
+)
 from lint import write_stl as write_triangles  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -81,27 +88,16 @@ def torus(rings: int, segments: int):
     quads ``(a, b, c, d)`` wound outwards, each split into ``(a, b, c), (a, c, d)`` as
     triangles; ``uvs`` a grid of ``(rings + 1) * (segments + 1)`` (a seam, as in Blender).
     """
-    u = np.linspace(0.0, 2.0 * np.pi, rings, endpoint=False)[:, None]
-    v = np.linspace(0.0, 2.0 * np.pi, segments, endpoint=False)[None, :]
-    major, minor = 0.30, 0.08
-    radial = major + minor * np.cos(v)
-    local = np.stack(
-        np.broadcast_arrays(radial * np.cos(u), 0.7 * radial * np.sin(u), 1.4 * minor * np.sin(v)),
-        axis=-1,
-    ).reshape(-1, 3)
+    u, v, local = torus_surface(rings, segments, 0.30, 0.08)
     normal = np.stack(
         np.broadcast_arrays(np.cos(v) * np.cos(u), np.cos(v) * np.sin(u), np.sin(v)), axis=-1
     ).reshape(-1, 3)
     tilt = rotation((0.3, -0.2, 0.5))
     points = local @ tilt.T + (0.12, -0.05, 0.2)
     normals = normal @ tilt.T
+    quads = torus_quads(rings, segments)
     i = np.arange(rings)[:, None]
     j = np.arange(segments)[None, :]
-    a = i * segments + j
-    b = (i + 1) % rings * segments + j
-    c = (i + 1) % rings * segments + (j + 1) % segments
-    d = i * segments + (j + 1) % segments
-    quads = np.stack([a, b, c, d], -1).reshape(-1, 4)
     grid = segments + 1
     uv_quads = np.stack(
         np.broadcast_arrays(
