@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from inertia_kit.errors import MeshError
 from inertia_kit.physics.frames import transformed_points
 from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
-from inertia_kit.physics.stl import read_stl
+from inertia_kit.physics.stl import binary_triangles, read_stl
 
 if TYPE_CHECKING:
     import logging
@@ -104,8 +104,22 @@ def read_surface(
         ) from None
     except MeshError as error:
         raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
-    triangles = None if integrator.closed else _read_scene(file, suffix)[0]
+    triangles = None if integrator.closed else _open_stl_triangles(file)
     return integrator, triangles, 1.0
+
+
+def _open_stl_triangles(file: Path) -> NDArray[np.float64]:
+    """The triangles of an STL whose surface is not closed: a binary one's records as trimesh
+    reads them (:func:`.stl.binary_triangles`, without importing trimesh, which costs more
+    than reading a robot's meshes), an ASCII one through trimesh."""
+    _check_size(file, MAX_MESH_BYTES)  # read whole, and held several times over
+    try:
+        triangles = binary_triangles(file)
+    except OSError as error:
+        raise MeshError(
+            file, "unreadable", f"cannot read the file ({error}); check its permissions"
+        ) from None
+    return _read_scene(file, ".stl")[0] if triangles is None else triangles
 
 
 def read_triangles(path: str | Path) -> tuple[NDArray[np.float64], float]:

@@ -67,6 +67,31 @@ def read_stl(path: str | Path) -> SurfaceIntegrator:
     return integrator
 
 
+def binary_triangles(path: str | Path) -> NDArray[np.float64] | None:
+    """
+    The triangles (n, 3, 3) of a binary STL, in file order and its unit, as trimesh reads them
+    (``process=False``: the records' float32 vertices as float64, nothing merged or dropped);
+    ``None`` for a file that is not one (an ASCII STL).
+
+    For a surface that is not closed, which :func:`read_stl` integrates without holding it:
+    its closure is judged on the triangles, read here without importing trimesh.
+    """
+    count = binary_triangle_count(path)
+    if count is None:
+        return None
+    size = count * RECORD.itemsize
+    with open(path, "rb") as stream:
+        stream.seek(HEADER_BYTES)
+        data = stream.read(size)
+    if len(data) < size:
+        raise MeshError(
+            path,
+            "unreadable",
+            f"binary STL cut short: it ended before its {count} triangles",
+        )
+    return np.frombuffer(data, dtype=RECORD)["vertices"].astype(np.float64)
+
+
 def _read_binary(path: str | Path, count: int) -> SurfaceIntegrator:
     """
     Integrate ``count`` records a chunk at a time, without holding them all.

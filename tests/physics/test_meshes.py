@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 import trimesh
 from kit import REPO
-from kit.meshes import square_triangles, write_ascii_stl
+from kit.meshes import square_triangles, write_ascii_stl, write_binary_stl
 from kit.physics import from_second_moment
 
 from inertia_kit.errors import MeshError
@@ -486,3 +486,26 @@ def test_closed_stl_does_not_import_trimesh(tmp_path: Path) -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
     )
     assert done.stdout.split() == ["exact", "False", "False"]
+
+
+@pytest.mark.parametrize(("name", "method"), [("welded", "exact"), ("open", "convex-hull")])
+def test_open_binary_stl_does_not_import_trimesh(tmp_path: Path, name, method) -> None:
+    # a binary STL is a triangle soup: closed only once its corners are welded; an open one is
+    # bounded by its hull. Neither needs trimesh to read the triangles.
+    triangles = box_mesh().triangles.astype(np.float32)
+    # one corner a float32 step off: not closed as written, welded shut
+    triangles[0, 0, 0] = np.nextafter(triangles[0, 0, 0], np.float32(np.inf))
+    if name == "open":
+        triangles = triangles[1:]
+    path = write_binary_stl(tmp_path / f"{name}.stl", triangles)
+    code = (
+        "import sys\n"
+        "from inertia_kit.physics.meshes import mesh\n"
+        f"result = mesh({str(path)!r}, density=1000.0)\n"
+        "print(result.method, 'trimesh' in sys.modules)\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
+    )
+    assert done.stdout.split() == [method, "False"]

@@ -94,6 +94,24 @@ def test_open_surface_is_not_closed(tmp_path):
     assert not integrator.closed
 
 
+@pytest.mark.parametrize("header", [b"binary STL", b"solid part exported"])
+def test_binary_triangles_are_trimesh_s_bit_for_bit(tmp_path, header):
+    # read here for an open surface, in place of trimesh: the same order and bits, signed zeros
+    # and degenerate triangles kept (trimesh, process=False, merges and drops nothing)
+    triangles = sphere(2).astype(np.float32)
+    triangles[0, 0] = (-0.0, 0.0, -0.0)
+    triangles[1] = triangles[1, 0]  # a triangle of one point
+    path = write_binary_stl(tmp_path / "soup.stl", triangles[:-3], header=header)
+    mine = stl.binary_triangles(path)
+    theirs = trimesh.load(path, process=False).triangles
+    assert mine.dtype == np.float64 and mine.shape == theirs.shape
+    np.testing.assert_array_equal(mine.view(np.uint64), theirs.view(np.uint64))
+
+
+def test_binary_triangles_of_an_ascii_stl_is_none(tmp_path):
+    assert stl.binary_triangles(write_ascii_stl(tmp_path / "a.stl", sphere(1))) is None
+
+
 def test_ascii_with_signed_zeros_is_closed(tmp_path):
     triangles = box_triangles((1.0, 2.0, 4.0), (-1.0, 0.0, -2.0))
     text = write_ascii_stl(tmp_path / "zeros.stl", triangles).read_text()
