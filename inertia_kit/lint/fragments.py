@@ -129,8 +129,11 @@ def targets(
     graphs: dict[Path, IncludeGraph] = {}
     through: dict[str, list[str]] = {}  # robot (real path) -> given files it is linted for
     result = Targets([Target(file) for file in files])
-    for file in filter(_includable, files):
-        root, why = repository_root(file)
+    roots = {file: repository_root(file) for file in filter(_includable, files)}
+    wanted: dict[Path, list[str]] = {}  # repository -> the given files its robots may include
+    for file, (root, _) in roots.items():
+        wanted.setdefault(root, []).append(file)
+    for file, (root, why) in roots.items():
         if root not in graphs:
             graphs[root] = include_graph(
                 root,
@@ -138,6 +141,7 @@ def targets(
                 package_paths=package_paths,
                 xacro_limits=xacro_limits,
                 cache_dir=cache_dir,
+                wanted=wanted[root],
             )
         result.repositories[file] = (root, why)
         includers = graphs[root].includers(file)

@@ -15,15 +15,20 @@ then: linted for those files, it reports the error.
 
 The first pass picks no robots by name: includes are often computed
 (``$(find ${pkg})/urdf/${name}.xacro``), so a file's text cannot say what it includes; the
-on-disk cache (:mod:`.include_cache`) keeps a warm run to one ``stat`` per file read.
+on-disk cache (:mod:`.include_cache`) keeps a warm run to one ``stat`` per file read. When a
+run asks only for the includers of some files (``wanted``: the files a hook or a user gives),
+a robot whose includes are all written out and reach none of them
+(:mod:`.include_reach`) cannot be one, and is not expanded: a robot given to the linter no
+longer costs the expansion of every other robot of its repository.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import time
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -34,19 +39,23 @@ if TYPE_CHECKING:
 
 # what a file that reads another file must name (xacro:include, xacro.load_yaml)
 _READS_OTHERS = re.compile(rb"include|load_yaml")
+#: What a scan gives for a file it does not expand, as it cannot include a wanted file.
+PASSED = "passed"
 
 
 @dataclass
 class IncludeGraph:
     """
     The robots of one repository (``root``) and the files each read, by real path.
-    ``scanned`` and ``reused`` count the files expanded in this run and taken from the cache.
+    ``scanned`` and ``reused`` count the files expanded in this run and taken from the cache;
+    ``passed`` those left unexpanded because they cannot include a wanted file.
     """
 
     root: Path
     robots: dict[str, tuple[str, ...]] = field(default_factory=dict)
     scanned: int = 0
     reused: int = 0
+    passed: int = 0  # robots not expanded: their includes as written reach no wanted file
 
     def includers(self, file: str | Path) -> list[str]:
         """The robots (real paths, sorted) that read ``file``, ``file`` itself left out."""
@@ -66,11 +75,16 @@ def include_graph(
     package_paths: Sequence[str | Path] = (),
     xacro_limits: XacroLimits | None = None,
     cache_dir: str | Path | None = None,
+    wanted: Collection[str | Path] | None = None,
 ) -> IncludeGraph:
     """
     The include graph of the repository at ``root``, from the cache where the files are as
     they were (each robot file's size and mtime, and those of every file it read), re-scanned
     where they are not; the cache is then brought up to date.
+
+    ``wanted``: only the includers of these files are asked for. A file to scan whose
+    includes, as written, cannot reach one of them (:func:`.include_reach.may_include`) is not
+    expanded: the graph is then complete for the wanted files only.
     """
     # the cache (and json) only when a repository is scanned: not for a plain URDF
     from inertia_kit.lint.discovery import expand_paths
@@ -84,13 +98,18 @@ def include_graph(
     cached = load_entries(root, options, cache_dir)
     graph = IncludeGraph(root)
     entries: dict[str, Entry] = {}
+    reach = None if wanted is None else _reach(wanted, package_paths)
     for file in expand_paths([root]):
         key = real(file)
         entry = cached.get(key)
         if entry is not None and entry.current():
             graph.reused += 1
         else:
-            entry = _scan(key, xacro_args, package_paths, xacro_limits)
+            needed = None if reach is None else functools.partial(reach, stale=entry)
+            entry = _scan(key, xacro_args, package_paths, xacro_limits, needed)
+            if entry == PASSED:
+                graph.passed += 1
+                continue
             graph.scanned += 1
         if entry is None:
             continue  # vanished or unreadable between the walk and the scan
@@ -107,13 +126,32 @@ def include_graph(
     return graph
 
 
+def _reach(
+    wanted: Collection[str | Path], package_paths: Sequence[str | Path]
+) -> Callable[[str, Entry | None], bool]:
+    """Whether a file to scan (its stale cache entry, if any) may read a ``wanted`` file."""
+    from inertia_kit.lint.include_reach import is_xml, may_include
+
+    keys = frozenset(real(file) for file in wanted)
+    xml_only = all(is_xml(key) for key in keys)
+
+    def reach(key: str, stale: Entry | None) -> bool:
+        if stale is not None and any(read in keys for read, _ in stale.reads[1:]):
+            return True  # it read one: expanded again, as it may still (or be broken by it)
+        return may_include(key, keys, package_paths, xml_only=xml_only)
+
+    return reach
+
+
 def _scan(
     path: str,
     xacro_args: Mapping[str, str] | None,
     package_paths: Sequence[str | Path],
     xacro_limits: XacroLimits | None,
-) -> Entry | None:
-    """What ``path`` is and reads, by its text and (for xacro that includes) its expansion."""
+    needed: Callable[[str], bool] | None = None,
+) -> Entry | str | None:
+    """What ``path`` is and reads, by its text and (for xacro that includes) its expansion;
+    :data:`PASSED` for a file to expand that ``needed`` says is not."""
     from inertia_kit.description.loader import files_read, needs_expansion
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.errors import InputError
@@ -128,6 +166,8 @@ def _scan(
         return None  # the loader tells why
     if not (needs_expansion(data) and _READS_OTHERS.search(data)):
         return Entry("plain", ((path, own),))
+    if needed is not None and not needed(path):
+        return PASSED
     try:
         files, fragment = files_read(
             path, xacro_args=xacro_args, package_paths=package_paths, limits=xacro_limits

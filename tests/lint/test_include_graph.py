@@ -73,6 +73,44 @@ def test_files_that_include_nothing_are_not_expanded(tmp_path, cache, monkeypatc
     )
 
 
+def test_only_robots_that_may_include_a_wanted_file_are_expanded(tmp_path, cache, monkeypatch):
+    """Asked only for includers of the robot itself or of leaf.xacro, the graph expands what
+    may include them (from the includes as written) and gives the same includers."""
+    from inertia_kit.description.urdf import xacro_expand
+
+    expanded = []
+    real_expand = xacro_expand.expand
+
+    def counting(path, **options):
+        expanded.append(path)
+        return real_expand(path, **options)
+
+    monkeypatch.setattr(xacro_expand, "expand", counting)
+    urdf = _repository(tmp_path / "repo")
+    monkeypatch.setenv("INERTIA_KIT_NO_CACHE", "1")
+    full = include_graph.include_graph(tmp_path / "repo")
+    for name, scanned in (
+        ("arm.urdf.xacro", []),
+        ("leaf.xacro", ["arm.urdf.xacro", "middle.xacro"]),
+    ):
+        expanded.clear()
+        graph = include_graph.include_graph(tmp_path / "repo", wanted=[urdf / name])
+        assert sorted(expanded) == sorted(include_graph.real(urdf / file) for file in scanned)
+        assert graph.includers(urdf / name) == full.includers(urdf / name)
+        assert graph.passed == 2 - len(scanned)
+
+
+def test_a_robot_that_read_a_wanted_file_is_expanded_again(tmp_path, cache):
+    """A stale entry that read a wanted file is scanned again, whatever its includes say now:
+    broken by the change, it still reports the error for that file."""
+    urdf = _repository(tmp_path / "repo")
+    include_graph.include_graph(tmp_path / "repo")
+    write(urdf / "arm.urdf.xacro", robot("nowhere.xacro", "a=1"))
+    age(tmp_path / "repo")
+    graph = include_graph.include_graph(tmp_path / "repo", wanted=[urdf / "leaf.xacro"])
+    assert graph.includers(urdf / "leaf.xacro") == [include_graph.real(urdf / "arm.urdf.xacro")]
+
+
 def test_the_cache_serves_a_second_scan_and_survives_corruption(tmp_path, cache):
     urdf = _repository(tmp_path / "repo")
     first = include_graph.include_graph(tmp_path / "repo")
