@@ -77,6 +77,7 @@ def classify(
     assert triangles is not None
     points, corners = unique_rows(np.asarray(triangles, dtype=np.float64).reshape(-1, 3))
     extent = _extent(integrator.bounds)
+    judged = None
     for rtol in WELD_RTOLS:
         faces = weld(points, rtol * extent)[corners.reshape(-1, 3)]
         # welding collapses slivers narrower than the noise: they hold no volume
@@ -85,7 +86,9 @@ def classify(
             & (faces[:, 1] != faces[:, 2])
             & (faces[:, 2] != faces[:, 0])
         ]
-        watertight, consistent = closure(faces)
+        if judged is None or not np.array_equal(faces, judged):  # a wider weld merged more
+            watertight, consistent = closure(faces)
+            judged = faces
         if watertight:
             break
     if watertight and len(faces):
@@ -126,10 +129,16 @@ def closure(faces: NDArray[np.int64]) -> tuple[bool, bool]:
     directions (so an open surface may be consistent, and no faces is both).
     """
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    undirected = np.sort(directed, axis=1)
-    order = np.lexsort((undirected[:, 1], undirected[:, 0]))
-    ranked = undirected[order]
-    starts = np.flatnonzero(np.r_[True, (ranked[1:] != ranked[:-1]).any(axis=1)])
+    if not len(directed):
+        return True, True
+    # each undirected edge as one integer, (low, high) in lexicographic order: one stable sort
+    # of integers, not a lexsort of two columns (indices are below 2**31: no overflow)
+    low = np.minimum(directed[:, 0], directed[:, 1]).astype(np.int64)
+    high = np.maximum(directed[:, 0], directed[:, 1]).astype(np.int64)
+    edges = low * (int(high.max()) + 1) + high
+    order = np.argsort(edges, kind="stable")
+    ranked = edges[order]
+    starts = np.flatnonzero(np.r_[True, ranked[1:] != ranked[:-1]])
     sizes = np.diff(np.r_[starts, len(ranked)])
     pairs = order[starts[sizes == 2][:, None] + np.arange(2)]
     watertight = 2 * len(pairs) == len(directed)

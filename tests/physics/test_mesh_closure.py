@@ -309,3 +309,27 @@ def test_unique_rows_leaves_non_finite_rows_to_numpy():
     expected, expected_inverse = np.unique(array, axis=0, return_inverse=True)
     assert np.array_equal(points, expected, equal_nan=True)
     assert np.array_equal(inverse, expected_inverse.reshape(-1))
+
+
+@pytest.mark.parametrize(("gap", "judged", "method"), [(0.0, 1, "convex-hull"), (1e-7, 2, "exact")])
+def test_a_surface_is_judged_again_only_when_a_wider_weld_merges_more(
+    monkeypatch, tmp_path, gap, judged, method
+):
+    """An open box is judged once (the wider weld merges nothing more); a corner 1e-7 off,
+    welded only by the wider tolerance, is judged twice and found closed."""
+    from pathlib import Path
+
+    from kit.meshes import box_triangles
+
+    from inertia_kit.physics import mesh_closure
+
+    triangles = box_triangles((1.0, 2.0, 3.0))
+    if gap:
+        triangles[0, 0, 0] += gap
+    else:
+        triangles = triangles[1:]
+    calls = []
+    real_closure = mesh_closure.closure
+    monkeypatch.setattr(mesh_closure, "closure", lambda f: calls.append(1) or real_closure(f))
+    result = mesh_closure.classify(Path(tmp_path / "box.stl"), integrate(triangles), triangles)
+    assert (len(calls), result.method) == (judged, method)
