@@ -436,6 +436,7 @@ def main() -> int:
                 f"<= {START_UP_RATIO:g}x python ({ratio:.1f}x{cpu_ratio(start_up, python_run)})"
             )
             rows.append((f"a: {LINKS} primitive links", start_up, target, ratio <= START_UP_RATIO))
+            rows += above_the_floor(python, runs, start_up, python_run, ratio <= START_UP_RATIO)
 
             wait_out_racy_window(stls + daes)
             timing = best([lint, str(meshes_urdf)], runs, fresh)
@@ -515,6 +516,27 @@ def main() -> int:
                 print(f"  {name}: {import_profile(command, env, min(runs, 7))}")
     print(f"\n{'PASS' if ok else 'FAIL'}")
     return 0 if ok else 1
+
+
+#: what every run imports before any of ours: issue 23's floor for the start-up target
+FLOOR_IMPORTS = "import numpy, lxml.etree, click"
+
+
+def above_the_floor(
+    python: str, runs: int, start_up: Timing, python_run: Timing, met: bool
+) -> list[Row]:
+    """
+    Issue 23's other reading of the start-up target, for when numpy and lxml alone make 8×
+    impossible: a within the floor of those imports plus at most 2× ``python -c pass``;
+    judged only when the 8× reading (``met``) is not met.
+    """
+    floor = best([python, "-c", FLOOR_IMPORTS], runs, lambda i: environment(None), ok=(0,))
+    ours = (start_up.wall - floor.wall) / python_run.wall
+    target = f"<= 2x python ({ours:.1f}x{'; 8x met' if met else ''})"
+    return [
+        ("  numpy, lxml, click floor", floor, f"{floor.wall / python_run.wall:.1f}x python", None),
+        ("  a above the floor", start_up, target, None if met else ours <= 2.0),
+    ]
 
 
 def real_robot(lint: str, path: Path, runs: int, fresh, cache: str, start_up: Timing) -> list[Row]:
