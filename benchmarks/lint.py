@@ -518,8 +518,11 @@ def main() -> int:
     return 0 if ok else 1
 
 
-#: what every run imports before any of ours: issue 23's floor for the start-up target
-FLOOR_IMPORTS = "import numpy, lxml.etree, click"
+#: what every run imports before any of ours, with the one BLAS thread our commands ask for
+#: (``inertia_kit.cli``): issue 23's floor for the start-up target
+FLOOR_IMPORTS = (
+    "import os; os.environ.setdefault('OPENBLAS_NUM_THREADS', '1'); import numpy, lxml.etree, click"
+)
 
 
 def above_the_floor(
