@@ -18,6 +18,8 @@ from inertia_kit.description.mjcf.detect import is_mjcf
 from inertia_kit.description.safexml import read_bounded
 from inertia_kit.description.urdf.reader import expanded_text as expanded
 from inertia_kit.description.urdf.reader import files_read, load_urdf, narrow, needs_expansion
+from inertia_kit.description.urdf.xacro_includes import is_xml
+from inertia_kit.description.urdf.xacro_includes import reach as files_reached
 from inertia_kit.description.xmlparse import check_text
 
 if TYPE_CHECKING:
@@ -25,12 +27,16 @@ if TYPE_CHECKING:
 
 #: what the layers above read descriptions through: ``needs_expansion`` (a file made by macros,
 #: xacro), ``files_read`` (what such a file's expansion reads: the include graph),
-#: ``expanded`` (its expansion as text, for ``inertia-fill -o``), ``may_be_included`` and
-#: ``stand_in_suffix`` (a text read from stdin), besides :func:`load`
+#: ``files_reached`` and ``is_xml`` (what its includes as written may read, without expanding
+#: it: the include graph's filter), ``expanded`` (its expansion as text, for ``inertia-fill
+#: -o``), ``may_be_included`` and ``stand_in_suffix`` (a text read from stdin), besides
+#: :func:`load`
 __all__ = [
     "expanded",
+    "files_reached",
     "files_read",
     "format_of",
+    "is_xml",
     "load",
     "may_be_included",
     "needs_expansion",

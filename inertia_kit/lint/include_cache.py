@@ -36,13 +36,14 @@ from inertia_kit.version import __version__
 FORMAT = 2  # 2: a xacro file without links or joints is a fragment, whatever tags its top holds
 #: A cache file larger than this is not one of ours (some 100 000 robot files).
 MAX_BYTES = 64 << 20
-KINDS = ("plain", "robot", "fragment", "error")
+KINDS = ("plain", "robot", "fragment", "error", "static")
 # the modules whose code decides what a scan records
 _SOURCES = (
     "include_graph.py",
     "include_cache.py",
     "../description/urdf/xacro_expand.py",
     "../description/urdf/reader.py",
+    "../description/urdf/xacro_includes.py",
 )
 
 
@@ -64,8 +65,10 @@ def stamp(path: str) -> Stamp | None:
 class Entry:
     """
     One robot file: ``kind`` (``plain``: reads no other file, not expanded; ``robot``;
-    ``fragment``; ``error``: xacro refuses it on its own) and ``reads``, the files its
-    expansion read with their stamps, the file itself first.
+    ``fragment``; ``error``: xacro refuses it on its own; ``static``: not expanded, as its
+    includes as written reach no file asked about) and ``reads``, the files its expansion read
+    (for ``static``, every file its includes as written reach) with their stamps, the file
+    itself first.
     """
 
     kind: str

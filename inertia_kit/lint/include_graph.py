@@ -18,8 +18,9 @@ The first pass picks no robots by name: includes are often computed
 on-disk cache (:mod:`.include_cache`) keeps a warm run to one ``stat`` per file read. When a
 run asks only for the includers of some files (``wanted``: the files a hook or a user gives),
 a robot whose includes are all written out and reach none of them
-(:mod:`.include_reach`) cannot be one, and is not expanded: a robot given to the linter no
-longer costs the expansion of every other robot of its repository.
+(:mod:`~inertia_kit.description.urdf.xacro_includes`) cannot be one, and is not expanded: a
+robot given to the linter no longer costs the expansion of every other robot of its
+repository.
 """
 
 from __future__ import annotations
@@ -39,8 +40,6 @@ if TYPE_CHECKING:
 
 # what a file that reads another file must name (xacro:include, xacro.load_yaml)
 _READS_OTHERS = re.compile(rb"include|load_yaml")
-#: What a scan gives for a file it does not expand, as it cannot include a wanted file.
-PASSED = "passed"
 
 
 @dataclass
@@ -83,8 +82,9 @@ def include_graph(
     where they are not; the cache is then brought up to date.
 
     ``wanted``: only the includers of these files are asked for. A file to scan whose
-    includes, as written, cannot reach one of them (:func:`.include_reach.may_include`) is not
-    expanded: the graph is then complete for the wanted files only.
+    includes, as written, cannot reach one of them (``loader.files_reached``) is not expanded,
+    and its closure is kept as a ``static`` entry (:class:`_Reach`): the graph is then complete
+    for the wanted files only.
     """
     # the cache (and json) only when a repository is scanned: not for a plain URDF
     from inertia_kit.lint.discovery import expand_paths
@@ -98,19 +98,25 @@ def include_graph(
     cached = load_entries(root, options, cache_dir)
     graph = IncludeGraph(root)
     entries: dict[str, Entry] = {}
-    reach = None if wanted is None else _reach(wanted, package_paths)
+    reach = None if wanted is None else _Reach(wanted, package_paths)
     for file in expand_paths([root]):
         key = real(file)
         entry = cached.get(key)
-        if entry is not None and entry.current():
+        current = entry is not None and entry.current()
+        rules_out = None  # for a static entry: whether its closure rules the file out
+        if entry is not None and current and entry.kind == "static":
+            rules_out = None if reach is None else reach.rules_out(entry)
+            current = bool(rules_out)
+        if current:
             graph.reused += 1
         else:
-            needed = None if reach is None else functools.partial(reach, stale=entry)
-            entry = _scan(key, xacro_args, package_paths, xacro_limits, needed)
-            if entry == PASSED:
-                graph.passed += 1
-                continue
+            passed = None
+            if reach is not None and rules_out is not False:
+                passed = functools.partial(reach.passed, stale=entry)
+            entry = _scan(key, xacro_args, package_paths, xacro_limits, passed)
             graph.scanned += 1
+        if entry is not None and entry.kind == "static":
+            graph.passed += 1
         if entry is None:
             continue  # vanished or unreadable between the walk and the scan
         entries[key] = entry
@@ -126,21 +132,46 @@ def include_graph(
     return graph
 
 
-def _reach(
-    wanted: Collection[str | Path], package_paths: Sequence[str | Path]
-) -> Callable[[str, Entry | None], bool]:
-    """Whether a file to scan (its stale cache entry, if any) may read a ``wanted`` file."""
-    from inertia_kit.lint.include_reach import is_xml, may_include
+class _Reach:
+    """
+    Which files to scan may include a ``wanted`` file, from their includes as written
+    (``loader.files_reached``): a file whose static closure reaches none is not expanded, and
+    is recorded as ``static`` (the closure, stamped), which a later run with other wanted files
+    answers from without reading them again. Reused only when every wanted file is XML: the
+    closures may leave ``load_yaml`` out.
+    """
 
-    keys = frozenset(real(file) for file in wanted)
-    xml_only = all(is_xml(key) for key in keys)
+    def __init__(self, wanted: Collection[str | Path], package_paths: Sequence[str | Path]):
+        from inertia_kit.description.loader import is_xml
 
-    def reach(key: str, stale: Entry | None) -> bool:
-        if stale is not None and any(read in keys for read, _ in stale.reads[1:]):
-            return True  # it read one: expanded again, as it may still (or be broken by it)
-        return may_include(key, keys, package_paths, xml_only=xml_only)
+        self.keys = frozenset(real(file) for file in wanted)
+        self.xml_only = all(is_xml(key) for key in self.keys)
+        self.package_paths = package_paths
 
-    return reach
+    def rules_out(self, entry: Entry) -> bool | None:
+        """Whether a current ``static`` entry rules its file out; ``None``: it cannot tell
+        (its closure leaves ``load_yaml`` out, and a wanted file is not XML)."""
+        if not self.xml_only:
+            return None
+        robot = entry.reads[0][0]
+        return not any(read in self.keys and read != robot for read, _ in entry.reads)
+
+    def passed(self, path: str, stale: Entry | None) -> Entry | None:
+        """``path``'s static entry when its includes cannot reach a wanted file, else None."""
+        from inertia_kit.description.loader import files_reached
+        from inertia_kit.lint.include_cache import Entry
+
+        if (
+            stale is not None
+            and stale.kind != "static"
+            and any(read in self.keys for read, _ in stale.reads[1:])
+        ):
+            return None  # it read one: expanded again, as it may still (or be broken by it)
+        found = files_reached(path, self.package_paths, xml_only=self.xml_only)
+        if found is None or any(key in self.keys and key != path for key in found):
+            return None
+        reads = _stamped(found)
+        return None if reads is None else Entry("static", reads)
 
 
 def _scan(
@@ -148,10 +179,10 @@ def _scan(
     xacro_args: Mapping[str, str] | None,
     package_paths: Sequence[str | Path],
     xacro_limits: XacroLimits | None,
-    needed: Callable[[str], bool] | None = None,
-) -> Entry | str | None:
-    """What ``path`` is and reads, by its text and (for xacro that includes) its expansion;
-    :data:`PASSED` for a file to expand that ``needed`` says is not."""
+    passed: Callable[[str], Entry | None] | None = None,
+) -> Entry | None:
+    """What ``path`` is and reads, by its text and (for xacro that includes) its expansion,
+    or the ``static`` entry ``passed`` gives a file to expand that need not be."""
     from inertia_kit.description.loader import files_read, needs_expansion
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.errors import InputError
@@ -166,8 +197,10 @@ def _scan(
         return None  # the loader tells why
     if not (needs_expansion(data) and _READS_OTHERS.search(data)):
         return Entry("plain", ((path, own),))
-    if needed is not None and not needed(path):
-        return PASSED
+    if passed is not None:
+        static = passed(path)
+        if static is not None:
+            return static
     try:
         files, fragment = files_read(
             path, xacro_args=xacro_args, package_paths=package_paths, limits=xacro_limits

@@ -74,30 +74,62 @@ def test_files_that_include_nothing_are_not_expanded(tmp_path, cache, monkeypatc
 
 
 def test_only_robots_that_may_include_a_wanted_file_are_expanded(tmp_path, cache, monkeypatch):
-    """Asked only for includers of the robot itself or of leaf.xacro, the graph expands what
-    may include them (from the includes as written) and gives the same includers."""
+    """Asked only for includers of given files, the graph expands what may include them (from
+    the includes as written) and gives the same includers; what it ruled out is kept as its
+    static closure, which answers a later run without reading the files again."""
+    from inertia_kit.description import loader
     from inertia_kit.description.urdf import xacro_expand
 
-    expanded = []
-    real_expand = xacro_expand.expand
+    expanded, reached = [], []
+    real_expand, real_reach = xacro_expand.expand, loader.files_reached
 
-    def counting(path, **options):
+    def expanding(path, **options):
         expanded.append(path)
         return real_expand(path, **options)
 
-    monkeypatch.setattr(xacro_expand, "expand", counting)
+    def reaching(path, *args, **options):
+        reached.append(path)
+        return real_reach(path, *args, **options)
+
+    monkeypatch.setattr(xacro_expand, "expand", expanding)
+    monkeypatch.setattr(loader, "files_reached", reaching)
     urdf = _repository(tmp_path / "repo")
-    monkeypatch.setenv("INERTIA_KIT_NO_CACHE", "1")
-    full = include_graph.include_graph(tmp_path / "repo")
-    for name, scanned in (
-        ("arm.urdf.xacro", []),
-        ("leaf.xacro", ["arm.urdf.xacro", "middle.xacro"]),
+    full = include_graph.include_graph(tmp_path / "repo", cache_dir=tmp_path / "other")
+    robot, middle = (include_graph.real(urdf / name) for name in ("arm.urdf.xacro", "middle.xacro"))
+    for name, expands, reaches, passed in (
+        ("arm.urdf.xacro", [], [robot, middle], 2),  # neither can include the robot
+        ("plain.urdf", [], [], 2),  # their closures, kept, say they cannot include it either
+        ("leaf.xacro", [robot, middle], [], 0),  # they reach it: expanded
     ):
         expanded.clear()
+        reached.clear()
         graph = include_graph.include_graph(tmp_path / "repo", wanted=[urdf / name])
-        assert sorted(expanded) == sorted(include_graph.real(urdf / file) for file in scanned)
+        assert (sorted(expanded), sorted(reached)) == (sorted(expands), sorted(reaches)), name
         assert graph.includers(urdf / name) == full.includers(urdf / name)
-        assert graph.passed == 2 - len(scanned)
+        assert graph.passed == passed
+
+
+def test_a_yaml_file_asked_about_is_not_answered_from_closures_that_leave_yaml_out(tmp_path, cache):
+    """A closure kept for an XML file leaves load_yaml out: asked about a YAML file, the robot
+    that loads it is expanded, and found to read it."""
+    package = project(
+        tmp_path / "repo",
+        {
+            "urdf/leaf.xacro": LEAF,
+            "urdf/arm.urdf.xacro": robot("leaf.xacro", "a=${c}").replace(
+                '<link name="base"/>',
+                "<xacro:property name=\"c\" value=\"${xacro.load_yaml('c.yaml')['a']}\"/>\n"
+                '  <link name="base"/>',
+            ),
+            "urdf/c.yaml": "a: 1\n",
+        },
+    )
+    age(tmp_path / "repo")
+    urdf = package / "urdf"
+    ruled_out = include_graph.include_graph(tmp_path / "repo", wanted=[urdf / "arm.urdf.xacro"])
+    assert ruled_out.passed == 1  # the robot: nothing it includes is the robot
+    graph = include_graph.include_graph(tmp_path / "repo", wanted=[urdf / "c.yaml"])
+    assert graph.includers(urdf / "c.yaml") == [include_graph.real(urdf / "arm.urdf.xacro")]
 
 
 def test_a_robot_that_read_a_wanted_file_is_expanded_again(tmp_path, cache):

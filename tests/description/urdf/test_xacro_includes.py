@@ -13,14 +13,17 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from kit.xacro_projects import HEAD, LEAF, PACKAGE, XACRO, middle, project, robot
 
+from inertia_kit.description.urdf import xacro_includes
 from inertia_kit.description.urdf.reader import files_read
 from inertia_kit.errors import InputError
-from inertia_kit.lint import include_reach
-from inertia_kit.lint.include_graph import real
+
+
+def real(path) -> str:
+    return os.path.realpath(os.path.abspath(path))
 
 
 def may(robot_file, *wanted, xml_only=True) -> bool:
-    return include_reach.may_include(
+    return xacro_includes.may_include(
         real(robot_file), {real(file) for file in wanted}, xml_only=xml_only
     )
 
@@ -123,8 +126,8 @@ def test_load_yaml_is_followed_only_for_a_file_that_is_not_xml(tmp_path):
         / "urdf"
     )
     arm = urdf / "arm.urdf.xacro"
-    assert include_reach.is_xml(str(urdf / "other.xacro"))
-    assert not include_reach.is_xml(str(urdf / "c.yaml"))
+    assert xacro_includes.is_xml(str(urdf / "other.xacro"))
+    assert not xacro_includes.is_xml(str(urdf / "c.yaml"))
     assert not may(arm, urdf / "other.xacro")
     assert may(arm, urdf / "c.yaml", xml_only=False)
 
@@ -142,13 +145,13 @@ def test_a_symbolic_link_is_known_by_its_target(tmp_path):
 
 
 def test_more_files_than_the_bound_may_read_anything(tmp_path, monkeypatch):
-    monkeypatch.setattr(include_reach, "MAX_FILES", 3)
+    monkeypatch.setattr(xacro_includes, "MAX_FILES", 3)
     files = {f"urdf/m{index}.xacro": middle(f"m{index + 1}.xacro") for index in range(5)}
     files["urdf/m5.xacro"] = LEAF
     files["urdf/other.xacro"] = LEAF
     urdf = project(tmp_path, {**files, "urdf/arm.urdf.xacro": robot("m0.xacro", "a=1")}) / "urdf"
     assert may(urdf / "arm.urdf.xacro", urdf / "other.xacro")
-    monkeypatch.setattr(include_reach, "MAX_FILES", 256)
+    monkeypatch.setattr(xacro_includes, "MAX_FILES", 256)
     assert not may(urdf / "arm.urdf.xacro", urdf / "other.xacro")
 
 

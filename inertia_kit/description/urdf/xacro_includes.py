@@ -1,7 +1,7 @@
 """
 Which files a xacro robot can include, read from its includes as written, without expanding
-it: what lets the include graph (:mod:`.include_graph`) expand only the robots that may
-include the files a run asks about.
+it: what lets the include graph (:mod:`inertia_kit.lint.include_graph`) expand only the
+robots that may include the files a run asks about.
 
 A xacro expansion reads other files only through ``<xacro:include filename=...>`` and
 ``load_yaml`` (the include graph's cheap first pass rests on the same fact). When every
@@ -72,6 +72,18 @@ def may_include(
     Whether expanding ``robot`` (a real path, as the include graph expands it) may read one of
     ``wanted`` (real paths) other than itself; ``xml_only``: every wanted file is XML
     (:func:`is_xml`), so ``load_yaml`` cannot read one that matters.
+    """
+    found = reach(robot, package_paths, xml_only=xml_only)
+    return found is None or any(key in wanted and key != robot for key in found)
+
+
+def reach(
+    robot: str, package_paths: Sequence[str | Path] = (), *, xml_only: bool = True
+) -> tuple[str, ...] | None:
+    """
+    The real paths of every file expanding ``robot`` may read (``robot`` first), from its
+    includes as written; ``None`` when one is not written out. ``xml_only``: ``load_yaml`` is
+    not followed (see the module's docstring); otherwise a file that loads YAML gives ``None``.
 
     An include inside a macro is opened while whichever file calls the macro is the one being
     read: its path is taken from each file the robot reaches (each could be that file), until
@@ -80,8 +92,9 @@ def may_include(
     from inertia_kit.description.urdf.packages import PackageResolver
 
     resolver = PackageResolver(package_paths=tuple(package_paths), start=robot)
-    reached = [robot]
+    reached = [robot]  # as xacro opens them: a relative include joins the folder of its file
     seen = {robot}
+    keys = {robot: None}  # real paths, in the order reached
     in_macros: list[str] = []  # filenames written inside macros
     tried: set[tuple[str, str]] = set()  # (filename, file read when the macro runs)
     done = 0
@@ -93,33 +106,27 @@ def may_include(
                 targets, specs = _reads(file, robot, resolver, xml_only)
                 in_macros.extend(specs)
                 for target in targets:
-                    if _reaches(target, robot, wanted, reached, seen):
-                        return True
+                    _add(target, reached, seen, keys)
             for spec in in_macros:
                 for near in list(reached):
                     if (spec, near) not in tried:
                         tried.add((spec, near))
                         target = _written_out(spec, near, robot, resolver)
-                        if _reaches(target, robot, wanted, reached, seen):
-                            return True
+                        _add(target, reached, seen, keys)
     except _Unknown:
-        return True
-    return False
+        return None
+    return tuple(keys)
 
 
-def _reaches(
-    target: str, robot: str, wanted: Collection[str], reached: list[str], seen: set[str]
-) -> bool:
-    """Add ``target`` to the files reached; whether it is a wanted one, or one too many."""
-    key = os.path.realpath(target)
-    if key in wanted and key != robot:
-        return True
-    if target not in seen:
-        if len(seen) >= MAX_FILES:
-            raise _Unknown
-        seen.add(target)
-        reached.append(target)
-    return False
+def _add(target: str, reached: list[str], seen: set[str], keys: dict[str, None]) -> None:
+    """Add ``target`` to the files reached (``_Unknown`` past :data:`MAX_FILES`)."""
+    if target in seen:
+        return
+    if len(reached) >= MAX_FILES:
+        raise _Unknown
+    seen.add(target)
+    reached.append(target)
+    keys.setdefault(os.path.realpath(target), None)
 
 
 def _reads(
