@@ -95,6 +95,17 @@ class _Refused(Exception):
 
 def read_collada(data: bytes, path) -> tuple[NDArray[np.float64], float]:
     """(n, 3, 3) triangles in the file's unit, wound as trimesh winds them, and metres per unit."""
+    vertices, faces, unit = read_collada_shared(data, path)
+    return vertices[faces], unit
+
+
+def read_collada_shared(data: bytes, path) -> tuple[NDArray[np.float64], NDArray[np.intp], float]:
+    """
+    :func:`read_collada`'s triangles as the vertices they share: ``vertices`` (m, 3), placed,
+    and ``faces`` (n, 3) with ``vertices[faces]`` the triangles, bit for bit; metres per unit.
+    Every instance of a geometry has vertices of its own; a vertex no face uses may be among
+    them.
+    """
     try:
         document = _Document(_parse(data))
         unit = document.unit()
@@ -109,19 +120,32 @@ def read_collada(data: bytes, path) -> tuple[NDArray[np.float64], float]:
             raise MeshError(
                 path, "empty", f"the {_NAME} file holds no triangles; export the part's solid body"
             )
-        triangles = parts[0] if len(parts) == 1 else np.concatenate(parts)
-        if not np.isfinite(triangles).all():
+        vertices, faces = _joined(parts)
+        finite = np.isfinite(vertices).all(axis=1)
+        if not finite.all() and not finite[faces].all():  # an unused vertex may be anything
             raise MeshError(
                 path, "unreadable", f"the {_NAME} file holds non-finite vertex coordinates"
             )
         if isinstance(unit, str):
             raise MeshError(path, "unreadable", unit)
-        return triangles, unit
+        return vertices, faces, unit
     raise MeshError(
         path,
         "unreadable",
         f"cannot read the file as {_NAME} ({detail}); re-export it, or convert it to STL",
     )
+
+
+def _joined(
+    parts: list[tuple[NDArray[np.float64], NDArray[np.int64]]],
+) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """The parts' vertices one after another, and their faces numbering them so."""
+    if len(parts) == 1:
+        return parts[0][0], parts[0][1].astype(np.intp, copy=False)
+    starts = np.cumsum([0] + [len(vertices) for vertices, _ in parts[:-1]])
+    vertices = np.concatenate([vertices for vertices, _ in parts])
+    faces = np.concatenate([index + start for (_, index), start in zip(parts, starts, strict=True)])
+    return vertices, faces.astype(np.intp, copy=False)
 
 
 def _parse(data: bytes):
@@ -400,8 +424,8 @@ class _Document:
             raise _Refused(f"the <scene> names `{url[:100]}`, which is no <visual_scene>")
         return found
 
-    def parts(self) -> list[NDArray[np.float64]]:
-        """The triangles of every geometry instance, placed."""
+    def parts(self) -> list[tuple[NDArray[np.float64], NDArray[np.int64]]]:
+        """Every geometry instance's primitives, placed: (vertices (m, 3), faces (n, 3))."""
         scene = self.scene()
         top = scene.findall(self.tag("node"))
         self.scene_nodes: dict[str, object] = {}
@@ -428,7 +452,7 @@ class _Document:
                 placed = transformed_points(vertices, matrix)
                 if mirrored:
                     index = index[:, ::-1]
-                parts.append(placed[index])
+                parts.append((placed, index))
         return parts
 
     def _walk(self, node, parent, instances, chain, depth) -> None:

@@ -61,11 +61,15 @@ class Classification:
 
 
 def classify(
-    path: Path, integrator: SurfaceIntegrator, triangles: NDArray | None
+    path: Path,
+    integrator: SurfaceIntegrator,
+    triangles: NDArray | None,
+    shared: tuple[NDArray, NDArray] | None = None,
 ) -> Classification:
     """
     Pick the method for a surface integrated in ``integrator``, in the file's unit:
-    ``triangles`` (n, 3, 3) are needed only when the surface is not closed.
+    ``triangles`` (n, 3, 3) are needed only when the surface is not closed; ``shared``, the
+    vertices and faces they are made of, if known, finds their distinct corners faster.
 
     Raises
     ------
@@ -75,7 +79,10 @@ def classify(
     if integrator.closed:
         return _oriented(path, integrator, "exact")
     assert triangles is not None
-    points, corners = unique_rows(np.asarray(triangles, dtype=np.float64).reshape(-1, 3))
+    if shared is None:
+        points, corners = unique_rows(np.asarray(triangles, dtype=np.float64).reshape(-1, 3))
+    else:
+        points, corners = shared_unique_rows(*shared)
     extent = _extent(integrator.bounds)
     judged = None
     for rtol in WELD_RTOLS:
@@ -119,6 +126,24 @@ def unique_rows(rows: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray
     inverse = np.empty(len(rows), dtype=np.intp)
     inverse[order] = np.cumsum(first) - 1
     return ranked[first], inverse
+
+
+def shared_unique_rows(
+    vertices: NDArray[np.float64], faces: NDArray[np.intp]
+) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """
+    :func:`unique_rows` of the triangles' corners ``vertices[faces]``, found among the
+    vertices the faces use, not among every corner: the same distinct points in the same
+    order and each corner's index among them (a point whose copies differ only in the sign of
+    a zero may come from another copy: equal, and weighing the same).
+    """
+    marked = np.zeros(len(vertices), dtype=bool)
+    marked[faces.reshape(-1)] = True
+    used = np.flatnonzero(marked)  # np.unique(faces), without sorting the corners
+    points, inverse = unique_rows(vertices[used])
+    lookup = np.empty(len(vertices), dtype=np.intp)
+    lookup[used] = inverse
+    return points, lookup[faces.reshape(-1)]
 
 
 def closure(faces: NDArray[np.int64]) -> tuple[bool, bool]:

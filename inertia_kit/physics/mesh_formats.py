@@ -67,7 +67,12 @@ ADVICE = {
 
 def read_surface(
     path: str | Path,
-) -> tuple[SurfaceIntegrator, NDArray[np.float64] | None, float]:
+) -> tuple[
+    SurfaceIntegrator,
+    NDArray[np.float64] | None,
+    float,
+    tuple[NDArray[np.float64], NDArray[np.intp]] | None,
+]:
     """
     The surface a mesh file holds, integrated in the file's own unit.
 
@@ -85,6 +90,10 @@ def read_surface(
       (they are needed only to repair or replace a surface that is not closed).
     unit_scale : float
       Metres per file unit.
+    shared : ((m, 3) float, (n, 3) int) or None
+      For a COLLADA file, the vertices the triangles share and their faces
+      (``vertices[faces]`` is ``triangles``): its distinct corners are found among the
+      vertices, several times fewer than the corners (:func:`.mesh_closure.classify`).
 
     Raises
     ------
@@ -93,9 +102,15 @@ def read_surface(
       format; ``empty`` for a file with no triangles.
     """
     file, suffix = _readable(path)
+    if suffix == ".dae":
+        from inertia_kit.physics.collada import read_collada_shared
+
+        vertices, faces, unit_scale = read_collada_shared(_read_bytes(file), file)
+        triangles = vertices[faces]
+        return integrate(triangles), triangles, unit_scale, (vertices, faces)
     if suffix != ".stl":
         triangles, unit_scale = _read_triangles(file, suffix)
-        return integrate(triangles), triangles, unit_scale
+        return integrate(triangles), triangles, unit_scale, None
     try:
         integrator = read_stl(file)
     except OSError as error:
@@ -105,7 +120,7 @@ def read_surface(
     except MeshError as error:
         raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
     triangles = None if integrator.closed else _open_stl_triangles(file)
-    return integrator, triangles, 1.0
+    return integrator, triangles, 1.0, None
 
 
 def _open_stl_triangles(file: Path) -> NDArray[np.float64]:

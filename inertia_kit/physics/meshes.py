@@ -216,9 +216,9 @@ def mesh_solid(path: str | Path, scale: ArrayLike = (1.0, 1.0, 1.0)) -> MeshSoli
         )
     # non-finite coordinates: the readers refuse non-finite integrals, without warnings
     with np.errstate(over="ignore", invalid="ignore"):
-        integrator, triangles, unit_scale = read_surface(path)
+        integrator, triangles, unit_scale, shared = read_surface(path)
         file = Path(path)
-        classified = classify(file, integrator, triangles)
+        classified = classify(file, integrator, triangles, shared)
     return scaled_solid(
         file,
         classified.moments,

@@ -16,7 +16,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from inertia_kit.errors import MeshError
-from inertia_kit.physics.collada import _column, _floats, _ints, read_collada
+from inertia_kit.physics.collada import (
+    _column,
+    _floats,
+    _ints,
+    read_collada,
+    read_collada_shared,
+)
 from inertia_kit.physics.mesh_formats import _read_scene
 from inertia_kit.physics.polyhedra import integrate
 
@@ -569,3 +575,26 @@ def test_floats_bit_for_bit_as_pycollada(values):
     text = " ".join(values)
     expected = np.fromstring(text, dtype=np.float32, sep=" ")
     assert _floats(text).tobytes() == expected.tobytes()
+
+
+def test_shared_vertices_make_the_triangles_of_every_instance(tmp_path):
+    """Two instances of one geometry, one moved: each has vertices of its own, the faces
+    number them in order, and vertices[faces] are read_collada's triangles."""
+    moved = '<node id="m"><translate>2 0 0</translate>' + instance() + "</node>"
+    path = write(tmp_path, document(cube_geometry(), node(instance()) + moved))
+    vertices, faces, _ = read_collada_shared(path.read_bytes(), path)
+    triangles, _ = read_collada(path.read_bytes(), path)
+    assert (vertices.shape, faces.shape) == ((16, 3), (24, 3))
+    assert faces[:12].max() == 7 and faces[12:].min() == 8
+    np.testing.assert_array_equal(vertices[faces], triangles)
+
+
+def test_an_unused_vertex_may_be_anything(tmp_path):
+    """Only what a face uses must be finite: an unused NaN vertex reads as before."""
+    positions = CUBE + [float("nan")] * 3
+    text = document(cube_geometry(), node(instance())).replace(
+        source("cube-pos", CUBE), source("cube-pos", positions)
+    )
+    path = write(tmp_path, text)
+    vertices, faces, _ = read_collada_shared(path.read_bytes(), path)
+    assert len(vertices) == 9 and np.isnan(vertices[8]).all() and faces.max() == 7

@@ -303,6 +303,24 @@ def test_unique_rows_is_numpys_unique_of_rows(rows):
     assert np.array_equal(points[inverse], array)
 
 
+@given(
+    st.lists(st.tuples(*[st.sampled_from([0.0, -0.0, -1.5, 2.25, 1e-300])] * 3), min_size=1),
+    st.data(),
+)
+def test_shared_unique_rows_is_unique_rows_of_the_corners(vertices, data):
+    """Found among the vertices the faces use (some vertices unused, some repeated): the same
+    points, by value, and corners, as among every corner."""
+    from inertia_kit.physics.mesh_closure import shared_unique_rows
+
+    vertices = np.array(vertices, dtype=np.float64)
+    index = st.integers(0, len(vertices) - 1)
+    faces = np.array(data.draw(st.lists(st.tuples(index, index, index), min_size=1)))
+    points, corners = shared_unique_rows(vertices, faces)
+    expected, expected_corners = unique_rows(vertices[faces].reshape(-1, 3))
+    assert np.array_equal(points, expected)
+    assert np.array_equal(corners, expected_corners)
+
+
 def test_unique_rows_leaves_non_finite_rows_to_numpy():
     array = np.array([[np.nan, 0, 0], [1, 2, 3], [np.nan, 0, 0], [np.inf, 1, 1]])
     points, inverse = unique_rows(array)

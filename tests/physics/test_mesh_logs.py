@@ -65,7 +65,7 @@ def test_our_collada_reader_logs_nothing(tmp_path: Path, caplog):
     """The same textured part read as the linter reads it: no library, nothing logged."""
     path = textured_part(tmp_path, image=False)
     with caplog.at_level(logging.DEBUG):
-        integrator, _, unit = read_surface(path)
+        integrator, _, unit, _ = read_surface(path)
     assert (unit, integrator.moments.volume) == (1.0, pytest.approx(0.006, rel=1e-6))
     assert caplog.records == []
 
