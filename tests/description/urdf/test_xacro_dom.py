@@ -104,7 +104,9 @@ def test_the_sibling_links_stay_consistent(tmp_path):
 
 
 def test_an_expansion_is_linear_in_its_macro_calls(tmp_path):
-    """Time of 4000 macro calls against 1000: 4 if linear (16 if quadratic, as xacro's own)."""
+    """Time of 8000 macro calls against 1000: 8 if linear, 64 if quadratic. Measured ~10 for
+    ours and ~40 for xacro's own: the bound, 20, leaves a busy machine a factor of 2 either way
+    (at 4000 against 1000, ~5.6 against ~11 and a bound of 8, a loaded suite once gave 8.3)."""
     import xacro
 
     def robot(calls):
@@ -124,7 +126,7 @@ def test_an_expansion_is_linear_in_its_macro_calls(tmp_path):
             best = min(best, time.process_time() - began)
         return best
 
-    small, large = robot(1000), robot(4000)
+    small, large = robot(1000), robot(8000)
     with ours():
         ratio = seconds(large) / seconds(small)
-    assert ratio < 8, ratio
+    assert ratio < 20, ratio
