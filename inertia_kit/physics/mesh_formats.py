@@ -114,9 +114,7 @@ def read_surface(
     try:
         integrator = read_stl(file)
     except OSError as error:
-        raise MeshError(
-            path, "unreadable", f"cannot read the file ({error}); check its permissions"
-        ) from None
+        raise _cannot_read(path, error) from None
     except MeshError as error:
         raise MeshError(error.path, error.kind, f"{error.message}; {ADVICE[error.kind]}") from None
     triangles = None if integrator.closed else _open_stl_triangles(file)
@@ -131,9 +129,7 @@ def _open_stl_triangles(file: Path) -> NDArray[np.float64]:
     try:
         triangles = binary_triangles(file)
     except OSError as error:
-        raise MeshError(
-            file, "unreadable", f"cannot read the file ({error}); check its permissions"
-        ) from None
+        raise _cannot_read(file, error) from None
     return _read_scene(file, ".stl")[0] if triangles is None else triangles
 
 
@@ -211,6 +207,10 @@ def _read_obj(path: Path, as_mujoco: bool = True) -> NDArray[np.float64]:
     return triangles
 
 
+def _cannot_read(path: str | Path, error: OSError) -> MeshError:
+    return MeshError(path, "unreadable", f"cannot read the file ({error}); check its permissions")
+
+
 def _read_bytes(path: Path) -> bytes:
     """A mesh file's bytes, at most :data:`MAX_MESH_BYTES` (``MeshError`` beyond, or when it
     cannot be read)."""
@@ -219,9 +219,7 @@ def _read_bytes(path: Path) -> bytes:
         with open(path, "rb") as stream:
             data = stream.read(MAX_MESH_BYTES + 1)
     except OSError as error:
-        raise MeshError(
-            path, "unreadable", f"cannot read the file ({error}); check its permissions"
-        ) from None
+        raise _cannot_read(path, error) from None
     if len(data) > MAX_MESH_BYTES:  # grown since it was measured
         raise MeshError(path, "unreadable", "the mesh file grew while it was read")
     return data

@@ -473,19 +473,25 @@ def test_bad_files_raise_mesh_error(tmp_path: Path, case: str) -> None:
 # --- the fast path ------------------------------------------------------------------------------
 
 
-def test_closed_stl_does_not_import_trimesh(tmp_path: Path) -> None:
-    path = export(box_mesh(matrix=offset()), tmp_path / "box.stl")
+def _weighed_afresh(path: Path, *modules: str) -> list[str]:
+    """The method ``mesh(path)`` takes in a fresh interpreter, and whether each of ``modules``
+    was imported there (``True`` / ``False``)."""
     code = (
         "import sys\n"
         "from inertia_kit.physics.meshes import mesh\n"
         f"result = mesh({str(path)!r}, density=1000.0)\n"
-        "print(result.method, 'trimesh' in sys.modules, 'manifold3d' in sys.modules)\n"
+        f"print(result.method, *(name in sys.modules for name in {modules!r}))\n"
     )
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     done = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
     )
-    assert done.stdout.split() == ["exact", "False", "False"]
+    return done.stdout.split()
+
+
+def test_closed_stl_does_not_import_trimesh(tmp_path: Path) -> None:
+    path = export(box_mesh(matrix=offset()), tmp_path / "box.stl")
+    assert _weighed_afresh(path, "trimesh", "manifold3d") == ["exact", "False", "False"]
 
 
 @pytest.mark.parametrize(("name", "method"), [("welded", "exact"), ("open", "convex-hull")])
@@ -498,14 +504,4 @@ def test_open_binary_stl_does_not_import_trimesh(tmp_path: Path, name, method) -
     if name == "open":
         triangles = triangles[1:]
     path = write_binary_stl(tmp_path / f"{name}.stl", triangles)
-    code = (
-        "import sys\n"
-        "from inertia_kit.physics.meshes import mesh\n"
-        f"result = mesh({str(path)!r}, density=1000.0)\n"
-        "print(result.method, 'trimesh' in sys.modules)\n"
-    )
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True
-    )
-    assert done.stdout.split() == [method, "False"]
+    assert _weighed_afresh(path, "trimesh") == [method, "False"]
