@@ -110,10 +110,10 @@ def include_graph(
         if current:
             graph.reused += 1
         else:
-            passed = None
+            static = None
             if reach is not None and rules_out is not False:
-                passed = functools.partial(reach.passed, stale=entry)
-            entry = _scan(key, xacro_args, package_paths, xacro_limits, passed)
+                static = functools.partial(reach.static_entry, stale=entry)
+            entry = _scan(key, xacro_args, package_paths, xacro_limits, static)
             graph.scanned += 1
         if entry is not None and entry.kind == "static":
             graph.passed += 1
@@ -156,7 +156,7 @@ class _Reach:
         robot = entry.reads[0][0]
         return not any(read in self.keys and read != robot for read, _ in entry.reads)
 
-    def passed(self, path: str, stale: Entry | None) -> Entry | None:
+    def static_entry(self, path: str, stale: Entry | None) -> Entry | None:
         """``path``'s static entry when its includes cannot reach a wanted file, else None."""
         from inertia_kit.description.loader import files_reached
         from inertia_kit.lint.include_cache import Entry
@@ -179,10 +179,10 @@ def _scan(
     xacro_args: Mapping[str, str] | None,
     package_paths: Sequence[str | Path],
     xacro_limits: XacroLimits | None,
-    passed: Callable[[str], Entry | None] | None = None,
+    static: Callable[[str], Entry | None] | None = None,
 ) -> Entry | None:
     """What ``path`` is and reads, by its text and (for xacro that includes) its expansion,
-    or the ``static`` entry ``passed`` gives a file to expand that need not be."""
+    or the entry ``static`` gives a file to expand that need not be."""
     from inertia_kit.description.loader import files_read, needs_expansion
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.errors import InputError
@@ -197,10 +197,10 @@ def _scan(
         return None  # the loader tells why
     if not (needs_expansion(data) and _READS_OTHERS.search(data)):
         return Entry("plain", ((path, own),))
-    if passed is not None:
-        static = passed(path)
-        if static is not None:
-            return static
+    if static is not None:
+        ruled_out = static(path)
+        if ruled_out is not None:
+            return ruled_out
     try:
         files, fragment = files_read(
             path, xacro_args=xacro_args, package_paths=package_paths, limits=xacro_limits
