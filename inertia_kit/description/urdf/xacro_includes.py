@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -52,12 +53,20 @@ class _Unknown(Exception):
 
 
 def is_xml(path: str) -> bool:
-    """Whether the file's first character, past a byte-order mark and blanks, opens a tag."""
+    """Whether the file's first character, past a byte-order mark and blanks, opens a tag (a
+    regular file only: opened without blocking, so a named pipe put in its place is no XML)."""
     try:
-        with open(path, "rb") as stream:
-            head = stream.read(4096)
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except (OSError, ValueError):
+        return False
+    try:
+        if not stat.S_ISREG(os.fstat(descriptor).st_mode):
+            return False
+        head = os.read(descriptor, 4096)
     except OSError:
         return False
+    finally:
+        os.close(descriptor)
     return head.removeprefix(b"\xef\xbb\xbf").lstrip().startswith(b"<")
 
 

@@ -132,6 +132,16 @@ def test_load_yaml_is_followed_only_for_a_file_that_is_not_xml(tmp_path):
     assert may(arm, urdf / "c.yaml", xml_only=False)
 
 
+def test_only_a_regular_file_can_be_xml(tmp_path):
+    fifo = tmp_path / "pipe.xacro"
+    os.mkfifo(fifo)  # opened without a writer, a blocking read would wait for ever
+    assert not xacro_includes.is_xml(str(fifo))
+    assert not xacro_includes.is_xml(str(tmp_path))
+    assert not xacro_includes.is_xml(str(tmp_path / "missing.xacro"))
+    (tmp_path / "bom.xacro").write_bytes(b"\xef\xbb\xbf\n  <robot/>")
+    assert xacro_includes.is_xml(str(tmp_path / "bom.xacro"))
+
+
 def test_a_symbolic_link_is_known_by_its_target(tmp_path):
     urdf = (
         project(
