@@ -29,10 +29,6 @@ if TYPE_CHECKING:
 Key = tuple[str, int | None, int | None]
 
 
-def key(source: Source) -> Key:
-    return (str(Path(source.path).resolve()), source.line, source.column)
-
-
 @dataclass
 class Files:
     """The files edits may touch: read once, parsed once, and only inside ``root``."""
@@ -87,7 +83,7 @@ class Files:
         return found
 
     def key(self, source: Source) -> Key:
-        """Where ``source`` is written (:func:`key`), its path resolved once (:meth:`real`)."""
+        """Where ``source`` is written (:data:`Key`), its path resolved once (:meth:`real`)."""
         return (self.real(source.path), source.line, source.column)
 
     def _inside(self, path: str) -> bool:

@@ -343,7 +343,7 @@ def plan_robot(
     (``reload``: load it again as it was, for
     :attr:`~inertia_kit.description.editing.Files.reload`)."""
     from inertia_kit.analysis.links import analyse
-    from inertia_kit.description.editing import Files, key
+    from inertia_kit.description.editing import Files
     from inertia_kit.lint.fixing import robot_fixes
     from inertia_kit.lint.stand_in import is_stand_in
 
@@ -380,9 +380,9 @@ def plan_robot(
         link = found.target.link
         replaced = link.inertial is not None
         target = found.target
-        at = key(link.source if link.inertial is None else link.inertial.source)
+        at = files.key(link.source if link.inertial is None else link.inertial.source)
         fills.append(LinkFill(name, target.properties, target.basis, replaced, found.edits, at))
-    main = str(Path(source.path).resolve())
+    main = files.real(source.path)
     others = tuple(s for p, s in files.sources.items() if p != main)
     return FillPlan(
         path,

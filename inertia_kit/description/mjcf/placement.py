@@ -13,7 +13,7 @@ from collections import defaultdict
 from collections.abc import Sequence
 
 from inertia_kit.description import model
-from inertia_kit.description.editing import Files, insert_first_child, key, location
+from inertia_kit.description.editing import Files, insert_first_child, location
 from inertia_kit.description.edits import Edit
 from inertia_kit.description.mjcf.writer import inertial_element
 from inertia_kit.description.model import Source
@@ -34,11 +34,11 @@ def place(targets: Sequence[Target], robot: model.Robot, files: Files) -> dict[s
     written = {t.name: _written(t) for t in targets}
     makers: dict[object, list[str]] = defaultdict(list)
     for link in robot.links:
-        makers[key(_where(link))].append(link.name)
+        makers[files.key(_where(link))].append(link.name)
     placements = {}
     for target in targets:
         where = _where(target.link)
-        others = [n for n in makers[key(where)] if n != target.name]
+        others = [n for n in makers[files.key(where)] if n != target.name]
         differing = [n for n in others if written.get(n) != written[target.name]]
         if differing:
             tag = "<inertial>" if target.link.inertial is not None else "<body>"
