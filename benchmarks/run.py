@@ -30,6 +30,8 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from mass_compare import difference  # noqa: E402  (this folder's)
+
 from inertia_kit.physics.stl import HEADER_BYTES, RECORD, read_stl  # noqa: E402
 
 DATA = Path(__file__).resolve().parent / ".data"
@@ -128,17 +130,6 @@ def theirs(path: Path):
 
     properties = trimesh.load(path).mass_properties  # density 1
     return properties.mass * DENSITY, properties.center_mass, properties.inertia * DENSITY
-
-
-def difference(mine, reference, size: float) -> float:
-    """Largest relative difference: mass, COM against the body's size, inertia against its
-    largest entry."""
-    mass, com, inertia = reference
-    return max(
-        abs(mine.mass - mass) / abs(mass),
-        float(np.abs(mine.com - com).max()) / size,
-        float(np.abs(mine.inertia - inertia).max()) / float(np.abs(inertia).max()),
-    )
 
 
 def main() -> int:

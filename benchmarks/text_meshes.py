@@ -67,6 +67,7 @@ from lint import (  # noqa: E402  (this folder's)
     torus_surface,
 )
 from lint import write_stl as write_triangles  # noqa: E402
+from mass_compare import difference  # noqa: E402  (this folder's)
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / ".data" / "text-v1"  # bump with the generators
@@ -292,17 +293,6 @@ def trimesh_properties(path: Path):
     properties = mesh.mass_properties
     size = float(np.ptp(mesh.bounds, axis=0).max())
     return (properties.mass, properties.center_mass, properties.inertia), size
-
-
-def difference(mine, reference, size: float) -> float:
-    """Largest relative difference: mass, COM against the body's size, inertia against its
-    largest entry."""
-    mass, com, inertia = reference
-    return max(
-        abs(mine.mass - mass) / abs(mass),
-        float(np.abs(mine.com - com).max()) / size,
-        float(np.abs(mine.inertia - inertia).max()) / float(np.abs(inertia).max()),
-    )
 
 
 # --- whole processes ----------------------------------------------------------------------------
