@@ -18,7 +18,7 @@ from inertia_kit.description.mjcf.detect import is_mjcf
 from inertia_kit.description.safexml import read_bounded
 from inertia_kit.description.urdf.reader import expanded_text as expanded
 from inertia_kit.description.urdf.reader import files_read, load_urdf, narrow, needs_expansion
-from inertia_kit.description.urdf.xacro_includes import is_xml
+from inertia_kit.description.urdf.xacro_includes import is_xml, reads_others
 from inertia_kit.description.urdf.xacro_includes import reach as files_reached
 from inertia_kit.description.xmlparse import check_text
 
@@ -27,10 +27,10 @@ if TYPE_CHECKING:
 
 #: what the layers above read descriptions through: ``needs_expansion`` (a file made by macros,
 #: xacro), ``files_read`` (what such a file's expansion reads: the include graph),
-#: ``files_reached`` and ``is_xml`` (what its includes as written may read, without expanding
-#: it: the include graph's filter), ``expanded`` (its expansion as text, for ``inertia-fill
-#: -o``), ``may_be_included`` and ``stand_in_suffix`` (a text read from stdin), besides
-#: :func:`load`
+#: ``files_reached``, ``is_xml`` and ``reads_others`` (what its includes as written may read,
+#: without expanding it: the include graph's filters), ``expanded`` (its expansion as text, for
+#: ``inertia-fill -o``), ``may_be_included`` and ``stand_in_suffix`` (a text read from stdin),
+#: besides :func:`load`
 __all__ = [
     "expanded",
     "files_reached",
@@ -40,6 +40,7 @@ __all__ = [
     "load",
     "may_be_included",
     "needs_expansion",
+    "reads_others",
     "stand_in_suffix",
 ]
 

@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import functools
 import os
-import re
 import time
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -37,9 +36,6 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from inertia_kit.description.xacro_limits import XacroLimits
     from inertia_kit.lint.include_cache import Entry, Stamp
-
-# what a file that reads another file must name (xacro:include, xacro.load_yaml)
-_READS_OTHERS = re.compile(rb"include|load_yaml")
 
 
 @dataclass
@@ -183,7 +179,7 @@ def _scan(
 ) -> Entry | None:
     """What ``path`` is and reads, by its text and (for xacro that includes) its expansion,
     or the entry ``static`` gives a file to expand that need not be."""
-    from inertia_kit.description.loader import files_read, needs_expansion
+    from inertia_kit.description.loader import files_read, needs_expansion, reads_others
     from inertia_kit.description.safexml import read_bounded
     from inertia_kit.errors import InputError
     from inertia_kit.lint.include_cache import Entry, stamp
@@ -195,7 +191,7 @@ def _scan(
         data = read_bounded(path)
     except InputError:
         return None  # the loader tells why
-    if not (needs_expansion(data) and _READS_OTHERS.search(data)):
+    if not (needs_expansion(data) and reads_others(data)):
         return Entry("plain", ((path, own),))
     if static is not None:
         ruled_out = static(path)

@@ -48,6 +48,12 @@ _GLOB = re.compile(r"[*?\[]")
 _HINT = re.compile(r"[^\s\"'$()<>]*")
 
 
+def reads_others(data: bytes) -> bool:
+    """Whether a file's bytes may make xacro read another file: they name ``include`` or
+    ``load_yaml``; a file that names neither reads nothing else."""
+    return _READS_OTHERS.search(data) is not None
+
+
 class _Unknown(Exception):
     """An include that is not written out: the robot may read any file."""
 
@@ -153,7 +159,7 @@ def _reads(
         data = read_bounded(file)
     except Exception:
         raise _Unknown from None
-    if not _READS_OTHERS.search(data):
+    if not reads_others(data):
         return [], []
     if not xml_only and b"load_yaml" in data:
         raise _Unknown  # a YAML file asked about, and a file that may load it
