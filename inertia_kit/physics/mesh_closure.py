@@ -220,11 +220,18 @@ def weld(points: NDArray, tolerance: float) -> NDArray[np.int64]:
     How: the points are binned on 8 grids of cell ``tolerance``, offset by half a cell or not
     on each axis; two points within half a cell on every axis share a cell on at least one of
     them. The points of a cell take the lowest index among them, grid after grid, until no
-    index changes (a chain of n points settles within n rounds).
+    index changes (a chain of n points settles within n rounds). When no two points come
+    within twice the tolerance on every axis (:func:`apart`), which is what most meshes' corners
+    are, no cell holds two and the labels are the points' own indices without the grids.
     """
+    if not len(points) or not tolerance > 0 or apart(points, 2.0 * tolerance):
+        return np.arange(len(points))
+    return grid_weld(points, tolerance)
+
+
+def grid_weld(points: NDArray, tolerance: float) -> NDArray[np.int64]:
+    """:func:`weld` on its grids alone, for points (m, 3), m > 0, and a positive tolerance."""
     labels = np.arange(len(points))
-    if not len(points) or not tolerance > 0:
-        return labels
     scaled = (points - points.min(axis=0)) / tolerance
     offsets = np.array([[(k >> axis) & 1 for axis in range(3)] for k in range(8)]) / 2
     cells = [_cell_ids(np.floor(scaled + offset).astype(np.int64)) for offset in offsets]
@@ -236,6 +243,44 @@ def weld(points: NDArray, tolerance: float) -> NDArray[np.int64]:
             labels = lowest[cell.ravel()]
         if np.array_equal(labels, before):
             return labels
+
+
+#: a direction no grid of CAD coordinates lines up with (powers of the plastic number's
+#: inverse): points along it are as spread out as the mesh, so few pairs are near in projection
+_SPREAD = np.array([1.0, 0.7548776662466927, 0.5698402909980532])
+#: more pairs near in projection than this many per point: the grids are cheaper than the pairs
+_MOST_NEAR = 8
+
+
+def apart(points: NDArray, distance: float) -> bool:
+    """
+    Whether no two of ``points`` (m, 3) lie within ``distance`` of each other on every axis:
+    two that do are within ``distance · Σ|spread|`` along one direction, so only the pairs that
+    near in that single sort are measured. False (not known to be apart) also when the points
+    are not finite or more than a few pairs per point are that near in projection.
+    """
+    along = (points - points.min(axis=0)) @ _SPREAD
+    if not np.isfinite(along).all():
+        return False
+    order = np.argsort(along, kind="stable")
+    ranked = along[order]
+    # and the rounding of the projection, far below any tolerance of a weld
+    reach = distance * float(_SPREAD.sum()) + 16 * np.finfo(float).eps * float(ranked[-1])
+    # the pairs (i, i + k) in sorted order nearer than ``reach``: sorted, so they are the
+    # first ``k`` steps of each run of near neighbours
+    near = np.flatnonzero(np.diff(ranked) < reach)
+    step, measured = 1, 0
+    while len(near):
+        measured += len(near)
+        if measured > _MOST_NEAR * len(points):
+            return False
+        gaps = np.abs(points[order[near]] - points[order[near + step]]).max(axis=1)
+        if (gaps < distance).any():
+            return False
+        step += 1
+        near = near[near + step < len(ranked)]
+        near = near[ranked[near + step] - ranked[near] < reach]
+    return True
 
 
 def _cell_ids(cells: NDArray[np.int64]) -> NDArray[np.int64]:

@@ -183,6 +183,43 @@ def test_weld_uses_a_distance_not_decimal_rounding():
     assert len(set(weld(chain, 1e-3))) == 1
 
 
+def _chebyshev_apart(points, distance):
+    """No two rows of ``points`` within ``distance`` on every axis, by every pair."""
+    gaps = np.abs(points[:, None, :] - points[None, :, :]).max(axis=2)
+    np.fill_diagonal(gaps, np.inf)
+    return bool((gaps >= distance).all())
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    count=st.integers(1, 40),
+    lattice=st.booleans(),
+    copies=st.lists(st.floats(0.0, 3.0), max_size=6),
+    scale=st.sampled_from([1e-6, 1.0, 1e4]),
+    offset=st.sampled_from([0.0, 1e3]),
+)
+def test_weld_without_its_grids_labels_as_they_do(seed, count, lattice, copies, scale, offset):
+    """Points far apart on some axis are each their own (``apart``), as the grids find them;
+    points near one another, at fractions and multiples of the tolerance, go to the grids. On
+    a lattice and off it, far from the origin and near it."""
+    from inertia_kit.physics.mesh_closure import apart, grid_weld, unique_rows, weld
+
+    rng = np.random.default_rng(seed)
+    tolerance = 1e-3 * scale
+    # on a lattice, CAD corners share coordinates
+    grid = rng.integers(0, 4, (count, 3)) * 0.25
+    points = grid if lattice else rng.uniform(0.0, 1.0, (count, 3))
+    near = [
+        points[rng.integers(len(points))]
+        + factor * rng.choice([-1.0, 1.0], 3) * rng.uniform(0.5, 1.0, 3) * 1e-3
+        for factor in copies
+    ]
+    points = unique_rows(np.vstack([points, *near]) * scale + offset)[0]
+    assert np.array_equal(weld(points, tolerance), grid_weld(points, tolerance))
+    assert apart(points, 2 * tolerance) == _chebyshev_apart(points, 2 * tolerance)
+
+
 def test_distinct_corners_as_close_as_the_coarse_tolerance_are_not_pinched(tmp_path):
     """Two cubes 3e-8 of the extent apart (TIAGo's base_ring.stl has distinct corners that
     close), with one shared corner written twice 1e-12 apart: the fine weld closes the surface,
