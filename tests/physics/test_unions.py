@@ -113,6 +113,16 @@ def test_boxes_overlapping_by_half():
     assert result.volume == pytest.approx(1.5 * 0.4 * 0.2, rel=1e-12)
 
 
+def test_three_boxes_in_a_row_overlapping_by_half():
+    """Three parts meeting in pairs (the union and each part tessellated, not one
+    intersection): a box 2 long, each half-overlap counted once."""
+    parts = [Part.box([1.0, 0.4, 0.2], transform([0.5 * k, 0.0, 0.0])) for k in range(3)]
+    result = union(parts, density=1000.0)
+    expected = primitives.box([2.0, 0.4, 0.2], density=1000.0).placed([0.5, 0.0, 0.0])
+    assert_close(result.mass_properties, expected, 1e-9)
+    assert result.overlap_volume == pytest.approx(2 * 0.5 * 0.4 * 0.2, rel=1e-12)
+
+
 def test_rotated_crossed_bars_and_rigid_motion():
     # a plus sign: two bars, one yawed 90°, sharing a central cube counted once
     bar = (1.0, 0.2, 0.2)
