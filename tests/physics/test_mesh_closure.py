@@ -183,6 +183,40 @@ def test_weld_uses_a_distance_not_decimal_rounding():
     assert len(set(weld(chain, 1e-3))) == 1
 
 
+@settings(max_examples=100, deadline=None)
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    count=st.integers(4, 120),
+    shape=st.sampled_from(["lattice", "cloud", "sphere"]),
+)
+def test_the_hull_of_the_corners_first_seen_is_that_of_every_corner(seed, count, shape):
+    """A soup of triangles with repeated corners (on a lattice, where hull facets are coplanar;
+    in a cloud; on a sphere): ``first_seen`` is the corners without repeats in order, and
+    manifold3d's hull of it is the hull of every corner, bit for bit."""
+    import manifold3d
+
+    from inertia_kit.physics.manifolds import manifold_moments
+    from inertia_kit.physics.mesh_closure import first_seen
+
+    rng = np.random.default_rng(seed)
+    points = {
+        "lattice": lambda: rng.integers(0, 4, (count, 3)) * 0.25,
+        "cloud": lambda: rng.normal(size=(count, 3)),
+        "sphere": lambda: rng.normal(size=(count, 3)),
+    }[shape]()
+    if shape == "sphere":
+        points /= np.linalg.norm(points, axis=1)[:, None]
+    corners = points[rng.integers(0, count, 9 * count)]
+    distinct, index = unique_rows(corners)
+    seen = first_seen(distinct, index)
+    expected = list(dict.fromkeys(map(tuple, corners)))
+    assert [tuple(p) for p in seen] == expected
+    every = manifold_moments(manifold3d.Manifold.hull_points(corners))
+    once = manifold_moments(manifold3d.Manifold.hull_points(seen))
+    assert every.volume == once.volume
+    assert np.array_equal(every.first, once.first) and np.array_equal(every.second, once.second)
+
+
 def _chebyshev_apart(points, distance):
     """No two rows of ``points`` within ``distance`` on every axis, by every pair."""
     gaps = np.abs(points[:, None, :] - points[None, :, :]).max(axis=2)
