@@ -26,6 +26,7 @@ also compiles the bytecode (under ``benchmarks/.data/pycache``, whatever
 from __future__ import annotations
 
 import argparse
+import itertools
 import os
 import platform
 import re
@@ -308,6 +309,31 @@ def best(command: list[str], runs: int, env_of, ok=(0, 1)) -> Timing:
     return Timing(min(walls), None if None in cpus else min(cpus), codes)
 
 
+def alternated(command: list[str], runs: int, env_ofs: list, ok=(0, 1)) -> list[Timing]:
+    """
+    :func:`best` of ``command`` in each environment of ``env_ofs``, their runs taken in turn
+    (one of each, ``runs`` times): a busy machine's slow minutes fall on all of them, so their
+    ratio holds where best-of-N taken one after the other drifts by 10-20 %.
+    """
+    for env_of in env_ofs:
+        run_once(command, env_of(-1), ok)
+    samples: list[list[tuple[float, float | None, int]]] = [[] for _ in env_ofs]
+    for index in range(runs):
+        for sample, env_of in zip(samples, env_ofs, strict=True):
+            sample.append(run_once(command, env_of(index), ok))
+    timings = []
+    for sample in samples:
+        cpus = [cpu for _, cpu, _ in sample]
+        timings.append(
+            Timing(
+                min(wall for wall, _, _ in sample),
+                None if None in cpus else min(cpus),  # type: ignore[type-var]
+                {code for _, _, code in sample},
+            )
+        )
+    return timings
+
+
 def wait_out_racy_window(files: list[Path]) -> None:
     """The cache does not store a file changed in the last 2 s (see physics.mesh_cache)."""
     newest = max(max(p.stat().st_mtime, p.stat().st_ctime) for p in files)
@@ -418,8 +444,11 @@ def main() -> int:
         warm_cache = os.path.join(scratch, "warm")
         robot_cache = os.path.join(scratch, "robot")
 
+        made = itertools.count()
+
         def fresh(index: int) -> dict[str, str]:
-            return environment(os.path.join(scratch, f"cold-{index}"))
+            # a new folder each call: another case's runs leave theirs filled
+            return environment(os.path.join(scratch, f"cold-{next(made)}"))
 
         def warm(index: int) -> dict[str, str]:
             return environment(warm_cache)
@@ -546,8 +575,7 @@ def real_robot(lint: str, path: Path, runs: int, fresh, cache: str, start_up: Ti
     """``path`` linted cold (a new cache each run) and warm (``cache``), warm against ``a``."""
     if not path.is_file():
         raise Failure(f"--robot {path}: no such file")
-    cold = best([lint, str(path)], min(runs, 3), fresh)
-    warm = best([lint, str(path)], runs, lambda i: environment(cache))
+    cold, warm = alternated([lint, str(path)], runs, [fresh, lambda i: environment(cache)])
     ratio = warm.wall / start_up.wall
     target = f"<= {WARM_RATIO:g}x a ({ratio:.2f}x{cpu_ratio(warm, start_up)})"
     rows: list[Row] = [
