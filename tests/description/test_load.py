@@ -400,6 +400,43 @@ def test_file_declaring_the_xacro_namespace_without_using_it_is_plain_urdf(tmp_p
     assert at(robot.link("a").source) == ("generated.urdf", 4, 2)
 
 
+def test_xacro_in_comments_alone_is_plain_urdf(tmp_path, monkeypatch):
+    """PR2's generated URDF quotes ``${cal_head_x}`` and commented-out ``${…}`` values in
+    comments, which xacro leaves as they are: it loads as URDF, without xacro, to the model
+    xacro's expansion gives."""
+    from inertia_kit.description.urdf import reader
+
+    text = (
+        f'<robot name="r" {NS}>\n  <!-- replaced by ${{cal_head_x}} and $(find pkg) -->\n'
+        '  <link name="a">\n    <!--\n    <origin xyz="${0.09/2.0} 0 0"/> -->\n'
+        '    <inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" '
+        'izz="1"/></inertial>\n  </link>\n</robot>\n'
+    )
+    path = write(tmp_path / "generated.urdf", text)
+    assert not reader.needs_expansion(path.read_bytes())
+    plain = load(path)
+    monkeypatch.setattr(reader, "needs_expansion", lambda data: True)
+    expanded = load(path)
+    assert plain.links == expanded.links and plain.links[0].source.line == 3
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        # a comment turning comment evaluation on: xacro evaluates the comments after it
+        f"<robot name='r' {NS}>\n  <!-- xacro:eval-comments -->\n  <!-- ${{1+1}} -->\n</robot>\n",
+        # a CDATA section may hold a "<!--" that is no comment: comments are not taken out
+        f"<robot name='r' {NS}>\n  <![CDATA[ <!-- ]]> ${{x}} <!-- -->\n</robot>\n",
+        # outside comments
+        f"<robot name='r' {NS}>\n  <!-- c -->\n  <link name='${{n}}'/>\n</robot>\n",
+    ],
+)
+def test_xacro_outside_comments_or_in_evaluated_comments_is_expanded(text):
+    from inertia_kit.description.urdf.reader import needs_expansion
+
+    assert needs_expansion(text.encode())
+
+
 def test_empty_robot_declaring_the_xacro_namespace_is_a_fragment(tmp_path):
     # example-robot-data's ur3.urdf: xacro output of a file that defined nothing
     text = f"<?xml version='1.0'?>\n<!-- generated -->\n<robot {NS}>\n  <!-- c -->\n</robot>\n"

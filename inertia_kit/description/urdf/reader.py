@@ -30,17 +30,27 @@ if TYPE_CHECKING:
 # Anything xacro would change: without it, a file that declares the xacro namespace (as xacro's
 # own output does) is plain URDF, and xacro would give it back unchanged
 _XACRO_AT_WORK = re.compile(rb"<\s*xacro:|\$\{|\$\(")
+# xacro leaves comments as they are (unless a comment turns ``xacro:eval-comments`` on): a
+# ``${...}`` in one is no use of xacro. Not taken out where a CDATA section could hold a ``<!--``
+_COMMENT = re.compile(rb"<!--.*?-->", re.DOTALL)
+_COMMENTS_READ = (b"xacro:eval-comments", b"<![CDATA[")
 
 
 def needs_expansion(data: bytes) -> bool:
     """
     Whether a file must go through xacro: xacro by content *and* using it (macros, ``${}``,
-    ``$()``). A file that only declares the namespace, as xacro's own output does, is URDF.
+    ``$()`` outside comments). A file that only declares the namespace, as xacro's own output
+    does, is URDF, and so is one whose only ``${}`` are in comments (PR2's, generated with
+    ``${cal_head_x}`` quoted in them).
     """
     from inertia_kit.description.urdf.xacro_detect import is_xacro
 
     data = narrow(data)
-    return is_xacro(data) and _XACRO_AT_WORK.search(data) is not None
+    if not is_xacro(data):
+        return False
+    if not any(mark in data for mark in _COMMENTS_READ):
+        data = _COMMENT.sub(b"", data)
+    return _XACRO_AT_WORK.search(data) is not None
 
 
 def narrow(data: bytes) -> bytes:
