@@ -34,14 +34,25 @@ def _inertial(path: Path, link: str):
     return com, mass, inertia
 
 
+def _generated(text: str) -> str:
+    """``text`` as xacro writes its output: the namespace declared, and here a comment quoting
+    a ``${…}`` (PR2's pr2.urdf), which xacro leaves as it is: still a URDF."""
+    return text.replace(
+        "<robot   name='arm'>",
+        "<robot   name='arm' xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n"
+        "  <!-- replaced by ${arm_length} from common.xacro -->",
+    )
+
+
 @pytest.mark.parametrize(
     "text, code, expected",
     [
         (ARM, 1, ARM_FILLED),
         (MISSING_MESH, 1, MISSING_MESH_FILLED),  # a refusal: the other link still filled
         (ARM_FILLED, 0, ARM_FILLED),  # nothing to fill: OUT is written all the same
+        (_generated(ARM), 1, _generated(ARM_FILLED)),
     ],
-    ids=["filled", "refusal", "nothing-to-fill"],
+    ids=["filled", "refusal", "nothing-to-fill", "xacro-output"],
 )
 def test_output_of_a_urdf_is_its_bytes_edited(text, code, expected, tmp_path: Path):
     path = tmp_path / "robot.urdf"
