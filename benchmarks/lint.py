@@ -7,6 +7,7 @@ robot's time goes.
     python benchmarks/lint.py --runs 3    # a quicker look
     python benchmarks/lint.py --imports   # also: what one run of each case spends importing
     python benchmarks/lint.py --robot PATH/panda.urdf.xacro   # also a real robot, cold and warm
+                                                              # runs in turn
 
 Three robots are generated on the first run under ``benchmarks/.data/lint-v1/``: a 20-link
 chain of revolute joints with box, cylinder and sphere links, and two 20-link chains whose
