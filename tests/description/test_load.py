@@ -437,6 +437,23 @@ def test_xacro_outside_comments_or_in_evaluated_comments_is_expanded(text):
     assert needs_expansion(text.encode())
 
 
+def test_comments_are_taken_out_in_linear_time():
+    """A hostile file of ``<!--`` with no ``-->`` after them: 8 times as many take ~8 times as
+    long (a pattern retried from each would take ~64 times, ~20 s for the larger)."""
+    from inertia_kit.description.urdf.reader import needs_expansion
+
+    def seconds(count):
+        data = f"<robot name='r' {NS}><!-- c -->".encode() + b"<!--" * count + b"</robot>"
+        best = float("inf")
+        for _ in range(5):
+            began = time.process_time()
+            assert not needs_expansion(data)
+            best = min(best, time.process_time() - began)
+        return best
+
+    assert seconds(32000) / max(seconds(4000), 1e-6) < 24
+
+
 def test_empty_robot_declaring_the_xacro_namespace_is_a_fragment(tmp_path):
     # example-robot-data's ur3.urdf: xacro output of a file that defined nothing
     text = f"<?xml version='1.0'?>\n<!-- generated -->\n<robot {NS}>\n  <!-- c -->\n</robot>\n"

@@ -49,8 +49,21 @@ def needs_expansion(data: bytes) -> bool:
     if not is_xacro(data):
         return False
     if not any(mark in data for mark in _COMMENTS_READ):
-        data = _COMMENT.sub(b"", data)
+        data = without_comments(data)
     return _XACRO_AT_WORK.search(data) is not None
+
+
+def without_comments(data: bytes) -> bytes:
+    """
+    ``data`` with its ``<!-- … -->`` comments taken out, in time linear in its length: only up
+    to the last ``-->``, so every ``<!--`` the pattern tries has an end and is matched (a
+    ``<!--`` with none after it would otherwise make the pattern scan to the end of the text
+    once for each, quadratic in a hostile file of them); what follows is kept as it is.
+    """
+    end = data.rfind(b"-->")
+    if end < 0:
+        return data
+    return _COMMENT.sub(b"", data[: end + 3]) + data[end + 3 :]
 
 
 def narrow(data: bytes) -> bytes:
