@@ -30,7 +30,9 @@ from inertia_kit.lint.findings import Finding
 if TYPE_CHECKING:
     from inertia_kit.lint import markup
 
-_DIRECTIVE = re.compile(r"\s*inertia-lint\s*:\s*(.*?)\s*\Z", re.DOTALL)
+# the directive's body is what follows, stripped: a lazy group before ``\s*\Z`` would try every
+# end in a run of blanks, quadratic in a hostile comment of them
+_DIRECTIVE = re.compile(r"\s*inertia-lint\s*:")
 _IGNORE = re.compile(r"ignore\s*\[([^\]]*)\](.*)\Z", re.DOTALL)
 _MARKERS = tuple("inertia-lint".encode(c) for c in ("utf-8", "utf-16-le", "utf-16-be"))
 
@@ -195,7 +197,7 @@ def _scan(path: str, found: markup.Layout) -> Directives:
         match = _DIRECTIVE.match(comment.body)
         if match is None:
             continue
-        body = match.group(1)
+        body = comment.body[match.end() :].strip()
         line = comment.line
         if body == "disable-file" or body.startswith(("disable-file ", "disable-file:")):
             disabled = True

@@ -256,3 +256,27 @@ def test_suppression_comments_are_read_from_the_overlay(tmp_path: Path):
     with overlaid({os.path.realpath(path): held}):
         assert not directives(path).holding(3)
     assert directives(path).holding(3)
+
+
+def test_a_directive_with_a_long_run_of_blanks_is_read_in_linear_time(tmp_path: Path):
+    """A directive with a run of blanks between its words (a hostile pull request): 8 times as
+    many blanks take ~8 times as long to read (a lazy group before ``\\s*\\Z`` took ~64 times,
+    4 s at 32 000), and the directive is read as before."""
+    import time
+
+    from inertia_kit.lint import suppress
+
+    def seconds(blanks):
+        comment = f"<!-- inertia-lint: ignore[IN098,{' ' * blanks}IN099] -->"
+        text = robot_lines(link("a", before=comment))
+        path = write(tmp_path / f"r{blanks}.urdf", text)
+        best = float("inf")
+        for _ in range(5):
+            suppress._directives.cache_clear()  # read again, not from the cache
+            began = time.process_time()
+            found = directives(str(path))
+            best = min(best, time.process_time() - began)
+        assert [ignore.selectors for ignore in found.ignores] == [("IN098", "IN099")]
+        return best
+
+    assert seconds(32000) / max(seconds(4000), 1e-6) < 24
