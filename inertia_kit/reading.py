@@ -9,9 +9,11 @@ them, as :mod:`inertia_kit.errors` does).
 from __future__ import annotations
 
 import errno
+import io
 import os
 import stat
 from pathlib import Path
+from typing import BinaryIO
 
 from inertia_kit.errors import InputError
 
@@ -71,11 +73,29 @@ def read_regular(
     with os.fdopen(handle, "rb") as stream:
         check_regular_status(os.fstat(handle), limit, shown, what)  # swapped meanwhile
         try:
-            data = stream.read(limit + 1)
+            data = read_at_most(stream, limit)
         except OSError as error:
             raise InputError(_reason(error), shown) from None
     if len(data) > limit:  # it grew since
         raise Refused(_too_big(limit, what), shown)
+    return data
+
+
+def read_at_most(stream: BinaryIO, limit: int) -> bytes:
+    """
+    ``stream.read(limit + 1)``: at most one byte more than ``limit`` (which shows the file is
+    larger), without that call's buffer of ``limit + 1`` bytes made before a byte is read
+    (CPython's does: 256 MB for a 28 KB mesh, some 30 µs of mapping memory every read, and a
+    ``MemoryError`` where memory is not overcommitted). A file is read to its size as
+    measured, and on only if it holds more by then (it grew, or it reports no size).
+    """
+    try:
+        size = os.fstat(stream.fileno()).st_size
+    except (OSError, AttributeError, ValueError, io.UnsupportedOperation):
+        size = limit
+    data = stream.read(min(size, limit) + 1)
+    if size < len(data) <= limit:
+        data += stream.read(limit + 1 - len(data))
     return data
 
 

@@ -75,3 +75,40 @@ def test_missing_files_and_folders_are_named(tmp_path):
     assert not isinstance(caught.value, Refused)
     with pytest.raises(Refused, match="is a directory, not a mesh file"):
         read_regular(tmp_path, 10, what="mesh file")
+
+
+@pytest.mark.parametrize("size", [0, 1, 999, 1000, 1001, 5000])
+def test_read_at_most_gives_what_read_of_one_more_than_the_bound_gives(tmp_path, size):
+    """The bytes ``read(limit + 1)`` gives, up to a file one byte over ``limit`` and beyond."""
+    from inertia_kit.reading import read_at_most
+
+    path = tmp_path / "data"
+    path.write_bytes(bytes(range(256)) * (size // 256) + bytes(size % 256))
+    with open(path, "rb") as stream:
+        expected = stream.read(1001)
+    with open(path, "rb") as stream:
+        assert read_at_most(stream, 1000) == expected
+
+
+def test_read_at_most_reads_on_past_the_size_a_file_reports(tmp_path):
+    """A file that holds more than its size said (it grew, or reports none: a pipe, /proc)
+    is read on to the bound; the buffer is the file's size, not the bound's (256 MB)."""
+    import tracemalloc
+
+    from inertia_kit.reading import read_at_most
+
+    read, write = os.pipe()  # fstat reports no size
+    os.write(write, b"x" * 3000)
+    os.close(write)
+    with os.fdopen(read, "rb") as stream:
+        assert read_at_most(stream, 1000) == b"x" * 1001
+    path = tmp_path / "small"
+    path.write_bytes(b"y" * 28000)
+    tracemalloc.start()
+    try:
+        with open(path, "rb") as stream:
+            assert read_at_most(stream, 256 << 20) == b"y" * 28000
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 1 << 20, peak

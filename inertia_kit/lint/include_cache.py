@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NamedTuple
 
+from inertia_kit.reading import read_at_most
 from inertia_kit.version import __version__
 
 #: Version of the file layout; part of the folder name and of every file.
@@ -103,7 +104,7 @@ def load_entries(
         return {}
     try:
         with open(file, "rb") as stream:
-            data = stream.read(MAX_BYTES + 1)
+            data = read_at_most(stream, MAX_BYTES)
     except OSError:
         return {}
     try:
