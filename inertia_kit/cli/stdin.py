@@ -110,10 +110,10 @@ def _stdin() -> bytes | None:
     why = "stdin is closed"  # Python sets sys.stdin to None when descriptor 0 is not open
     if stream is not None:
         from inertia_kit.description.safexml import MAX_BYTES
-        from inertia_kit.reading import size_text
+        from inertia_kit.reading import read_at_most, size_text
 
         try:
-            data = stream.read(MAX_BYTES + 1)
+            data = read_at_most(stream, MAX_BYTES)
         except OSError as error:
             why = error.strerror or str(error)
         else:
