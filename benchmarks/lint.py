@@ -300,21 +300,15 @@ def best(command: list[str], runs: int, env_of, ok=(0, 1)) -> Timing:
     Best of ``runs`` runs, after one untimed run (bytecode, page cache); ``env_of(i)`` gives
     each run's environment.
     """
-    run_once(command, env_of(-1), ok)
-    walls, cpus, codes = [], [], set()
-    for index in range(runs):
-        wall, cpu, code = run_once(command, env_of(index), ok)
-        walls.append(wall)
-        cpus.append(cpu)
-        codes.add(code)
-    return Timing(min(walls), None if None in cpus else min(cpus), codes)
+    return alternated(command, runs, [env_of], ok)[0]
 
 
 def alternated(command: list[str], runs: int, env_ofs: list, ok=(0, 1)) -> list[Timing]:
     """
-    :func:`best` of ``command`` in each environment of ``env_ofs``, their runs taken in turn
-    (one of each, ``runs`` times): a busy machine's slow minutes fall on all of them, so their
-    ratio holds where best-of-N taken one after the other drifts by 10-20 %.
+    The best of ``runs`` runs of ``command`` in each environment of ``env_ofs`` (``env_of(i)``
+    gives run ``i``'s; each has one untimed run first), their runs taken in turn (one of each,
+    ``runs`` times): a busy machine's slow minutes fall on all of them, so their ratio holds
+    where best-of-N taken one after the other drifts by 10-20 %.
     """
     for env_of in env_ofs:
         run_once(command, env_of(-1), ok)
