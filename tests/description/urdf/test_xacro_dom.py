@@ -8,10 +8,9 @@ an expansion linear in its macro calls.
 from __future__ import annotations
 
 import contextlib
-import time
 
 import pytest
-from kit import EXAMPLES, write
+from kit import EXAMPLES, least_cpu, write
 from kit.runaway_xacro import NS
 
 from inertia_kit.description.urdf import xacro_dom
@@ -119,12 +118,7 @@ def test_an_expansion_is_linear_in_its_macro_calls(tmp_path):
         )
 
     def seconds(path):
-        best = float("inf")
-        for _ in range(3):
-            began = time.process_time()
-            xacro.process_file(str(path))
-            best = min(best, time.process_time() - began)
-        return best
+        return least_cpu(lambda: xacro.process_file(str(path)))[0]
 
     small, large = robot(1000), robot(8000)
     with ours():
