@@ -29,5 +29,14 @@ NOT_FOR_PLAIN_URDF = (
     "inertia_kit.lint.markup",
     # the machine-read formats' encoder: a run that prints text needs none
     "json",
+    # the forensic hypotheses (and the search that tries them): a robot whose tensors agree
+    # with their geometry has no slip to explain
+    "inertia_kit.analysis.forensics.diagnosis",
+    "inertia_kit.analysis.forensics.candidate",
+    "inertia_kit.analysis.forensics.flipped_signs",
+    "inertia_kit.analysis.forensics.other_axes",
+    "inertia_kit.analysis.forensics.other_point",
+    "inertia_kit.analysis.forensics.transposed",
+    "inertia_kit.analysis.forensics.unit_slip",
 )
 NOT_FOR_WARM_CACHE = ("trimesh", "manifold3d", "collada")

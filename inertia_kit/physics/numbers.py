@@ -66,3 +66,11 @@ def unusable(value: float, scale: bool = False) -> str | None:
 def usable(value: float, scale: bool = False) -> bool:
     """Whether ``value`` can be computed with (:func:`unusable` gives no reason)."""
     return unusable(value, scale) is None
+
+
+def one_digit(value: float) -> bool:
+    """A value with one significant digit (1, 0.001, 5e-4): how placeholders are written."""
+    if not value > 0:
+        return False
+    mantissa = value / 10.0 ** math.floor(math.log10(value))
+    return abs(mantissa - round(mantissa)) <= 1e-9 * mantissa

@@ -31,8 +31,9 @@ Entry points
     ``corrected`` values.
 ``links.diagnose_basis(link, basis, loose=False)``
     The same against one of ``link.bases``; ``loose=True`` is IN020's "likely" note.
-``links.explain(link, hypothesis)``
-    What the forensic rule of ``hypothesis`` (e.g. ``AboutPoint``) reports about a link.
+``links.explain(link, code)``
+    What the forensic rule ``code`` (e.g. ``IN060``, whose hypothesis is ``AboutPoint``) reports
+    about a link.
 ``diagnosis.diagnose(declared, expected, ...)``
     The pure test of one declared value against one geometry-derived value.
 ``measure.deviation(tensor, reference)``

@@ -31,6 +31,7 @@ from inertia_kit.analysis.forensics.measure import (
     DISTINCT,
     MARGIN,
     MIN_MISMATCH,
+    RULE_MARGINS,
     SLACK,
     TOLERANCE,
     LogMetric,
@@ -200,12 +201,6 @@ _FITTED_RANKS = frozenset({7})  # the declared moments laid along the geometry's
 #: its products negated: 1.17 from its collision mesh, 0.64 with them restored (0.53 gained,
 #: under MARGIN), its least-inertia axis 47° off where a real part's strays 23° at most
 AXES_GAIN = MARGIN / 2
-#: the gain each hypothesis needs where the axes do not speak, when the calibration allows less
-#: than MARGIN: 0.1 above the most its reading gains on any of the 2220 links of the installed
-#: robot packages the linter is silent on (``benchmarks/cad_band.py``, "gains": products
-#: negated at most 0.50, Talos ``arm_left_2_link``; other axes 0.55, SO-100 ``shoulder``;
-#: about the origin 0.77 and one pair exchanged 0.79 keep MARGIN)
-RULE_MARGINS = {"IN061": 0.6, "IN062": 0.65}
 #: the readings that turn a tensor's axes without changing its moments
 _TURNING = (FlippedSigns, OtherAxes, Transposed)
 
@@ -215,9 +210,10 @@ def _gain_needed(
 ) -> float:
     """
     How much closer to the geometry (log distance) ``best``'s corrected tensor must come than
-    the declared one: :data:`~.measure.MARGIN` (or the hypothesis's :data:`RULE_MARGINS`), or
-    :data:`AXES_GAIN` for a reading that turns the principal axes, when the declared axes are
-    beyond a real part's from the geometry's and the corrected ones are not (issue 20, item 2).
+    the declared one: :data:`~.measure.MARGIN` (or the hypothesis's
+    :data:`~.measure.RULE_MARGINS`), or :data:`AXES_GAIN` for a reading that turns the
+    principal axes, when the declared axes are beyond a real part's from the geometry's and the
+    corrected ones are not (issue 20, item 2).
     """
     if turned and isinstance(best, _TURNING) and axes_mismatch(corrected, geometry) is None:
         return AXES_GAIN

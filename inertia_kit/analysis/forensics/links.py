@@ -16,13 +16,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from inertia_kit.analysis.bounds import BOUND_RTOL
 from inertia_kit.analysis.describe import TABLE, describe_geometry
-from inertia_kit.analysis.forensics.candidate import Candidate, Label, one_line
-from inertia_kit.analysis.forensics.diagnosis import (
-    Diagnosis,
-    diagnose,
-    diagnose_part,
-    part_gains,
-)
 from inertia_kit.analysis.forensics.measure import (
     BETTER,
     LOOSE,
@@ -32,12 +25,12 @@ from inertia_kit.analysis.forensics.measure import (
     LogMetric,
     deviation,
 )
-from inertia_kit.analysis.forensics.other_axes import rpy_text
 from inertia_kit.description import model
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.frames import rpy_matrix
 
 if TYPE_CHECKING:
+    from inertia_kit.analysis.forensics.diagnosis import Diagnosis
     from inertia_kit.analysis.geometry import Geometry
     from inertia_kit.analysis.links import LinkAnalysis
     from inertia_kit.physics.mass import MassProperties
@@ -74,7 +67,12 @@ def _named(shape: model.Shape) -> str:
 
 
 def _find_named_frames(link: LinkAnalysis) -> tuple[list, list]:
-    # each named as a finding's detail says it, with how its one-line message does (Label)
+    # the hypotheses' modules wait for a tensor that disagrees with its geometry (issue 23:
+    # start-up); each point and frame named as a finding's detail says it, with how its
+    # one-line message does (Label)
+    from inertia_kit.analysis.forensics.candidate import Label
+    from inertia_kit.analysis.forensics.other_axes import rpy_text
+
     points: list[tuple[str, ArrayLike]] = [("the link origin", (0.0, 0.0, 0.0))]
     for joint in link.children:
         xyz = joint.origin.xyz
@@ -151,6 +149,8 @@ def _readings_from_file(link: LinkAnalysis, basis: Geometry) -> dict[str, Any]:
 def _diagnose_basis(link: LinkAnalysis, basis: Geometry, mode: str) -> Diagnosis | None:
     """:func:`diagnose` (``mode`` ``exact`` or ``loose``) or :func:`diagnose_part`
     (``likely``) of the link's declared values against ``basis``."""
+    from inertia_kit.analysis.forensics.diagnosis import diagnose, diagnose_part
+
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return None
@@ -179,6 +179,8 @@ def link_gains(link: LinkAnalysis) -> dict[str, float]:
     the larger of the two per rule: what a reading of a real part gains where nothing slipped
     (``benchmarks/cad_band.py``).
     """
+    from inertia_kit.analysis.forensics.diagnosis import part_gains
+
     declared = link.declared
     if declared is None or not declared.mass > 0:
         return {}
@@ -283,12 +285,15 @@ class Explanation:
     detail: str | None = None
 
 
-def explain(link: LinkAnalysis, hypothesis: type[Candidate]) -> Explanation | None:
-    """The link's diagnosis when ``hypothesis`` explains it (see :func:`diagnose_link`)."""
+def explain(link: LinkAnalysis, code: str) -> Explanation | None:
+    """The link's diagnosis when the hypothesis of the forensic rule ``code`` (``IN060`` …
+    ``IN064``: :attr:`Diagnosis.code`) explains it (see :func:`diagnose_link`)."""
     diagnosis = diagnose_link(link)
     inertial = link.link.inertial
-    if diagnosis is None or not isinstance(diagnosis.slip, hypothesis) or inertial is None:
+    if diagnosis is None or diagnosis.code != code or inertial is None:
         return None
+    from inertia_kit.analysis.forensics.candidate import one_line
+
     excess = link.excess
     # an error, like IN023's, only when the bound holds with the numbers' rounding allowed for,
     # on collision geometry (analysis.firmness)

@@ -20,6 +20,7 @@ from inertia_kit.analysis.forensics.candidate import Candidate, Case, Wording, e
 from inertia_kit.analysis.forensics.measure import Metric, symmetric
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
+from inertia_kit.physics.numbers import one_digit
 from inertia_kit.physics.tensor_names import DIAGONAL
 
 #: plausible densities, kg/m³ (IN022's defaults): a unit slip is only considered when undoing it
@@ -92,14 +93,6 @@ class UnitSlip(Candidate):
             todo.append(f"divide the tensor by {fmt(factor, 5)} ({entries(corrected)})")
         data = {"factor": factor, "unit": self.unit, "mass_factor": mass_factor}
         return Wording(summary, detail, " and ".join(todo), data, claim)
-
-
-def one_digit(value: float) -> bool:
-    """A value with one significant digit (1, 0.001, 5e-4): how placeholders are written."""
-    if not value > 0:
-        return False
-    mantissa = value / 10.0 ** math.floor(math.log10(value))
-    return abs(mantissa - round(mantissa)) <= 1e-9 * mantissa
 
 
 def search(

@@ -15,7 +15,6 @@ from inertia_kit.analysis.expected import base_tensors, basis_text, geometry_ten
 from inertia_kit.analysis.fault import COM_MARGIN, PLAUSIBLE_COM, TENSOR_MARGIN, departure
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy
 from inertia_kit.analysis.forensics.measure import BAND, TOLERANCE, LogMetric
-from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.tensors import compare_tensors
 from inertia_kit.engines.lumping import lumped, positive_mass
@@ -23,6 +22,7 @@ from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severit
 from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt, tensor_text
+from inertia_kit.physics.numbers import one_digit
 
 CODE = "IN013"
 NAME = "placeholder-inertia"

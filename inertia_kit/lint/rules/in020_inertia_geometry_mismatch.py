@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from inertia_kit.analysis.bounds import BOUND_RTOL
-from inertia_kit.analysis.forensics.diagnosis import Diagnosis
 from inertia_kit.analysis.forensics.links import diagnose_basis
 from inertia_kit.analysis.geometry import Geometry
 from inertia_kit.analysis.links import LinkAnalysis
@@ -17,6 +17,9 @@ from inertia_kit.lint.options import Option
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
 from inertia_kit.physics.mass import MassProperties
+
+if TYPE_CHECKING:
+    from inertia_kit.analysis.forensics.diagnosis import Diagnosis
 
 CODE = "IN020"
 NAME = "inertia-geometry-mismatch"

@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.forensics.links import explain
-from inertia_kit.analysis.forensics.unit_slip import UnitSlip
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -27,6 +26,6 @@ SUPERSEDES = ("IN020", "IN023", "IN012", "IN022")
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    why = explain(link, UnitSlip)
+    why = explain(link, CODE)
     if why is not None:
         yield ctx.explanation_finding(why)

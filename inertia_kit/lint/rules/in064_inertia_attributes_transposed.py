@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from inertia_kit.analysis.forensics.links import explain
-from inertia_kit.analysis.forensics.transposed import Transposed
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
 from inertia_kit.lint.rules import RuleContext
@@ -23,6 +22,6 @@ SUPERSEDES = ("IN020", "IN023")
 
 
 def check(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
-    why = explain(link, Transposed)
+    why = explain(link, CODE)
     if why is not None:
         yield ctx.explanation_finding(why)

@@ -8,8 +8,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.fault import at_fault, departure
-from inertia_kit.analysis.forensics.diagnosis import RULE_MARGINS
-from inertia_kit.analysis.forensics.measure import MARGIN
+from inertia_kit.analysis.forensics.measure import MARGIN, RULE_MARGINS
 from inertia_kit.analysis.links import LinkAnalysis, RobotAnalysis
 from inertia_kit.analysis.twins import (
     COM_TOLERANCE,

@@ -7,7 +7,6 @@ from collections.abc import Iterator
 import numpy as np
 
 from inertia_kit.analysis.com_offset import judged_com
-from inertia_kit.analysis.forensics.candidate import one_line
 from inertia_kit.analysis.forensics.com_slip import ComReading, diagnose_link_com
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, FixRule, Repairs, Safety, Severity
@@ -55,6 +54,8 @@ def _message(name: str, where: str, reading: ComReading, distance: float) -> str
     if reading.kind == "frame":
         undone = reading.words.replace("the point read in ", "read in ")
         brief = "read in another frame"
+    from inertia_kit.analysis.forensics.candidate import one_line  # a finding's only
+
     head = f"link `{name}`: COM {where}; "
     return one_line(head, f"{undone}, {_length(distance)} from the centroid", brief)
 

@@ -7,14 +7,13 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from inertia_kit.analysis.forensics.candidate import one_line
 from inertia_kit.analysis.forensics.links import diagnose_link
 from inertia_kit.analysis.forensics.mass_changed import mass_beside_copy, mass_change
-from inertia_kit.analysis.forensics.unit_slip import one_digit
 from inertia_kit.analysis.links import LinkAnalysis
 from inertia_kit.lint.findings import Finding, Severity
 from inertia_kit.lint.rules import RuleContext
 from inertia_kit.physics.formatting import fmt
+from inertia_kit.physics.numbers import one_digit
 
 CODE = "IN068"
 NAME = "inertia-for-other-mass"
@@ -91,6 +90,8 @@ def _beside_copy(link: LinkAnalysis, ctx: RuleContext) -> Iterator[Finding]:
     declared, inertial = link.declared, link.link.inertial
     other = found.other
     assert declared is not None and inertial is not None and other.declared is not None
+    from inertia_kit.analysis.forensics.candidate import one_line  # a finding's only
+
     relation = _times(found.factor)
     masses = f" {fmt(other.declared.mass)} kg, not the declared {fmt(declared.mass)} kg"
     yield ctx.finding(
