@@ -110,8 +110,15 @@ class XacroLimits:
             raise_hint("timeout"),
         )
 
-    def out_of_memory(self) -> LimitExceeded:
-        """What a ``MemoryError`` in the expansion means."""
+    def out_of_memory(self, room_mb: float | None = None) -> LimitExceeded:
+        """What a ``MemoryError`` in the expansion means: the memory limit, or, when the process
+        may take less than that (``room_mb``: what its address-space limit leaves it, a
+        ``ulimit -v`` or scan's ``--max-memory``), that limit."""
+        if room_mb is not None and (not self.memory or room_mb < self.memory):
+            return LimitExceeded(
+                f"the expansion needed more memory than the {room_mb:.0f} MB this process may "
+                "still take (its address-space limit: a `ulimit -v`, or scan's --max-memory)"
+            )
         if not self.memory:
             return LimitExceeded("the expansion ran out of memory")
         return LimitExceeded(

@@ -138,6 +138,27 @@ def test_a_runaway_xacro_is_recorded_and_the_run_goes_on(tmp_path):
     assert status["fine.urdf"]["status"] == "ok"
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="RLIMIT_AS is set on Linux")
+def test_a_xacro_asset_is_held_to_the_scan_memory_limit_below_the_xacro_one(tmp_path):
+    """The expansion's child process keeps the worker's --max-memory, though the xacro memory
+    limit it sets for itself is larger, and says which limit it met."""
+    write(tmp_path / "lib" / "a" / "string.xacro", expression_robot("'x'*10**9"))  # 1 GB
+    write(tmp_path / "lib" / "b" / "fine.urdf", urdf.robot(urdf.link("l")))
+    started = time.monotonic()
+    given = ["--max-memory", "300", "--timeout", "60", *GENEROUS]  # xacro's: 3000 MB
+    result = CliRunner().invoke(
+        kit_command, ["scan", "-q", *given, "-o", f"{tmp_path}/o.jsonl", f"{tmp_path}/lib"]
+    )
+    assert time.monotonic() - started < 30  # refused at once, not 1 GB filled and timed out
+    assert result.exit_code == 1, result.output
+    status = {Path(r["path"]).name: r for r in records(tmp_path / "o.jsonl")}
+    assert status["fine.urdf"]["status"] == "ok"
+    assert status["string.xacro"]["status"] == "unreadable"
+    assert (
+        "MB this process may still take (its address-space limit" in status["string.xacro"]["error"]
+    ), status["string.xacro"]["error"]
+
+
 def test_ctrl_c_is_exit_130_and_the_record_resumes(tmp_path):
     write(tmp_path / "lib" / "a" / "chain.xacro", doubling_chain(22))
     library(tmp_path / "lib", 6)

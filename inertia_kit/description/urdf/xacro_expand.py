@@ -157,9 +157,10 @@ def expand(
     if limits is None:
         limits = XacroLimits.resolve()
     start = time.monotonic()
+    room = xacro_sandbox.memory_room_mb()  # an inherited limit below the xacro one: it speaks
 
     def work() -> Expansion:
-        return _expand(shown, dict(args or {}), resolver, limits, start)
+        return _expand(shown, dict(args or {}), resolver, limits, start, room)
 
     def in_child() -> Expansion:
         # the packages the child looked up, for the parent's resolver (package:// next)
@@ -183,7 +184,7 @@ def expand(
     except xacro_sandbox.TimedOut:
         raise InputError(f"xacro: {limits.timed_out().told()}", shown) from None
     except (MemoryError, xacro_sandbox.ChildDied) as error:
-        memory = limits.out_of_memory()
+        memory = limits.out_of_memory(room)
         if isinstance(error, xacro_sandbox.ChildDied):
             memory = LimitExceeded(f"{memory} ({error.reason()})", memory.hint)
         raise InputError(f"xacro: {memory.told()}", shown) from None
@@ -221,7 +222,12 @@ def _expanded(result: Expansion) -> Expanded:
 
 
 def _expand(
-    shown: str, args: dict[str, str], resolver: PackageResolver, limits: XacroLimits, start: float
+    shown: str,
+    args: dict[str, str],
+    resolver: PackageResolver,
+    limits: XacroLimits,
+    start: float,
+    room: float | None = None,
 ) -> Expansion:
     """The expansion itself (in the child process, or in-process under ``_LOCK``)."""
     import xacro
@@ -250,6 +256,6 @@ def _expand(
             raise
         except Exception as error:  # xacro raises anything from NameError to RuntimeError
             raise input_error(
-                error, session.path, session.display, limits.out_of_memory()
+                error, session.path, session.display, limits.out_of_memory(room)
             ) from None
         return session.result(doc.documentElement)

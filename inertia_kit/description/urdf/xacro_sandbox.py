@@ -7,7 +7,9 @@ The child inherits everything loaded (:func:`preload` imports what an expansion 
 so a fork costs about 8-10 ms of CPU per expansion (README: "Bounded xacro expansion"). It
 sets ``RLIMIT_AS`` to its current address space plus the memory limit (an allocation past it
 raises ``MemoryError`` where it happens) and ``RLIMIT_CPU`` to the time limit plus a grace (a
-backstop should the parent die), ignores ``SIGINT`` (the parent, which Ctrl-C also reaches,
+backstop should the parent die), never above the limits it inherited (a ``ulimit``, or the
+per-asset limits of ``inertia-kit scan``: :func:`memory_room_mb` says how much an inherited
+one leaves), ignores ``SIGINT`` (the parent, which Ctrl-C also reaches,
 kills it), runs the work and writes a pickled outcome to the pipe. The parent reads it until
 the deadline, then kills the child. Where ``os.fork`` is missing or fails (:class:`CannotFork`),
 or both the time and memory limits are off, the caller runs the work in-process (only the
@@ -242,9 +244,12 @@ def _limit_resources(timeout: float, memory_mb: int) -> None:  # pragma: no cove
     import resource
 
     def lower(kind: int, soft: int) -> None:
-        _, hard = resource.getrlimit(kind)
-        if hard != resource.RLIM_INFINITY:
-            soft = min(soft, hard)
+        # never above what the process was given: a soft limit the child inherits (ulimit -v,
+        # scan's --max-memory) holds for the expansion too
+        current, hard = resource.getrlimit(kind)
+        for bound in (current, hard):
+            if bound != resource.RLIM_INFINITY:
+                soft = min(soft, bound)
         # a platform that refuses, or a limit past what it holds: the parent's deadline holds
         with contextlib.suppress(ValueError, OSError, OverflowError):
             resource.setrlimit(kind, (soft, hard))
@@ -258,7 +263,23 @@ def _limit_resources(timeout: float, memory_mb: int) -> None:  # pragma: no cove
             lower(resource.RLIMIT_AS, size + memory_mb * (1 << 20))
 
 
-def _address_space() -> int | None:  # pragma: no cover - child
+def memory_room_mb() -> float | None:
+    """
+    The MB this process may still map under its address-space limit (``RLIMIT_AS``, soft: a
+    ``ulimit -v``, or scan's ``--max-memory``), which a forked child inherits: when it is less
+    than the xacro memory limit, it is the limit an expansion meets. ``None``: no such limit,
+    or not known here.
+    """
+    import resource
+
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    size = _address_space()
+    if soft == resource.RLIM_INFINITY or size is None:
+        return None
+    return max(soft - size, 0) / (1 << 20)
+
+
+def _address_space() -> int | None:
     """This process's virtual size in bytes (Linux), ``None`` where unknown."""
     try:
         with open("/proc/self/statm", "rb") as stream:

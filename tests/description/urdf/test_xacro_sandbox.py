@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import sys
 import time
 
@@ -118,3 +119,39 @@ def test_the_child_leaves_the_parents_objects_out_of_its_collections():
 def test_limits_too_large_to_wait_or_set_are_no_error():
     """``timeout = 1e9`` in [tool.inertia-kit.xacro]: poll takes no such wait (fuzz input 156)."""
     assert run(lambda: "done", timeout=1e12, memory_mb=1 << 60) == "done"
+
+
+#: in a fresh interpreter: its address-space limit lowered to 200 MB above what it holds (as
+#: scan's --max-memory lowers a worker's), an expansion child with a far larger limit of its own
+HELD_TO_INHERITED = """
+import resource, time
+from inertia_kit.description.urdf import xacro_sandbox
+size = xacro_sandbox._address_space()
+resource.setrlimit(resource.RLIMIT_AS, (size + (200 << 20), resource.RLIM_INFINITY))
+print(round(xacro_sandbox.memory_room_mb()))
+try:
+    xacro_sandbox.run(
+        lambda: len(bytearray(400 << 20)), timeout=30, memory_mb=100_000, start=time.monotonic()
+    )
+    print("allocated")
+except MemoryError:
+    print("MemoryError")
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="RLIMIT_AS is set on Linux")
+def test_the_child_never_raises_the_memory_limit_it_inherits():
+    done = subprocess.run(
+        [sys.executable, "-c", HELD_TO_INHERITED], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    room, outcome = done.stdout.split()
+    assert 190 <= int(room) <= 200  # what the limit leaves, read before the fork
+    assert outcome == "MemoryError"  # not 100 000 MB of its own: the 200 MB it was given
+
+
+def test_no_inherited_limit_leaves_no_room_to_tell():
+    import resource
+
+    if resource.getrlimit(resource.RLIMIT_AS)[0] == resource.RLIM_INFINITY:
+        assert xacro_sandbox.memory_room_mb() is None
