@@ -326,6 +326,6 @@ def file_sha256(path: str | Path) -> str | None:
         with open(path, "rb") as file:
             while block := file.read(1 << 20):
                 digest.update(block)
-    except OSError:
+    except (OSError, ValueError):  # ValueError: a path no file can have (a NUL in it)
         return None
     return digest.hexdigest()

@@ -207,6 +207,23 @@ def test_exit_codes_summary_keep_list_and_list_input(tmp_path, monkeypatch):
     assert result.exit_code == 2 and "--list: missing.txt" in result.stderr
 
 
+def test_a_listed_path_no_file_can_have_is_recorded_unreadable_and_the_run_goes_on(
+    tmp_path, monkeypatch
+):
+    """A NUL in a line of --list (a list cut from a binary file) is an asset that cannot be
+    read, not an internal error of the whole scan."""
+    monkeypatch.chdir(tmp_path)
+    library(tmp_path / "lib", 3)
+    (tmp_path / "list.txt").write_bytes(b"lib/g0/r0.urdf\nbad\x00name.urdf\n\xff\xfe\n")
+    result = CliRunner().invoke(kit_command, ["scan", "-q", "--list", "list.txt", "-o", "o.jsonl"])
+    assert result.exit_code == 1, result.output  # an asset not linted counts as an error
+    assert "internal error" not in result.stderr
+    status = {r["path"]: (r["status"], r["error"]) for r in records(tmp_path / "o.jsonl")}
+    assert status["lib/g0/r0.urdf"] == ("ok", None)
+    assert status["bad\x00name.urdf"][0] == "unreadable"
+    assert "null byte" in status["bad\x00name.urdf"][1]
+
+
 def test_rate_and_eta_text():
     assert rate_text(0, 5.0, 10) == "0.0/s ETA -"
     assert rate_text(50, 10.0, 450) == "5.0/s ETA 1:30"
