@@ -48,6 +48,7 @@ from inertia_kit.cli.printing import say
 @click.option(
     "--timeout",
     type=click.FloatRange(min=0),
+    callback=lambda ctx, param, value: _finite(value),
     default=60.0,
     show_default=True,
     metavar="SECONDS",
@@ -241,6 +242,16 @@ def _scan_options(options: dict[str, Any]) -> tuple[Any, Any]:
         no_mesh_cache=options["no_mesh_cache"],
     )
     return scan_options, discovery(options, finder)
+
+
+def _finite(seconds: float) -> float:
+    """``--timeout`` as given, unless it is not a number (click's range lets ``nan`` and
+    ``inf`` through)."""
+    import math
+
+    if not math.isfinite(seconds):
+        raise click.BadParameter(f"a number of seconds (0: none), got {seconds}")
+    return seconds
 
 
 def _listed(list_file: str | None) -> list[Any]:

@@ -44,6 +44,10 @@ PRELOAD = [
 ]
 
 
+#: the longest one wait for the workers, s
+_LONGEST_WAIT = 86_400.0
+
+
 @dataclass(frozen=True)
 class Limits:
     """Per item: ``timeout`` seconds of wall-clock time, ``memory_mb`` MB of new address
@@ -108,7 +112,10 @@ def _collect(
     busy = [w for w in workers if w.index is not None]
     now = time.monotonic()
     deadline = min(w.deadline for w in busy)
-    ready = set(wait([h for w in busy for h in w.handles()], max(0.0, deadline - now)))
+    # no deadline (--timeout 0) is no timeout; a far one (--timeout 1e300) is waited for a day
+    # at a time: the selector turns its timeout into milliseconds of a C int
+    left = None if deadline == math.inf else min(max(0.0, deadline - now), _LONGEST_WAIT)
+    ready = set(wait([h for w in busy for h in w.handles()], left))
     now = time.monotonic()
     for slot, worker in enumerate(workers):
         if worker.index is None:
@@ -272,7 +279,7 @@ _ORIGINAL: dict[int, tuple[int, int]] = {}
 def _unlimit() -> None:
     # back to the worker's own limits: the worker itself (pickling a result) is not the item
     for kind, limits in _ORIGINAL.items():
-        with contextlib.suppress(ValueError, OSError):
+        with contextlib.suppress(ValueError, OSError, OverflowError):
             resource.setrlimit(kind, limits)
 
 
@@ -280,7 +287,9 @@ def _lower(kind: int, value: int) -> None:
     soft, hard = _ORIGINAL.setdefault(kind, resource.getrlimit(kind))
     if soft != resource.RLIM_INFINITY:
         value = min(value, soft)
-    with contextlib.suppress(ValueError, OSError):
+    # a limit past what the platform holds (--max-memory 10**30, --timeout 1e300): none then,
+    # and the wall-clock deadline still holds
+    with contextlib.suppress(ValueError, OSError, OverflowError):
         resource.setrlimit(kind, (value, hard))
 
 

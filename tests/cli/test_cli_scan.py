@@ -224,6 +224,41 @@ def test_a_listed_path_no_file_can_have_is_recorded_unreadable_and_the_run_goes_
     assert "null byte" in status["bad\x00name.urdf"][1]
 
 
+@pytest.mark.parametrize(
+    "limits",
+    [
+        ["--timeout", "0"],
+        ["--timeout", "1e300"],
+        ["--max-memory", str(10**30)],
+        ["--max-memory", "0"],
+    ],
+)
+def test_no_limit_and_limits_past_what_the_platform_holds_scan_everything(tmp_path, limits):
+    """``--timeout 0`` is no time limit (it was an internal error: an infinite wait); a limit
+    no platform holds is none either."""
+    library(tmp_path / "lib", 3)
+    out = tmp_path / "o.jsonl"
+    result = CliRunner().invoke(
+        kit_command, ["scan", "-q", *limits, "-o", str(out), f"{tmp_path}/lib"]
+    )
+    assert result.exit_code == 1, result.output  # one wrong tensor
+    assert "internal error" not in result.stderr
+    assert sorted(r["status"] for r in records(out)) == ["findings", "ok", "ok"]
+
+
+@pytest.mark.parametrize("value", ["nan", "inf"])
+def test_a_timeout_that_is_no_number_is_refused(tmp_path, value):
+    library(tmp_path / "lib", 1)
+    result = CliRunner().invoke(
+        kit_command, ["scan", "--timeout", value, "-o", f"{tmp_path}/o.jsonl", f"{tmp_path}/lib"]
+    )
+    assert result.exit_code == 2
+    assert f"Invalid value for '--timeout': a number of seconds (0: none), got {value}" in (
+        result.stderr
+    )
+    assert not (tmp_path / "o.jsonl").exists()
+
+
 def test_rate_and_eta_text():
     assert rate_text(0, 5.0, 10) == "0.0/s ETA -"
     assert rate_text(50, 10.0, 450) == "5.0/s ETA 1:30"
