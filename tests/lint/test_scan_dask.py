@@ -23,6 +23,7 @@ from kit.runaway_xacro import doubling_chain
 
 from inertia_kit.cli import main as kit_command
 from inertia_kit.lint.scan import MEASURED
+from inertia_kit.physics import mesh_cache
 
 distributed = pytest.importorskip("distributed")
 
@@ -77,6 +78,11 @@ def test_a_local_cluster_records_the_lines_a_local_scan_does(tmp_path):
     lib = str(library(tmp_path / "lib"))
     here = scan("-j", "2", "-o", f"{tmp_path}/here.jsonl", lib)
     cache = tmp_path / "shared-cache"
+    # the cache stores no mesh changed in the last RACY_SECONDS (physics.mesh_cache): on a
+    # fast machine both scans end inside that window, and the workers rightly store nothing
+    mesh = tmp_path / "lib" / "meshes" / "box.stl"
+    changed = max(mesh.stat().st_mtime, mesh.stat().st_ctime)
+    time.sleep(max(0.0, changed + mesh_cache.RACY_SECONDS + 0.5 - time.time()))
     there = scan(
         "--dask", "local", "-j", "2", "--mesh-cache", str(cache), "-o", f"{tmp_path}/d.jsonl", lib
     )
