@@ -6,6 +6,7 @@ under a time and a memory limit; a summary and a keep-list at the end
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from typing import Any
@@ -166,8 +167,9 @@ def scan(paths: tuple[str, ...], options: dict[str, Any]) -> int:
             return 2
     scan_options, walk = _scan_options(options)
     written = (options["output"], options["keep_file"], options["summary_file"])
-    problem = _links_on_the_way([path for path in written if path is not None])
-    if problem is not None:
+    given = [path for path in written if path is not None]
+    problem = _links_on_the_way(given) or _missing_folder(given)
+    if problem is not None:  # said before a scan of hours, not after it
         say(f"error: {problem}")
         return 2
     if options["show_files"]:
@@ -201,12 +203,16 @@ def scan(paths: tuple[str, ...], options: dict[str, Any]) -> int:
         "assets_per_second": round(fresh / seconds, 3) if seconds > 0 else 0.0,
         "jobs": scan_options.jobs,
     }
-    if options["summary_file"] is not None:
-        _write_json(options["summary_file"], summary)
-    if options["keep_file"] is not None:
-        scan_summary.write_keep_list(
-            lines(options["output"]), options["keep_at"], options["keep_file"]
-        )
+    try:
+        if options["summary_file"] is not None:
+            _write_json(options["summary_file"], summary)
+        if options["keep_file"] is not None:
+            scan_summary.write_keep_list(
+                lines(options["output"]), options["keep_at"], options["keep_file"]
+            )
+    except InputError as error:  # its folder gone since the start, no room: the record holds
+        say(f"error: {error}")
+        return 2
     if not options["quiet"]:
         click.echo(scan_summary.render(summary), err=True, nl=False)
     return 1 if summary["failing"] else 0
@@ -267,6 +273,15 @@ def _listed(list_file: str | None) -> list[Any]:
             return listed(file)
     except OSError as error:
         raise UsageError(f"--list: {list_file}: {error.strerror}") from None
+
+
+def _missing_folder(paths: list[str]) -> str | None:
+    """Why a file the scan writes cannot be written at all: its folder does not exist."""
+    for path in paths:
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            return f"{path}: cannot write: no folder {folder}"
+    return None
 
 
 def _links_on_the_way(paths: list[str]) -> str | None:

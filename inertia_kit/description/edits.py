@@ -254,11 +254,51 @@ def write_atomic(
     (someone changed it meanwhile), nothing is written and ``ChangedWhileEditing`` is raised.
     With ``create``, a missing file is created (permissions from the umask), as for ``-o OUT``.
 
+    An output (``create``) that is a device or a named pipe (``-o /dev/null``, a FIFO a
+    pipeline reads) is written into, never renamed over: as root, a rename would replace the
+    system's ``/dev/null`` with a regular file. A file to edit must be a regular one.
+
     Returns whether the file was written.
     """
     target = real_target(path) if follow_symlinks else Path(path)
+    special = _special(target, follow_symlinks)
+    if special is not None:
+        if not create or expected is not None:
+            raise InputError(f"is {special}, not a file to edit; nothing was written", path)
+        return _write_through(target, path, data)
     with _commit_lock([target.parent] if expected is not None else []):
         return _write_set([(target, path, data, expected)], create)
+
+
+def _special(target: Path, follow_symlinks: bool = True) -> str | None:
+    """What ``target`` is when it exists and is neither a regular file nor a folder (a
+    device, a named pipe, a socket), else ``None``; a link itself is none of these (without
+    ``follow_symlinks`` it is replaced, as a file is)."""
+    import stat
+
+    try:
+        mode = os.stat(target, follow_symlinks=follow_symlinks).st_mode
+    except (OSError, ValueError):
+        return None
+    if stat.S_ISREG(mode) or stat.S_ISDIR(mode) or stat.S_ISLNK(mode):
+        return None
+    if stat.S_ISFIFO(mode):
+        return "a named pipe"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "a device"
+
+
+def _write_through(target: Path, shown: str | Path, data: bytes | Iterable[bytes]) -> bool:
+    """``data`` written into the device or named pipe ``target`` (a pipe waits for its reader,
+    as a shell's ``> fifo`` does)."""
+    try:
+        with open(target, "wb") as stream:
+            for piece in [data] if isinstance(data, bytes) else data:
+                stream.write(piece)
+    except OSError as error:  # /dev/full, a socket, a pipe whose reader left
+        raise InputError(f"cannot write: {error.strerror or error}", shown) from None
+    return True
 
 
 def write_all_atomic(
@@ -285,6 +325,10 @@ def write_all_atomic(
     and writes nothing.
     """
     planned = [(real_target(path), path, data, expected) for path, data, expected in writes]
+    for target, path, *_ in planned:
+        special = _special(target)
+        if special is not None:
+            raise InputError(f"is {special}, not a file to edit; nothing was written", path)
     written = {str(target) for target, *_ in planned}
     others = {n: found for n, found in (unchanged or {}).items() if n not in written}
     folders = [target.parent for target, *_ in planned] + [Path(n).parent for n in others]

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import os
+import stat
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
@@ -74,6 +75,12 @@ class Record:
             )
         except OSError as error:
             raise InputError(f"cannot write: {error.strerror}", self.path) from None
+        if not stat.S_ISREG(os.fstat(self.fd).st_mode):
+            # a device or a named pipe: the record is read back (to resume, for the summary and
+            # the keep-list), and reading a pipe we hold open would wait for ever
+            os.close(self.fd)
+            self.fd = -1
+            raise InputError("is not a regular file: a record is read back; give a file", self.path)
         try:
             fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:

@@ -6,9 +6,8 @@ memory stays flat in the number of assets (a resumed run summarises every asset 
 
 from __future__ import annotations
 
-import os
 from collections import Counter
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -115,17 +114,20 @@ def keeps(record: Mapping[str, Any], keep_at: str) -> bool:
 
 def write_keep_list(records: Iterable[Mapping[str, Any]], keep_at: str, path: str | Path) -> int:
     """Write the paths of the assets :func:`keeps`, one a line, in record order, replacing
-    ``path`` at the end (a reader never sees half a list); how many."""
-    path = os.fspath(path)
-    partial = path + ".partial"
+    ``path`` at the end (a reader never sees half a list: the writer of every output,
+    :func:`~inertia_kit.description.edits.write_atomic`, which also writes into a device or
+    a named pipe rather than over it); how many."""
+    from inertia_kit.description.edits import write_atomic
+
     kept = 0
-    # never through a link planted at the partial file's name
-    flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW
-    descriptor = os.open(partial, flags, 0o644)
-    with open(descriptor, "w", encoding="utf-8", errors="surrogateescape", newline="\n") as file:
+
+    def lines() -> Iterator[bytes]:
+        nonlocal kept
         for record in records:
             if keeps(record, keep_at):
-                file.write(record["path"] + "\n")
                 kept += 1
-    os.replace(partial, path)
+                yield (record["path"] + "\n").encode("utf-8", "surrogateescape")
+
+    # a link at ``path`` is replaced, never written through (a planted one must not redirect it)
+    write_atomic(path, lines(), create=True, follow_symlinks=False)
     return kept

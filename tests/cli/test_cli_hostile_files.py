@@ -211,3 +211,23 @@ def test_a_gltf_buffer_that_is_not_a_regular_file_is_not_read(repo):
     assert_clean(result)
     assert result.returncode == 1
     assert "IN034" in result.stdout and "model.gltf" in result.stdout
+
+
+def test_a_report_into_a_named_pipe_is_written_into_it_and_the_pipe_stays(tmp_path):
+    """``-o`` a pipe another process reads (or, as root, ``/dev/null``: a rename over it made
+    it a regular file for the whole system) is written into, never replaced."""
+    import threading
+
+    robot = write(tmp_path / "r.urdf", ROBOT)
+    fifo = tmp_path / "report.json"
+    os.mkfifo(fifo)
+    received: list[bytes] = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()), daemon=True)
+    reader.start()
+    result = CliRunner().invoke(
+        lint_main, ["-q", "--output-format", "json", "-o", str(fifo), str(robot)]
+    )
+    reader.join(timeout=30)
+    assert result.exit_code == 1, result.output
+    assert received and b'"code": "IN' in received[0]
+    assert fifo.is_fifo()

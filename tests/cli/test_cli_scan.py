@@ -259,6 +259,32 @@ def test_a_timeout_that_is_no_number_is_refused(tmp_path, value):
     assert not (tmp_path / "o.jsonl").exists()
 
 
+@pytest.mark.parametrize("option", ["--keep", "--summary"])
+def test_a_file_written_at_the_end_into_no_folder_fails_before_the_scan(tmp_path, option):
+    """Not after hours of scanning (it was an internal error then, for --keep)."""
+    library(tmp_path / "lib", 2)
+    written = f"{tmp_path}/nowhere/x"
+    result = CliRunner().invoke(
+        kit_command, ["scan", "-q", "-o", f"{tmp_path}/o.jsonl", option, written, f"{tmp_path}/lib"]
+    )
+    assert result.exit_code == 2
+    assert f"error: {written}: cannot write: no folder {tmp_path}/nowhere\n" == result.stderr
+    assert not (tmp_path / "o.jsonl").exists()  # nothing was scanned
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_a_record_that_is_no_regular_file_is_refused(tmp_path):
+    """A record is read back (resume, summary, keep-list): a named pipe we hold open would
+    never end; a device is no record either."""
+    library(tmp_path / "lib", 2)
+    os.mkfifo(tmp_path / "o.jsonl")
+    result = CliRunner().invoke(
+        kit_command, ["scan", "-q", "-o", f"{tmp_path}/o.jsonl", f"{tmp_path}/lib"]
+    )
+    assert result.exit_code == 2
+    assert "o.jsonl: is not a regular file: a record is read back; give a file" in result.stderr
+
+
 def test_rate_and_eta_text():
     assert rate_text(0, 5.0, 10) == "0.0/s ETA -"
     assert rate_text(50, 10.0, 450) == "5.0/s ETA 1:30"

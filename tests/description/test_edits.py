@@ -464,3 +464,66 @@ def test_write_all_atomic_checks_the_files_read_but_not_written(tmp_path):
     included.write_bytes(b"<link/>\n")
     assert write_all_atomic([(main, b"<robot>x</robot>\n", b"<robot/>\n")], unchanged=reads)
     assert main.read_bytes() == b"<robot>x</robot>\n"
+
+
+# --- outputs that are no regular file -------------------------------------------------------------
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_an_output_that_is_a_named_pipe_is_written_into_not_replaced(tmp_path):
+    import threading
+
+    fifo = tmp_path / "report.fifo"
+    os.mkfifo(fifo)
+    received: list[bytes] = []
+    reader = threading.Thread(target=lambda: received.append(fifo.read_bytes()), daemon=True)
+    reader.start()
+    assert write_atomic(fifo, [b"a report ", b"in pieces\n"], create=True)
+    reader.join(timeout=30)
+    assert received == [b"a report in pieces\n"]
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)  # still the pipe a pipeline reads
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="needs root")
+def test_an_output_that_is_a_device_is_written_into_never_renamed_over(tmp_path):
+    """As root a rename over ``/dev/null`` made it a regular file for the whole system
+    (``inertia-lint -o /dev/null``); nodes of our own here, never the system's."""
+    null, full = tmp_path / "null", tmp_path / "full"
+    os.mknod(null, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+    os.mknod(full, stat.S_IFCHR | 0o666, os.makedev(1, 7))
+    assert write_atomic(null, b"discarded", create=True)
+    assert write_atomic(null, iter([b"in ", b"pieces"]), create=True)
+    with pytest.raises(InputError, match="cannot write: No space left on device"):
+        write_atomic(full, iter([b"report"]), create=True)  # pieces: /dev/full is not read
+    for node in (null, full):
+        assert stat.S_ISCHR(os.lstat(node).st_mode)
+    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_a_file_to_edit_that_is_no_regular_file_is_refused(tmp_path):
+    import threading
+
+    fifo = tmp_path / "robot.urdf"
+    os.mkfifo(fifo)
+    # a writer feeds the pipe what the edits expect, again and again: a writer that read it
+    # would go on and replace it (the old code did) rather than wait for ever
+    stop = threading.Event()
+
+    def feed() -> None:
+        while not stop.is_set():
+            fifo.write_bytes(b"<robot name='r'/>")
+
+    feeder = threading.Thread(target=feed, daemon=True)
+    feeder.start()
+    try:
+        with pytest.raises(InputError, match="is a named pipe, not a file to edit"):
+            write_atomic(fifo, b"<robot/>", expected=b"<robot name='r'/>")
+        with pytest.raises(InputError, match="is a named pipe, not a file to edit"):
+            write_all_atomic([(fifo, b"<robot/>", b"<robot name='r'/>")])
+        assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    finally:  # nothing read the pipe: let the feeder finish
+        stop.set()
+        drain = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)
+        feeder.join(timeout=10)
+        os.close(drain)
