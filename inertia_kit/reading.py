@@ -81,6 +81,24 @@ def read_regular(
     return data
 
 
+def open_regular(path: str | Path) -> BinaryIO:
+    """
+    ``path`` open for binary reading if it is a regular file, else ``OSError``: for readers
+    that take anything odd for "nothing there" (a cache entry, an asset's hash, a file's first
+    bytes). Opened without waiting (a named pipe opens at once and is then refused) and judged
+    on what was opened, so a pipe or a link to one swapped in meanwhile never blocks a read.
+    """
+    flags = os.O_RDONLY | getattr(os, "O_BINARY", 0) | getattr(os, "O_NONBLOCK", 0)
+    handle = os.open(path, flags)
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            raise OSError(errno.EINVAL, "not a regular file", os.fspath(path))
+        return os.fdopen(handle, "rb")
+    except BaseException:
+        os.close(handle)
+        raise
+
+
 def read_at_most(stream: BinaryIO, limit: int) -> bytes:
     """
     ``stream.read(limit + 1)``: at most one byte more than ``limit`` (which shows the file is

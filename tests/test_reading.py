@@ -12,7 +12,7 @@ import threading
 import pytest
 
 from inertia_kit.errors import InputError
-from inertia_kit.reading import Refused, check_regular, read_regular
+from inertia_kit.reading import Refused, check_regular, open_regular, read_regular
 
 
 def finishes(call, seconds: float = 10.0):
@@ -112,3 +112,15 @@ def test_read_at_most_reads_on_past_the_size_a_file_reports(tmp_path):
     finally:
         tracemalloc.stop()
     assert peak < 1 << 20, peak
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_open_regular_refuses_what_is_no_regular_file_without_blocking(tmp_path):
+    pipe = tmp_path / "entry.json"
+    os.mkfifo(pipe)
+    assert isinstance(finishes(lambda: open_regular(pipe)), OSError)
+    assert isinstance(finishes(lambda: open_regular(tmp_path)), OSError)
+    regular = tmp_path / "r.json"
+    regular.write_bytes(b"{}")
+    with open_regular(regular) as stream:
+        assert stream.read() == b"{}"

@@ -16,6 +16,7 @@ from typing import Any
 
 from inertia_kit.lint.exclusion import IGNORE_MARKERS, Exclusion, exclusion
 from inertia_kit.lint.stand_in import is_stand_in
+from inertia_kit.reading import open_regular
 
 #: a robot file's name, case ignored: the folder walk and the pre-commit hooks' `files:` pattern
 #: (.pre-commit-hooks.yaml, checked equal by a test) pick the same files (`GEN.URDF` too); of
@@ -41,7 +42,7 @@ def is_robot_file(path: str | Path) -> bool:
     from inertia_kit.description.loader import format_of
 
     try:
-        with open(path, "rb") as file:
+        with open_regular(path) as file:  # a pipe, or a link to one, is no robot to find
             return format_of(file.read(_HEAD)) == "mjcf"
     except OSError:
         return False

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NamedTuple
 
-from inertia_kit.reading import read_at_most
+from inertia_kit.reading import open_regular, read_at_most
 from inertia_kit.version import __version__
 
 #: Version of the file layout; part of the folder name and of every file.
@@ -103,7 +103,7 @@ def load_entries(
     if file is None:
         return {}
     try:
-        with open(file, "rb") as stream:
+        with open_regular(file) as stream:  # a pipe planted in a shared cache never blocks
             data = read_at_most(stream, MAX_BYTES)
     except OSError:
         return {}

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from inertia_kit.fixes.masses import MassChoice
 from inertia_kit.lint.runner import Selection, checked_selectors, file_settings
 from inertia_kit.lint.scan_pool import Limits, Outcome, run_limited
+from inertia_kit.reading import open_regular
 
 if TYPE_CHECKING:
     from inertia_kit.description import model
@@ -323,7 +324,7 @@ def file_sha256(path: str | Path) -> str | None:
     """The sha256 of a file's bytes, read in blocks; ``None`` when it cannot be read."""
     digest = hashlib.sha256()
     try:
-        with open(path, "rb") as file:
+        with open_regular(path) as file:  # a pipe in --list is an unreadable asset
             while block := file.read(1 << 20):
                 digest.update(block)
     except (OSError, ValueError):  # ValueError: a path no file can have (a NUL in it)

@@ -39,6 +39,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.physics.meshes import MeshSolid
 from inertia_kit.physics.volume_moments import VolumeMoments
+from inertia_kit.reading import open_regular
 
 #: Version of the entry layout; part of the folder name and of every entry.
 FORMAT = 1
@@ -151,7 +152,7 @@ def encode(key: Mapping[str, Any], code: str, raw: UnscaledSolid) -> bytes | Non
 def read_entry(entry: str, key: Mapping[str, Any], code: str) -> UnscaledSolid | None:
     """The entry's solid, or ``None`` for a missing, unreadable, corrupt or foreign entry."""
     try:
-        with open(entry, "rb") as stream:
+        with open_regular(entry) as stream:  # a pipe planted in a shared cache never blocks
             data = stream.read(MAX_ENTRY_BYTES + 1)
             touched = os.fstat(stream.fileno()).st_mtime
     except (OSError, ValueError):

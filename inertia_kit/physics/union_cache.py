@@ -33,6 +33,7 @@ from inertia_kit.physics.mass import MassProperties
 from inertia_kit.physics.mesh_cache import cache_location, code_key
 from inertia_kit.physics.mesh_cache_entries import MAX_ENTRY_BYTES, write_entry
 from inertia_kit.physics.unions import DEFAULT_SEGMENTS, Part, UnionResult, overlapping, union
+from inertia_kit.reading import open_regular
 
 #: Version of the entry layout; part of the folder name and of every entry.
 FORMAT = 1
@@ -140,7 +141,7 @@ def _encode(code: str, key: dict[str, Any], result: UnionResult) -> bytes | None
 def _read(entry: str, code: str, key: dict[str, Any]) -> UnionResult | None:
     """The entry's union, or ``None`` for a missing, unreadable, corrupt or foreign entry."""
     try:
-        with open(entry, "rb") as stream:
+        with open_regular(entry) as stream:  # a pipe planted in a shared cache never blocks
             data = stream.read(MAX_ENTRY_BYTES + 1)
     except (OSError, ValueError):
         return None

@@ -231,3 +231,22 @@ def test_a_report_into_a_named_pipe_is_written_into_it_and_the_pipe_stays(tmp_pa
     assert result.exit_code == 1, result.output
     assert received and b'"code": "IN' in received[0]
     assert fifo.is_fifo()
+
+
+def test_a_named_pipe_among_the_files_of_a_folder_is_passed_over(tmp_path):
+    """A walk reads the first bytes of each .xml to tell MJCF from other XML: a pipe there (or
+    a link to one) waited for a writer for ever; a --list naming one is an unreadable asset."""
+    write(tmp_path / "lib" / "r.urdf", ROBOT)
+    for name in ("model.xml", "pipe.urdf"):
+        os.mkfifo(tmp_path / "lib" / name)
+    command = [sys.executable, "-m", "inertia_kit", "lint", "-q", "--exit-zero", "lib"]
+    done = subprocess.run(command, cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    (tmp_path / "list.txt").write_text("lib/pipe.urdf\nlib/r.urdf\n")
+    command = [sys.executable, "-m", "inertia_kit", "scan", "-q", "--list", "list.txt"]
+    done = subprocess.run(
+        [*command, "-o", "o.jsonl"], cwd=tmp_path, capture_output=True, text=True, timeout=60
+    )
+    assert done.returncode == 1, done.stderr
+    lines = (tmp_path / "o.jsonl").read_text().splitlines()
+    assert '"status":"unreadable"' in lines[0] and "is a named pipe" in lines[0]

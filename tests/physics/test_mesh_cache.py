@@ -325,6 +325,28 @@ def test_unreadable_entry_is_ignored(tmp_path: Path, cache: Path, calls: list) -
     assert not list(entry.parent.glob(".*.tmp"))
 
 
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_an_entry_that_is_a_named_pipe_is_ignored_without_blocking(
+    tmp_path: Path, cache: Path, calls: list
+) -> None:
+    """A pipe planted in a cache others can write (scan's --mesh-cache on a cluster): opening
+    it for reading waited for a writer for ever."""
+    import threading
+
+    path = MESHES["binary-stl"](tmp_path)
+    cached_mesh_solid(path)
+    (entry,) = entries(cache)
+    entry.unlink()
+    os.mkfifo(entry)
+    found: list = []
+    reader = threading.Thread(target=lambda: found.append(cached_mesh_solid(path)), daemon=True)
+    reader.start()
+    reader.join(timeout=30)
+    assert found, "still reading the pipe after 30 s"
+    assert_identical(found[0], mesh_solid(path))
+    assert len(calls) == 2
+
+
 # --- where, and when not ------------------------------------------------------------------------
 
 
