@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from inertia_kit.errors import MeshError
 from inertia_kit.physics.frames import transformed_points
+from inertia_kit.physics.numbers import MAX_MAGNITUDE
 from inertia_kit.physics.polyhedra import SurfaceIntegrator, integrate
 from inertia_kit.physics.stl import binary_triangles, read_stl
 
@@ -202,8 +203,22 @@ def _read_obj(path: Path, as_mujoco: bool = True) -> NDArray[np.float64]:
         raise MeshError(
             path, "empty", f"the {name} file holds no triangles; export the part's solid body"
         )
+    return _usable(triangles, path, name)
+
+
+def _usable(triangles: NDArray[np.float64], path: Path, name: str) -> NDArray[np.float64]:
+    """``triangles``, unless a coordinate is not finite or beyond ±``MAX_MAGNITUDE`` (1e50, the
+    project's bound on every position: physics.numbers), whose squares and cubes the
+    integrals would overflow (an OBJ of ``v 1e200 0 0`` lines was an internal error)."""
     if not np.isfinite(triangles).all():
         raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
+    if len(triangles) and float(np.abs(triangles).max()) > MAX_MAGNITUDE:
+        raise MeshError(
+            path,
+            "unreadable",
+            f"the {name} file holds vertex coordinates beyond ±{MAX_MAGNITUDE:g}: no part is "
+            "that large; re-export it in metres or millimetres",
+        )
     return triangles
 
 
@@ -345,10 +360,7 @@ def _read_scene(path: Path, suffix: str) -> tuple[NDArray[np.float64], float]:
             f"the file's meshes are in different units ({', '.join(sorted(set(units)))}); "
             "re-export it in one unit",
         )
-    triangles = np.concatenate(parts)
-    if not np.isfinite(triangles).all():
-        raise MeshError(path, "unreadable", f"the {name} file holds non-finite vertex coordinates")
-    return triangles, factors.pop()
+    return _usable(np.concatenate(parts), path, name), factors.pop()
 
 
 def _scene_parts(

@@ -436,6 +436,14 @@ BAD_FILES = {
     "empty-binary-stl": (write("empty.stl", bytes(80) + (0).to_bytes(4, "little")), "empty"),
     "empty-obj": (write("empty.obj", "# nothing here\n"), "empty"),
     "points-only-obj": (write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), "empty"),
+    # squares and cubes of 1e200 overflow the integrals: an internal error before
+    "huge-coordinates-obj": (
+        write(
+            "huge.obj",
+            "v 1e200 0 0\nv 0 1e200 0\nv 0 0 1e200\nv 0 0 0\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n",
+        ),
+        "unreadable",
+    ),
     "closed-flat-sheet": (
         lambda tmp_path: write_ascii_stl(
             tmp_path / "sheet.stl",
