@@ -112,8 +112,10 @@ def _splice(
 
 
 def _find(name: str, main_folder: Path, including_folder: Path) -> Path | None:
+    # the first that exists, as MuJoCo opens it: one that is no regular file (a named pipe, a
+    # folder) is then refused by the read, saying what it is, not reported missing
     for folder in (main_folder, including_folder):
         candidate = folder / name
-        if candidate.is_file():
+        if candidate.exists():
             return candidate
     return None

@@ -6,6 +6,8 @@ childclass, includes, mesh reference frames, and the errors MuJoCo would also re
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 from kit.mjcf import body_mass_properties, body_pose, written_mass_properties
@@ -167,6 +169,15 @@ def test_an_include_that_includes_itself_is_refused_where_it_is(tmp_path):
     with pytest.raises(InputError, match="includes itself") as error:
         load_mjcf(path)
     assert (error.value.path, error.value.line) == (str(tmp_path / "b.xml"), 3)
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no named pipes here")
+def test_an_include_that_is_a_named_pipe_is_refused_as_one_not_as_missing(tmp_path):
+    os.mkfifo(tmp_path / "part.xml")
+    path = write(tmp_path, "m.xml", '<mujoco><include file="part.xml"/></mujoco>')
+    with pytest.raises(InputError, match="is a named pipe, not a regular file") as error:
+        load_mjcf(path)
+    assert error.value.path == str(tmp_path / "part.xml")
 
 
 @pytest.mark.parametrize(
