@@ -489,8 +489,11 @@ def test_an_output_that_is_a_device_is_written_into_never_renamed_over(tmp_path)
     """As root a rename over ``/dev/null`` made it a regular file for the whole system
     (``inertia-lint -o /dev/null``); nodes of our own here, never the system's."""
     null, full = tmp_path / "null", tmp_path / "full"
-    os.mknod(null, stat.S_IFCHR | 0o666, os.makedev(1, 3))
-    os.mknod(full, stat.S_IFCHR | 0o666, os.makedev(1, 7))
+    try:
+        os.mknod(null, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        os.mknod(full, stat.S_IFCHR | 0o666, os.makedev(1, 7))
+    except OSError as error:  # a container without CAP_MKNOD, a nodev mount
+        pytest.skip(f"cannot make device nodes here: {error.strerror}")
     assert write_atomic(null, b"discarded", create=True)
     assert write_atomic(null, iter([b"in ", b"pieces"]), create=True)
     with pytest.raises(InputError, match="cannot write: No space left on device"):
