@@ -390,20 +390,17 @@ def _overlap_corrected(
             _boolean(solids, manifold3d.OpType.Intersect, "intersect"), origin
         )
         tessellated = float(sum(part.volume for part in group))  # tessellations keep volume
-        overlap = shared.volume
-        if overlap <= OVERLAP_NOISE * tessellated:
-            return None
-        total = _as_moments(summed, origin) + shared.negated()
-        return total.mass_properties(density=1.0), float(overlap)
-    pieces = [manifold_moments(solid, origin) for solid in solids]
-    merged = manifold_moments(_boolean(solids, manifold3d.OpType.Add, "unite"), origin)
-    tessellated = sum(piece.volume for piece in pieces)
-    overlap = tessellated - merged.volume
+        overlap, terms = shared.volume, [shared.negated()]
+    else:
+        pieces = [manifold_moments(solid, origin) for solid in solids]
+        merged = manifold_moments(_boolean(solids, manifold3d.OpType.Add, "unite"), origin)
+        tessellated = sum(piece.volume for piece in pieces)
+        overlap, terms = tessellated - merged.volume, [merged, *(p.negated() for p in pieces)]
     if overlap <= OVERLAP_NOISE * tessellated:
         return None
-    total = _as_moments(summed, origin) + merged
-    for piece in pieces:
-        total = total + piece.negated()
+    total = _as_moments(summed, origin)
+    for term in terms:  # in this order: the same sums, to the bit, as each branch had
+        total = total + term
     return total.mass_properties(density=1.0), float(overlap)
 
 
