@@ -273,10 +273,10 @@ def memory_room_mb() -> float | None:
     import resource
 
     soft, _ = resource.getrlimit(resource.RLIMIT_AS)
-    size = _address_space()
-    if soft == resource.RLIM_INFINITY or size is None:
+    if soft == resource.RLIM_INFINITY:  # the usual case: /proc is read only under a limit
         return None
-    return max(soft - size, 0) / (1 << 20)
+    size = _address_space()
+    return None if size is None else max(soft - size, 0) / (1 << 20)
 
 
 def _address_space() -> int | None:
