@@ -229,11 +229,11 @@ def _cannot_read(path: str | Path, error: OSError) -> MeshError:
 def _read_bytes(path: Path) -> bytes:
     """A mesh file's bytes, at most :data:`MAX_MESH_BYTES` (``MeshError`` beyond, or when it
     cannot be read)."""
-    from inertia_kit.reading import read_at_most
+    from inertia_kit.reading import open_regular, read_at_most
 
     _check_size(path, MAX_MESH_BYTES)
     try:
-        with open(path, "rb") as stream:
+        with open_regular(path) as stream:  # a pipe swapped in since _readable never blocks
             data = read_at_most(stream, MAX_MESH_BYTES)
     except OSError as error:
         raise _cannot_read(path, error) from None
