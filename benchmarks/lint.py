@@ -443,6 +443,7 @@ def main() -> int:
         warm_cache = os.path.join(scratch, "warm")
 
         made = itertools.count()
+        robot_caches = [os.path.join(scratch, f"robot-{i}") for i in range(len(arguments.robot))]
 
         def fresh(index: int) -> dict[str, str]:
             # a new folder each call: another case's runs leave theirs filled
@@ -482,8 +483,7 @@ def main() -> int:
             timing = best([lint, str(collada_urdf)], min(runs, 3), fresh)
             rows.append(("c: 1M-triangle DAE, cold", timing, "(best of 3 at most)", None))
 
-            for index, robot in enumerate(arguments.robot):
-                cache = os.path.join(scratch, f"robot-{index}")
+            for robot, cache in zip(arguments.robot, robot_caches, strict=True):
                 rows += real_robot(lint, robot, runs, fresh, cache, start_up)
         except Failure as error:
             print(f"FAIL: {error}")
@@ -514,12 +514,11 @@ def main() -> int:
                 forbidden(warm_modules, NOT_FOR_WARM_CACHE),
             )
         )
-        for index, robot in enumerate(arguments.robot):
-            cache = environment(os.path.join(scratch, f"robot-{index}"))
+        for robot, cache in zip(arguments.robot, robot_caches, strict=True):
             checks.append(
                 (
                     f"{robot.name} warm imports none of " + ", ".join(NOT_FOR_WARM_CACHE),
-                    forbidden(imported([lint, str(robot)], cache), NOT_FOR_WARM_CACHE),
+                    forbidden(imported([lint, str(robot)], environment(cache)), NOT_FOR_WARM_CACHE),
                 )
             )
         print()

@@ -55,18 +55,13 @@ from kit import write  # noqa: E402
 from kit.assets import asset_library  # noqa: E402
 from kit.runaway_xacro import HUGE_STRING, doubling_chain, expression_robot  # noqa: E402
 from lint import console_script  # noqa: E402
+from output_memory import PEAK  # noqa: E402  (a wrapper: its children's peak, in kB)
 
 from inertia_kit.lint.scan import MEASURED  # noqa: E402
 
 MEMORY_TARGET = 1.5
 #: xacro's own limits out of the way, so that the scan's --timeout and --max-memory decide
 RAISED = ["--xacro-limit", "timeout=600,memory=100000,elements=1000000000"]
-#: a scan's processes, from a wrapper: their largest resident set, in kilobytes on Linux
-PEAK = (
-    "import resource, subprocess, sys\n"
-    "subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)\n"
-    "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
-)
 
 
 def scan_command(record: Path, *paths: Path | str, extra: tuple[str, ...] = ()) -> list[str]:
